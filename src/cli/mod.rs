@@ -1,0 +1,49 @@
+//! Command-line interface: one file per subcommand.
+
+use clap::{Parser, Subcommand};
+
+mod frequencies;
+mod simulate;
+mod spectrum;
+mod static_load;
+
+#[derive(Parser)]
+#[command(
+    name = "raceway",
+    version,
+    about = "Ball-bearing dynamics with raceway spalls"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Kinematic fault frequencies (L0): FTF, BPFO, BPFI, BSF, 2·BSF
+    Frequencies(frequencies::Args),
+    /// Quasi-static load distribution and stiffness (L1)
+    Static(static_load::Args),
+    /// Simulate a scene and write a CSV of the outputs
+    Simulate(simulate::Args),
+    /// Spectrum, Welch PSD or envelope spectrum of a CSV column
+    Spectrum(spectrum::Args),
+}
+
+/// Runs the program; returns the process exit code.
+pub fn run() -> i32 {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Frequencies(a) => frequencies::run(a),
+        Command::Static(a) => static_load::run(a),
+        Command::Simulate(a) => simulate::run(a),
+        Command::Spectrum(a) => spectrum::run(a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("raceway: error: {e}");
+            1
+        }
+    }
+}

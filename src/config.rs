@@ -1,0 +1,574 @@
+//! Bearing description files (TOML, spec §8.5) and the presets shipped with raceway.
+//!
+//! A file has the sections `[bearing]`, `[material]`, `[contact]`, `[traction]`,
+//! `[inner_ring]`, `[pedestal]` and `[defect]`. Only `[bearing]` is required; the other
+//! sections default to the paper's Table-1 values. Unknown keys are refused, and every value is
+//! checked by [`BearingFile::validate`], whose error names the field and the rule it broke.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::Path;
+
+/// A configuration error that names the offending field (`section.key`) and the rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigError {
+    /// Dotted path of the field, e.g. `bearing.f_inner`; empty when the file is unreadable.
+    pub field: String,
+    /// What is wrong, in words.
+    pub message: String,
+}
+
+impl ConfigError {
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// `[bearing]`: the geometry of the bearing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BearingSection {
+    /// Number of balls.
+    pub z: u32,
+    /// Ball diameter D [m].
+    pub ball_diameter: f64,
+    /// Pitch diameter dm [m].
+    pub pitch_diameter: f64,
+    /// Free (nominal) contact angle α0 [deg].
+    pub contact_angle_free_deg: f64,
+    /// Inner groove curvature factor f_i (groove radius = f_i·D), > 0.5.
+    pub f_inner: f64,
+    /// Outer groove curvature factor f_o, > 0.5.
+    pub f_outer: f64,
+    /// Play along the contact line s0 ≥ 0 [m].
+    #[serde(default)]
+    pub clearance: f64,
+}
+
+/// `[material]`: balls and rings (one steel).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    pub youngs_modulus: f64,
+    pub poisson: f64,
+    pub density: f64,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            youngs_modulus: 208e9,
+            poisson: 0.3,
+            density: 7850.0,
+        }
+    }
+}
+
+/// How the Hertz constant is computed (spec §2.3, C5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HertzMethod {
+    /// Exact elliptic-integral solution (default).
+    Exact,
+    /// Hamrock–Brewe curve fits.
+    HamrockBrewe,
+}
+
+/// `[contact]`: normal contact law.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    /// Ball–race normal damping [N s/m].
+    pub c_br: f64,
+    pub hertz_method: HertzMethod,
+    /// Optional override of the inner Hertz constant [N/m^1.5]; computed when absent.
+    #[serde(rename = "K_inner", default, skip_serializing_if = "Option::is_none")]
+    pub k_inner: Option<f64>,
+    /// Optional override of the outer Hertz constant [N/m^1.5]; computed when absent.
+    #[serde(rename = "K_outer", default, skip_serializing_if = "Option::is_none")]
+    pub k_outer: Option<f64>,
+    /// Strips along the contact ellipse's major axis (C7).
+    pub n_strips: u32,
+}
+
+impl Default for ContactSection {
+    fn default() -> Self {
+        Self {
+            c_br: 20.0,
+            hertz_method: HertzMethod::Exact,
+            k_inner: None,
+            k_outer: None,
+            n_strips: 10,
+        }
+    }
+}
+
+/// Shape of the traction curve (spec §3.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum TractionLaw {
+    /// κ(u) = (A + B u) e^(−C u) + D (C8, default).
+    #[default]
+    Adore,
+    /// Piecewise linear, C⁰ only: for comparison.
+    Piecewise,
+}
+
+/// `[traction]`: the lubricant traction curve from four physical numbers (C8).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSection {
+    #[serde(default)]
+    pub law: TractionLaw,
+    pub kappa_0: f64,
+    pub kappa_max: f64,
+    /// Slip speed of the maximum [m/s].
+    pub u_max: f64,
+    pub kappa_inf: f64,
+}
+
+impl Default for TractionSection {
+    fn default() -> Self {
+        Self {
+            law: TractionLaw::Adore,
+            kappa_0: 0.0,
+            kappa_max: 0.08,
+            u_max: 0.5,
+            kappa_inf: 0.05,
+        }
+    }
+}
+
+/// `[inner_ring]`: mass and inertias (C12).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InnerRing {
+    pub mass: f64,
+    #[serde(rename = "I_polar")]
+    pub i_polar: f64,
+    #[serde(rename = "I_diam")]
+    pub i_diam: f64,
+}
+
+impl Default for InnerRing {
+    fn default() -> Self {
+        Self {
+            mass: 0.29,
+            i_polar: 2.3e-4,
+            i_diam: 1.3e-4,
+        }
+    }
+}
+
+/// `[pedestal]`: the 2-DOF support including the outer ring (C3, C12).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pedestal {
+    pub mass: f64,
+    pub k_y: f64,
+    pub k_z: f64,
+    pub c_y: f64,
+    pub c_z: f64,
+}
+
+impl Default for Pedestal {
+    fn default() -> Self {
+        Self {
+            mass: 0.77,
+            k_y: 15e6,
+            k_z: 15e6,
+            c_y: 1800.0,
+            c_z: 1800.0,
+        }
+    }
+}
+
+/// Defect model mode (spec §4.4 / §4.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum DefectMode {
+    /// Finite-size ball resting on the edges (rolling-ball filter, default).
+    #[default]
+    Finite,
+    /// Paper-literal: the profile depth under the nominal contact point.
+    Point,
+}
+
+/// Length over which the compliance is blended past a defect edge (C9).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum BlendLength {
+    /// The string `"b"`: the contact ellipse's semi-minor axis.
+    Named(BlendName),
+    /// An explicit length [m]; 0 is the paper's abrupt change.
+    Metres(f64),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum BlendName {
+    #[serde(rename = "b")]
+    SemiMinorAxis,
+}
+
+impl Default for BlendLength {
+    fn default() -> Self {
+        BlendLength::Named(BlendName::SemiMinorAxis)
+    }
+}
+
+/// `[defect]`: how spalls are modelled on this bearing (their size and place are in the scene).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DefectDefaults {
+    #[serde(default)]
+    pub mode: DefectMode,
+    /// Edge radius r_e used in the edge Hertz constant (eq. 20) [m].
+    pub edge_radius: f64,
+    #[serde(default)]
+    pub blend_length: BlendLength,
+}
+
+impl Default for DefectDefaults {
+    fn default() -> Self {
+        Self {
+            mode: DefectMode::Finite,
+            edge_radius: 0.1e-3,
+            blend_length: BlendLength::default(),
+        }
+    }
+}
+
+/// A whole bearing description file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BearingFile {
+    /// Human-readable name.
+    #[serde(default)]
+    pub name: String,
+    pub bearing: BearingSection,
+    #[serde(default)]
+    pub material: Material,
+    #[serde(default)]
+    pub contact: ContactSection,
+    #[serde(default)]
+    pub traction: TractionSection,
+    #[serde(default)]
+    pub inner_ring: InnerRing,
+    #[serde(default)]
+    pub pedestal: Pedestal,
+    #[serde(default)]
+    pub defect: DefectDefaults,
+}
+
+/// The presets shipped in `presets/`: (name, TOML text).
+pub const PRESETS: &[(&str, &str)] = &[
+    (
+        "niu2014-table1",
+        include_str!("../presets/niu2014-table1.toml"),
+    ),
+    ("cwru-6205-de", include_str!("../presets/cwru-6205-de.toml")),
+    ("cwru-6203-fe", include_str!("../presets/cwru-6203-fe.toml")),
+    ("ims-za2115", include_str!("../presets/ims-za2115.toml")),
+];
+
+/// Name of the default preset (the paper's Table-1 bearing).
+pub const DEFAULT_PRESET: &str = "niu2014-table1";
+
+fn check_finite(field: &str, v: f64) -> Result<(), ConfigError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(ConfigError::new(
+            field,
+            format!("{v} is not a finite number"),
+        ))
+    }
+}
+
+fn check_positive(field: &str, v: f64) -> Result<(), ConfigError> {
+    check_finite(field, v)?;
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(ConfigError::new(field, format!("{v} must be > 0")))
+    }
+}
+
+fn check_non_negative(field: &str, v: f64) -> Result<(), ConfigError> {
+    check_finite(field, v)?;
+    if v >= 0.0 {
+        Ok(())
+    } else {
+        Err(ConfigError::new(field, format!("{v} must be ≥ 0")))
+    }
+}
+
+impl BearingFile {
+    /// Parses a TOML text and validates it. `origin` names the source in messages.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ConfigError> {
+        let file: BearingFile = toml::from_str(text).map_err(|e| {
+            // toml's message carries the key and the line; keep it whole.
+            let msg = e.message().to_string();
+            let field = field_from_toml_error(&msg, e.span(), text);
+            ConfigError::new(field, format!("{origin}: {}", e.to_string().trim_end()))
+        })?;
+        file.validate()?;
+        Ok(file)
+    }
+
+    /// Loads a preset by name, or a TOML file by path.
+    pub fn load(preset_or_path: &str) -> Result<Self, ConfigError> {
+        if let Some((_, text)) = PRESETS.iter().find(|(n, _)| *n == preset_or_path) {
+            return Self::from_toml_str(text, preset_or_path);
+        }
+        let path = Path::new(preset_or_path);
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
+            ConfigError::new(
+                "",
+                format!(
+                    "'{preset_or_path}' is neither a preset ({}) nor a readable file: {e}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+        Self::from_toml_str(&text, preset_or_path)
+    }
+
+    /// The default bearing (Table 1 of the paper).
+    pub fn default_preset() -> Self {
+        Self::load(DEFAULT_PRESET).expect("the default preset is valid")
+    }
+
+    /// Checks every value; the error names the field and the rule it broke.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let b = &self.bearing;
+        if b.z < 3 {
+            return Err(ConfigError::new(
+                "bearing.z",
+                format!("{} balls: a bearing needs at least 3 balls", b.z),
+            ));
+        }
+        if b.z > 200 {
+            return Err(ConfigError::new(
+                "bearing.z",
+                format!("{} balls: at most 200 are supported", b.z),
+            ));
+        }
+        check_positive("bearing.ball_diameter", b.ball_diameter)?;
+        check_positive("bearing.pitch_diameter", b.pitch_diameter)?;
+        if b.ball_diameter >= b.pitch_diameter {
+            return Err(ConfigError::new(
+                "bearing.ball_diameter",
+                format!(
+                    "D = {} m must be smaller than the pitch diameter dm = {} m (D ≥ dm is impossible)",
+                    b.ball_diameter, b.pitch_diameter
+                ),
+            ));
+        }
+        // Balls must fit around the pitch circle without overlapping.
+        let pitch_gap = b.pitch_diameter * (std::f64::consts::PI / b.z as f64).sin();
+        if b.ball_diameter >= pitch_gap {
+            return Err(ConfigError::new(
+                "bearing.z",
+                format!(
+                    "{} balls of D = {} m overlap on a pitch circle of {} m (need D < dm·sin(π/z) = {:.4e} m)",
+                    b.z, b.ball_diameter, b.pitch_diameter, pitch_gap
+                ),
+            ));
+        }
+        check_finite("bearing.contact_angle_free_deg", b.contact_angle_free_deg)?;
+        if !(0.0..80.0).contains(&b.contact_angle_free_deg) {
+            return Err(ConfigError::new(
+                "bearing.contact_angle_free_deg",
+                format!("{}° must lie in [0, 80)", b.contact_angle_free_deg),
+            ));
+        }
+        for (field, f) in [
+            ("bearing.f_inner", b.f_inner),
+            ("bearing.f_outer", b.f_outer),
+        ] {
+            check_finite(field, f)?;
+            if f <= 0.5 {
+                return Err(ConfigError::new(
+                    field,
+                    format!("{f} must be > 0.5 (f ≤ 0.5: the groove radius f·D would not exceed the ball radius)"),
+                ));
+            }
+            if f > 1.0 {
+                return Err(ConfigError::new(
+                    field,
+                    format!("{f} must be ≤ 1.0 (a groove flatter than that is not a ball-bearing groove)"),
+                ));
+            }
+        }
+        check_non_negative("bearing.clearance", b.clearance)?;
+        if b.clearance > 0.1 * b.ball_diameter {
+            return Err(ConfigError::new(
+                "bearing.clearance",
+                format!("{} m exceeds 10 % of the ball diameter", b.clearance),
+            ));
+        }
+
+        let m = &self.material;
+        check_positive("material.youngs_modulus", m.youngs_modulus)?;
+        check_finite("material.poisson", m.poisson)?;
+        if !(m.poisson > -1.0 && m.poisson < 0.5) {
+            return Err(ConfigError::new(
+                "material.poisson",
+                format!("{} must lie in (−1, 0.5)", m.poisson),
+            ));
+        }
+        check_positive("material.density", m.density)?;
+
+        let c = &self.contact;
+        check_non_negative("contact.c_br", c.c_br)?;
+        if let Some(k) = c.k_inner {
+            check_positive("contact.K_inner", k)?;
+        }
+        if let Some(k) = c.k_outer {
+            check_positive("contact.K_outer", k)?;
+        }
+        if !(1..=64).contains(&c.n_strips) {
+            return Err(ConfigError::new(
+                "contact.n_strips",
+                format!("{} must lie in 1..=64", c.n_strips),
+            ));
+        }
+
+        let t = &self.traction;
+        check_non_negative("traction.kappa_0", t.kappa_0)?;
+        check_positive("traction.kappa_max", t.kappa_max)?;
+        check_positive("traction.u_max", t.u_max)?;
+        check_non_negative("traction.kappa_inf", t.kappa_inf)?;
+        if t.kappa_max < t.kappa_0 || t.kappa_max < t.kappa_inf {
+            return Err(ConfigError::new(
+                "traction.kappa_max",
+                format!(
+                    "{} must be ≥ kappa_0 ({}) and ≥ kappa_inf ({}): it is the curve's maximum",
+                    t.kappa_max, t.kappa_0, t.kappa_inf
+                ),
+            ));
+        }
+        if t.kappa_max > 1.0 {
+            return Err(ConfigError::new(
+                "traction.kappa_max",
+                format!(
+                    "{} exceeds 1: not a lubricated traction coefficient",
+                    t.kappa_max
+                ),
+            ));
+        }
+
+        let r = &self.inner_ring;
+        check_positive("inner_ring.mass", r.mass)?;
+        check_positive("inner_ring.I_polar", r.i_polar)?;
+        check_positive("inner_ring.I_diam", r.i_diam)?;
+
+        let p = &self.pedestal;
+        check_positive("pedestal.mass", p.mass)?;
+        check_positive("pedestal.k_y", p.k_y)?;
+        check_positive("pedestal.k_z", p.k_z)?;
+        check_non_negative("pedestal.c_y", p.c_y)?;
+        check_non_negative("pedestal.c_z", p.c_z)?;
+
+        let d = &self.defect;
+        check_positive("defect.edge_radius", d.edge_radius)?;
+        if let BlendLength::Metres(l) = d.blend_length {
+            check_non_negative("defect.blend_length", l)?;
+        }
+        Ok(())
+    }
+
+    /// Serializes back to TOML (used to ship the bearing inside an FMU).
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string(self).expect("a bearing file serializes")
+    }
+}
+
+/// Best-effort extraction of the offending key from a toml error, so the message names a field
+/// even for type errors and unknown keys.
+fn field_from_toml_error(msg: &str, span: Option<std::ops::Range<usize>>, text: &str) -> String {
+    let span: Option<usize> = span.map(|s| s.start);
+    if let Some(rest) = msg.strip_prefix("unknown field `") {
+        if let Some(end) = rest.find('`') {
+            let key = &rest[..end];
+            return match section_at(span, text) {
+                Some(sec) => format!("{sec}.{key}"),
+                None => key.to_string(),
+            };
+        }
+    }
+    if let Some(rest) = msg.strip_prefix("missing field `") {
+        if let Some(end) = rest.find('`') {
+            let key = &rest[..end];
+            return match section_at(span, text) {
+                Some(sec) => format!("{sec}.{key}"),
+                None => key.to_string(),
+            };
+        }
+    }
+    // Type errors: name the key on the offending line.
+    if let Some(start) = span {
+        let line_start = text[..start.min(text.len())]
+            .rfind('\n')
+            .map(|i| i + 1)
+            .unwrap_or(0);
+        let line = &text[line_start..];
+        let line = line.lines().next().unwrap_or("");
+        if let Some(eq) = line.find('=') {
+            let key = line[..eq].trim();
+            if !key.is_empty() && !key.starts_with('[') {
+                return match section_at(Some(start), text) {
+                    Some(sec) => format!("{sec}.{key}"),
+                    None => key.to_string(),
+                };
+            }
+        }
+    }
+    section_at(span, text).unwrap_or_default()
+}
+
+/// The `[section]` header in force at byte offset `pos`.
+fn section_at(pos: Option<usize>, text: &str) -> Option<String> {
+    let pos = pos?.min(text.len());
+    text[..pos].lines().rev().find_map(|l| {
+        let t = l.trim();
+        (t.starts_with('[') && t.ends_with(']') && !t.starts_with("[["))
+            .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_string())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_loads() {
+        for (name, _) in PRESETS {
+            let b = BearingFile::load(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(b.bearing.z >= 3);
+        }
+    }
+
+    #[test]
+    fn unknown_preset_or_file_lists_presets() {
+        let e = BearingFile::load("no-such-bearing").unwrap_err();
+        assert!(e.message.contains("niu2014-table1"), "{e}");
+    }
+}

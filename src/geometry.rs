@@ -1,0 +1,215 @@
+//! Derived bearing geometry shared by every fidelity level (spec §2.1, §2.3).
+//!
+//! [`Bearing`] is built once from a validated [`BearingFile`]: it holds the geometry in SI units,
+//! the groove curvature-centre circles, the ball mass and inertia, and the Hertz constants of the
+//! inner, outer and series contacts.
+
+use crate::config::{BearingFile, ConfigError, HertzMethod};
+use crate::contact::hertz::{HertzContact, HertzSolution};
+use std::f64::consts::PI;
+
+/// Which raceway.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Race {
+    Inner,
+    Outer,
+}
+
+impl Race {
+    pub fn name(self) -> &'static str {
+        match self {
+            Race::Inner => "inner",
+            Race::Outer => "outer",
+        }
+    }
+}
+
+/// Principal curvatures of a race at the contact point, (rolling direction, transverse) [1/m]
+/// (spec §2.3; convex positive, concave negative).
+pub fn race_curvatures(race: Race, d: f64, dm: f64, alpha: f64, f: f64) -> (f64, f64) {
+    let gamma = d * alpha.cos() / dm;
+    match race {
+        Race::Inner => ((2.0 / d) * gamma / (1.0 - gamma), -1.0 / (f * d)),
+        Race::Outer => (-(2.0 / d) * gamma / (1.0 + gamma), -1.0 / (f * d)),
+    }
+}
+
+/// The bearing in SI units with everything derived that the solvers need.
+#[derive(Debug, Clone)]
+pub struct Bearing {
+    /// The description it was built from.
+    pub file: BearingFile,
+    /// Number of balls.
+    pub z: usize,
+    /// Ball diameter D [m].
+    pub d: f64,
+    /// Pitch diameter dm [m].
+    pub dm: f64,
+    /// Free contact angle α0 [rad].
+    pub alpha0: f64,
+    pub f_inner: f64,
+    pub f_outer: f64,
+    /// Total curvature B = f_i + f_o − 1.
+    pub b_total: f64,
+    /// Play along the contact line s0 [m].
+    pub clearance: f64,
+    /// Reduced modulus E′ = E/(1−ν²) [Pa].
+    pub e_prime: f64,
+    /// Ball mass [kg].
+    pub ball_mass: f64,
+    /// Ball moment of inertia m D²/10 [kg m²].
+    pub ball_inertia: f64,
+    /// Hertz solution of the inner contact at α0.
+    pub hertz_inner: HertzContact,
+    /// Hertz solution of the outer contact at α0.
+    pub hertz_outer: HertzContact,
+    /// Hertz constants used by the models [N/m^1.5] (the file's override if given).
+    pub k_inner: f64,
+    pub k_outer: f64,
+}
+
+impl Bearing {
+    /// Builds the derived geometry; the file is validated first.
+    pub fn new(file: &BearingFile) -> Result<Self, ConfigError> {
+        file.validate()?;
+        let b = &file.bearing;
+        let m = &file.material;
+        let d = b.ball_diameter;
+        let dm = b.pitch_diameter;
+        let alpha0 = b.contact_angle_free_deg.to_radians();
+        let e_prime = m.youngs_modulus / (1.0 - m.poisson * m.poisson);
+        let solution = match file.contact.hertz_method {
+            HertzMethod::Exact => HertzSolution::Exact,
+            HertzMethod::HamrockBrewe => HertzSolution::HamrockBrewe,
+        };
+        let hertz = |race: Race, f: f64| -> Result<HertzContact, ConfigError> {
+            let (r1, r2) = race_curvatures(race, d, dm, alpha0, f);
+            let sum1 = 2.0 / d + r1;
+            let sum2 = 2.0 / d + r2;
+            if !(sum1 > 0.0 && sum2 > 0.0) {
+                return Err(ConfigError::new(
+                    format!("bearing.f_{}", race.name()),
+                    "the groove conforms more closely than the ball: curvature sum ≤ 0",
+                ));
+            }
+            Ok(HertzContact::new(sum1, sum2, e_prime, solution))
+        };
+        let hertz_inner = hertz(Race::Inner, b.f_inner)?;
+        let hertz_outer = hertz(Race::Outer, b.f_outer)?;
+        let ball_mass = m.density * PI * d.powi(3) / 6.0;
+        Ok(Self {
+            file: file.clone(),
+            z: b.z as usize,
+            d,
+            dm,
+            alpha0,
+            f_inner: b.f_inner,
+            f_outer: b.f_outer,
+            b_total: b.f_inner + b.f_outer - 1.0,
+            clearance: b.clearance,
+            e_prime,
+            ball_mass,
+            ball_inertia: ball_mass * d * d / 10.0,
+            k_inner: file.contact.k_inner.unwrap_or(hertz_inner.stiffness),
+            k_outer: file.contact.k_outer.unwrap_or(hertz_outer.stiffness),
+            hertz_inner,
+            hertz_outer,
+        })
+    }
+
+    /// Loads a preset or a file and builds the geometry.
+    pub fn load(preset_or_path: &str) -> Result<Self, ConfigError> {
+        Self::new(&BearingFile::load(preset_or_path)?)
+    }
+
+    /// Ball radius R = D/2 [m].
+    pub fn ball_radius(&self) -> f64 {
+        0.5 * self.d
+    }
+
+    /// γ = D cos α / dm.
+    pub fn gamma(&self, alpha: f64) -> f64 {
+        self.d * alpha.cos() / self.dm
+    }
+
+    /// Groove curvature factor of a race.
+    pub fn f(&self, race: Race) -> f64 {
+        match race {
+            Race::Inner => self.f_inner,
+            Race::Outer => self.f_outer,
+        }
+    }
+
+    /// Hertz constant of a race [N/m^1.5].
+    pub fn k(&self, race: Race) -> f64 {
+        match race {
+            Race::Inner => self.k_inner,
+            Race::Outer => self.k_outer,
+        }
+    }
+
+    /// Hertz solution of a race (at α0).
+    pub fn hertz(&self, race: Race) -> &HertzContact {
+        match race {
+            Race::Inner => &self.hertz_inner,
+            Race::Outer => &self.hertz_outer,
+        }
+    }
+
+    /// Series constant of both contacts of one ball, K_n = (K_i^{−2/3} + K_o^{−2/3})^{−3/2}.
+    pub fn k_series(&self) -> f64 {
+        (self.k_inner.powf(-2.0 / 3.0) + self.k_outer.powf(-2.0 / 3.0)).powf(-1.5)
+    }
+
+    /// Groove curvature-centre circle of a race in the ring frame: (axial offset x_g, radius R_g)
+    /// [m] (spec §2.1; the inner circle is moved outward by the clearance along the contact line).
+    pub fn groove_centre(&self, race: Race) -> (f64, f64) {
+        let (s, c) = self.alpha0.sin_cos();
+        match race {
+            Race::Inner => {
+                let e = (self.f_inner - 0.5) * self.d + self.clearance;
+                (e * s, 0.5 * self.dm + e * c)
+            }
+            Race::Outer => {
+                let e = (self.f_outer - 0.5) * self.d;
+                (-e * s, 0.5 * self.dm - e * c)
+            }
+        }
+    }
+
+    /// Unloaded distance between the two groove centres, B·D + s0 [m].
+    pub fn groove_centre_distance(&self) -> f64 {
+        self.b_total * self.d + self.clearance
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table1() -> Bearing {
+        Bearing::load("niu2014-table1").unwrap()
+    }
+
+    #[test]
+    fn groove_centres_are_bd_apart_along_the_free_contact_line() {
+        let b = table1();
+        let (xi, ri) = b.groove_centre(Race::Inner);
+        let (xo, ro) = b.groove_centre(Race::Outer);
+        let (dx, dr) = (xi - xo, ri - ro);
+        assert!(((dx * dx + dr * dr).sqrt() - b.b_total * b.d).abs() < 1e-15);
+        assert!((dx.atan2(dr) - b.alpha0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn ball_mass_and_inertia_match_spec() {
+        let b = table1();
+        assert!((b.ball_mass - 8.419e-3).abs() < 5e-6, "{}", b.ball_mass);
+        assert!(
+            (b.ball_inertia - 1.358e-7).abs() < 5e-10,
+            "{}",
+            b.ball_inertia
+        );
+    }
+}
