@@ -1,1 +1,477 @@
-//! (in progress)
+//! Scenes: what to simulate (bearing, operating point, defect, fidelity, solver, outputs).
+//!
+//! A scene file is TOML:
+//!
+//! ```toml
+//! name = "sec3.5-outer"
+//! bearing = "niu2014-table1"      # preset name, or a path relative to the scene file
+//! fidelity = "lumped"             # kinematic | quasi_static | lumped | reduced | full
+//!
+//! [operating]
+//! speed_rpm = 9900.0
+//! fa = 4000.0                     # N, along +x on the inner ring
+//! fr = 1000.0                     # N, radial, applied along −z (load.Fz = −fr)
+//!
+//! [defect]                        # optional: no table, no spall
+//! ring = "outer"
+//! width = 1.0e-3
+//! depth = 0.2e-3
+//! theta0 = 3.1416                 # rad, C1 convention (π = load-zone centre)
+//!
+//! [solver]
+//! method = "dop853"
+//! rtol = 1e-6
+//!
+//! [output]
+//! duration = 0.2
+//! sample_rate = 51200.0
+//! skip = 0.02                     # transient excluded from spectra
+//! ```
+//!
+//! Optional tables: `[pulse]` (impact test, C14) and `[lumped]` (resonator, slip jitter, seed).
+
+use crate::config::{BearingFile, ConfigError};
+use crate::defect::DefectSpec;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// Fidelity level ("model no more than a scene needs"); the integer codes are the FMU's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Fidelity {
+    /// L0s: kinematic impulse-train signal generator.
+    Kinematic,
+    /// L1: quasi-static load distribution, no dynamics.
+    QuasiStatic,
+    /// L2: lumped inner ring + pedestal with kinematic balls.
+    #[default]
+    Lumped,
+    /// L3: per-ball reduced dynamic model.
+    Reduced,
+    /// L4: the paper's full model.
+    Full,
+}
+
+impl Fidelity {
+    /// The FMU's integer code (the level number L0..L4).
+    pub fn code(self) -> i32 {
+        match self {
+            Fidelity::Kinematic => 0,
+            Fidelity::QuasiStatic => 1,
+            Fidelity::Lumped => 2,
+            Fidelity::Reduced => 3,
+            Fidelity::Full => 4,
+        }
+    }
+
+    pub fn from_code(code: i32) -> Option<Self> {
+        Some(match code {
+            0 => Fidelity::Kinematic,
+            1 => Fidelity::QuasiStatic,
+            2 => Fidelity::Lumped,
+            3 => Fidelity::Reduced,
+            4 => Fidelity::Full,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Fidelity::Kinematic => "kinematic",
+            Fidelity::QuasiStatic => "quasi_static",
+            Fidelity::Lumped => "lumped",
+            Fidelity::Reduced => "reduced",
+            Fidelity::Full => "full",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        [
+            Fidelity::Kinematic,
+            Fidelity::QuasiStatic,
+            Fidelity::Lumped,
+            Fidelity::Reduced,
+            Fidelity::Full,
+        ]
+        .into_iter()
+        .find(|f| f.name() == s)
+    }
+}
+
+/// Operating point: shaft speed and the loads on the inner ring (C13).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Operating {
+    /// Shaft speed [rpm].
+    pub speed_rpm: f64,
+    /// Axial load along +x [N].
+    #[serde(default)]
+    pub fa: f64,
+    /// Radial load [N], applied along −z.
+    #[serde(default)]
+    pub fr: f64,
+    /// Extra load along +y [N].
+    #[serde(default)]
+    pub fy: f64,
+}
+
+/// Integration method names of the scene and the FMU (codes 0, 1, 2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodName {
+    Rkf45,
+    Dopri5,
+    #[default]
+    Dop853,
+}
+
+impl MethodName {
+    pub fn code(self) -> i32 {
+        match self {
+            MethodName::Rkf45 => 0,
+            MethodName::Dopri5 => 1,
+            MethodName::Dop853 => 2,
+        }
+    }
+    pub fn from_code(code: i32) -> Option<Self> {
+        Some(match code {
+            0 => MethodName::Rkf45,
+            1 => MethodName::Dopri5,
+            2 => MethodName::Dop853,
+            _ => return None,
+        })
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            MethodName::Rkf45 => "rkf45",
+            MethodName::Dopri5 => "dopri5",
+            MethodName::Dop853 => "dop853",
+        }
+    }
+    pub fn from_name(s: &str) -> Option<Self> {
+        [MethodName::Rkf45, MethodName::Dopri5, MethodName::Dop853]
+            .into_iter()
+            .find(|m| m.name() == s)
+    }
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSettings {
+    #[serde(default)]
+    pub method: MethodName,
+    /// Relative tolerance; absolute tolerances are rtol × each state's nominal value.
+    #[serde(default = "default_rtol")]
+    pub rtol: f64,
+    /// Step budget per advance (communication step) before the run is declared stalled.
+    #[serde(default = "default_max_steps")]
+    pub max_steps: u64,
+}
+
+fn default_rtol() -> f64 {
+    1e-6
+}
+fn default_max_steps() -> u64 {
+    2_000_000
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            method: MethodName::default(),
+            rtol: default_rtol(),
+            max_steps: default_max_steps(),
+        }
+    }
+}
+
+/// Output sampling of a CLI run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSettings {
+    /// Simulated time [s].
+    #[serde(default = "default_duration")]
+    pub duration: f64,
+    /// Output sample rate [Hz].
+    #[serde(default = "default_sample_rate")]
+    pub sample_rate: f64,
+    /// Initial transient excluded from spectra [s] (spec §7: 20 ms).
+    #[serde(default = "default_skip")]
+    pub skip: f64,
+}
+
+fn default_duration() -> f64 {
+    0.2
+}
+fn default_sample_rate() -> f64 {
+    51200.0
+}
+fn default_skip() -> f64 {
+    0.02
+}
+
+impl Default for OutputSettings {
+    fn default() -> Self {
+        Self {
+            duration: default_duration(),
+            sample_rate: default_sample_rate(),
+            skip: default_skip(),
+        }
+    }
+}
+
+/// The impact-test pulse (C14): a triangle on the pedestal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pulse {
+    /// Peak force [N] (applied along −z).
+    pub peak: f64,
+    /// Total duration [s] (peak at half of it).
+    pub duration: f64,
+    /// Start time [s].
+    pub t0: f64,
+}
+
+impl Pulse {
+    /// Force along −z at time t [N] (a positive number).
+    pub fn force(&self, t: f64) -> f64 {
+        let s = (t - self.t0) / self.duration;
+        if (0.0..=1.0).contains(&s) {
+            self.peak * (1.0 - (2.0 * s - 1.0).abs())
+        } else {
+            0.0
+        }
+    }
+}
+
+/// A high-frequency resonator on the pedestal in z (L2 option, spec §6 L2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Resonator {
+    /// Natural frequency [Hz].
+    pub frequency: f64,
+    /// Damping ratio.
+    pub damping_ratio: f64,
+    /// Mass [kg].
+    pub mass: f64,
+}
+
+/// Options of the lumped (L2) model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct LumpedOptions {
+    /// Optional resonator; none by default.
+    #[serde(default)]
+    pub resonator: Option<Resonator>,
+    /// Standard deviation of the random slip of each ball, as a fraction of the ball spacing,
+    /// redrawn every cage revolution (Sawalhi–Randall); 0 = none.
+    #[serde(default)]
+    pub slip_jitter: f64,
+    /// Seed of the slip jitter.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+/// Where the bearing description comes from in a scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum BearingRef {
+    /// Preset name or path.
+    Named(String),
+    /// Inline description.
+    Inline(Box<BearingFile>),
+}
+
+/// A scene file as written.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    #[serde(default)]
+    name: String,
+    #[serde(default = "default_bearing")]
+    bearing: BearingRef,
+    #[serde(default)]
+    fidelity: Fidelity,
+    operating: Operating,
+    #[serde(default)]
+    defect: Option<DefectSpec>,
+    #[serde(default)]
+    solver: SolverSettings,
+    #[serde(default)]
+    output: OutputSettings,
+    #[serde(default)]
+    pulse: Option<Pulse>,
+    #[serde(default)]
+    lumped: LumpedOptions,
+}
+
+fn default_bearing() -> BearingRef {
+    BearingRef::Named(crate::config::DEFAULT_PRESET.to_string())
+}
+
+/// A resolved scene: everything a [`crate::simulation::Simulation`] needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    pub bearing: BearingFile,
+    pub fidelity: Fidelity,
+    pub operating: Operating,
+    pub defect: Option<DefectSpec>,
+    pub solver: SolverSettings,
+    pub output: OutputSettings,
+    pub pulse: Option<Pulse>,
+    pub lumped: LumpedOptions,
+}
+
+impl Scene {
+    /// The default scene: Table-1 bearing, 9900 rpm, Fa 4000 N, Fr 1000 N, outer-race spall
+    /// 1.0 × 0.2 mm at the load-zone centre, lumped level.
+    pub fn default_scene() -> Self {
+        Self::from_toml_str(DEFAULT_SCENE, "default scene", None).expect("default scene is valid")
+    }
+
+    /// A healthy scene on a bearing at an operating point.
+    pub fn healthy(bearing: BearingFile, operating: Operating) -> Self {
+        Self {
+            name: "healthy".into(),
+            bearing,
+            fidelity: Fidelity::default(),
+            operating,
+            defect: None,
+            solver: SolverSettings::default(),
+            output: OutputSettings::default(),
+            pulse: None,
+            lumped: LumpedOptions::default(),
+        }
+    }
+
+    /// Reads a scene file; bearing paths are relative to the file's folder.
+    pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            ConfigError::new("", format!("cannot read scene {}: {e}", path.display()))
+        })?;
+        Self::from_toml_str(&text, &path.display().to_string(), path.parent())
+    }
+
+    /// Parses a scene from TOML text.
+    pub fn from_toml_str(
+        text: &str,
+        origin: &str,
+        dir: Option<&Path>,
+    ) -> Result<Self, ConfigError> {
+        let file: SceneFile = toml::from_str(text)
+            .map_err(|e| ConfigError::new("", format!("{origin}: {}", e.to_string().trim_end())))?;
+        let bearing = match file.bearing {
+            BearingRef::Inline(b) => {
+                b.validate()?;
+                *b
+            }
+            BearingRef::Named(name) => {
+                let is_preset = crate::config::PRESETS.iter().any(|(n, _)| *n == name);
+                if is_preset {
+                    BearingFile::load(&name)?
+                } else {
+                    let p = match dir {
+                        Some(d) => d.join(&name),
+                        None => name.into(),
+                    };
+                    BearingFile::load(&p.to_string_lossy())?
+                }
+            }
+        };
+        let scene = Scene {
+            name: file.name,
+            bearing,
+            fidelity: file.fidelity,
+            operating: file.operating,
+            defect: file.defect,
+            solver: file.solver,
+            output: file.output,
+            pulse: file.pulse,
+            lumped: file.lumped,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Checks every value of the scene (the bearing is validated separately).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let finite = |field: &str, v: f64| {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(ConfigError::new(
+                    field,
+                    format!("{v} is not a finite number"),
+                ))
+            }
+        };
+        let positive = |field: &str, v: f64| {
+            finite(field, v)?;
+            if v > 0.0 {
+                Ok(())
+            } else {
+                Err(ConfigError::new(field, format!("{v} must be > 0")))
+            }
+        };
+        finite("operating.speed_rpm", self.operating.speed_rpm)?;
+        if self.operating.speed_rpm < 0.0 {
+            return Err(ConfigError::new(
+                "operating.speed_rpm",
+                "must be ≥ 0 (the shaft turns about +x)",
+            ));
+        }
+        finite("operating.fa", self.operating.fa)?;
+        finite("operating.fr", self.operating.fr)?;
+        finite("operating.fy", self.operating.fy)?;
+        positive("solver.rtol", self.solver.rtol)?;
+        if self.solver.rtol >= 0.1 {
+            return Err(ConfigError::new("solver.rtol", "must be < 0.1"));
+        }
+        if self.solver.max_steps == 0 {
+            return Err(ConfigError::new("solver.max_steps", "must be ≥ 1"));
+        }
+        positive("output.duration", self.output.duration)?;
+        positive("output.sample_rate", self.output.sample_rate)?;
+        finite("output.skip", self.output.skip)?;
+        if self.output.skip < 0.0 {
+            return Err(ConfigError::new("output.skip", "must be ≥ 0"));
+        }
+        if let Some(p) = &self.pulse {
+            finite("pulse.peak", p.peak)?;
+            positive("pulse.duration", p.duration)?;
+            finite("pulse.t0", p.t0)?;
+        }
+        if let Some(r) = &self.lumped.resonator {
+            positive("lumped.resonator.frequency", r.frequency)?;
+            finite("lumped.resonator.damping_ratio", r.damping_ratio)?;
+            if r.damping_ratio < 0.0 {
+                return Err(ConfigError::new(
+                    "lumped.resonator.damping_ratio",
+                    "must be ≥ 0",
+                ));
+            }
+            positive("lumped.resonator.mass", r.mass)?;
+        }
+        finite("lumped.slip_jitter", self.lumped.slip_jitter)?;
+        if !(0.0..0.5).contains(&self.lumped.slip_jitter) {
+            return Err(ConfigError::new(
+                "lumped.slip_jitter",
+                "must lie in [0, 0.5) (a fraction of the ball spacing)",
+            ));
+        }
+        if let Some(d) = &self.defect {
+            d.validate()?;
+        }
+        Ok(())
+    }
+
+    /// Shaft speed [rad/s].
+    pub fn speed_rad_s(&self) -> f64 {
+        self.operating.speed_rpm * std::f64::consts::PI / 30.0
+    }
+}
+
+/// The default scene's TOML text (also shipped in the FMU's resources).
+pub const DEFAULT_SCENE: &str = include_str!("../examples/scenes/default.toml");

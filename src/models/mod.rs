@@ -1,1 +1,51 @@
-//! (in progress)
+//! Dynamic models of the fidelity ladder, all behind one [`Model`] trait so that the
+//! [`Simulation`](crate::simulation::Simulation), the CLI and the FMU never depend on a level.
+//!
+//! A model is a first-order ODE `y' = f(t, y)` with piecewise-constant inputs, plus
+//! known-time discontinuities ("stops", e.g. a ball reaching a defect edge when ball motion is
+//! prescribed) at which the integrator must land and the model may switch a frozen discrete
+//! mode (spec `solvers.md`, "Events").
+
+// pub mod lumped; (enabled once quasi_static lands)
+
+use crate::simulation::Inputs;
+
+/// One dynamic model of the ladder.
+pub trait Model: Send {
+    /// Number of first-order states.
+    fn dim(&self) -> usize;
+
+    /// Nominal magnitude of each state: the absolute tolerance is `rtol × nominal`.
+    fn nominal(&self, out: &mut [f64]);
+
+    /// The initial state at t = 0 (from L1 equilibrium, spec §7).
+    fn initial_state(&self, y: &mut [f64]);
+
+    /// New inputs, constant from time `t` on (state `y` at that time).
+    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]);
+
+    /// Right-hand side; must not allocate.
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
+
+    /// The first known discontinuity strictly after `t` and not after `t_max`, if any.
+    fn next_stop(&self, t: f64, y: &[f64], t_max: f64) -> Option<f64>;
+
+    /// Re-derives the frozen discrete mode for the interval that starts at `t`.
+    fn update_mode(&mut self, t: f64, y: &[f64]);
+
+    /// Fills the output vector (layout of [`crate::simulation::output_table`]).
+    fn outputs(&mut self, t: f64, y: &[f64], out: &mut [f64]);
+
+    /// Model quantities that are not states but must survive a save/restore.
+    fn discrete_state(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// Restores what [`Model::discrete_state`] returned.
+    fn set_discrete_state(&mut self, _s: &[f64]) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
+    fn cage_speed(&self) -> f64;
+}

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs every test: formatting and lint gates, the Rust test suite, the FMU build and the Python
+# (fmpy / libcosimpy) tests of the FMU. Works on a fresh machine with only Rust and Python 3.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n== %s\n' "$*"; }
+
+step "cargo fmt --check"
+cargo fmt --all -- --check
+
+step "cargo clippy (all targets, warnings are errors)"
+cargo clippy --workspace --all-targets --quiet -- -D warnings
+
+step "Rust tests"
+if cargo nextest --version >/dev/null 2>&1; then
+  cargo nextest run --workspace --cargo-profile ci --no-fail-fast
+else
+  cargo test --workspace --profile ci --no-fail-fast
+fi
+
+step "Build the FMU"
+cargo run --quiet --release -p fmu-build
+
+step "Python environment"
+scripts/setup-python.sh
+
+step "Python tests of the FMU"
+.venv/bin/python -m pytest tests/python -q -rs
