@@ -1,1 +1,727 @@
-//! (in progress)
+//! Localized raceway defect (spall): added deflection, force direction and Hertz change
+//! (spec §4, paper eqs. 13–20, choices C9 and C10).
+//!
+//! The spall is a transverse band across the whole groove (C9): width `w_d` along the track,
+//! depth `h_d`, a quadratic floor `d(y) = h_d [1 − (2y/w_d)²]` and two sharp corners at
+//! `y = ±w_d/2`. [`DefectSpec`] is what a scene file gives; [`Defect`] is the precomputed form
+//! that the dynamic models query at run time with [`Defect::probe`] (allocation-free, a few
+//! `sqrt`s).
+//!
+//! Conventions:
+//! - angles follow C1 (θ about +x); the ball-to-defect angle `θ_bd = wrap(θ_br − θ_d0 [− φ])`
+//!   is positive when the ball is ahead of the defect centre in +θ (C10);
+//! - the along-track coordinate `y_b` (ball) and `y_q` (contact point) are arc lengths from the
+//!   defect centre, positive in +θ;
+//! - the drop `g ≥ 0` is how far the ball centre can move toward the defective race, so the
+//!   overlap there becomes `δ′ = (δ − g) cos θ_dd` (eq. 13);
+//! - `θ_dd` is the tilt of the true contact normal from the intact normal in the rolling plane,
+//!   positive when the contact point lies ahead of the ball in +θ (eq. 17–19); the unit vector
+//!   from the ball centre to the contact is `n_q = cos θ_dd n + sin θ_dd c2`.
+
+use crate::config::{BlendLength, ConfigError, DefectMode, HertzMethod};
+use crate::contact::hertz::{HertzContact, HertzSolution};
+use crate::geometry::{Bearing, Race};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// Number of points of the precomputed drop table over |y_b| ≤ w_d/2 (spec §4.4).
+pub const TABLE_POINTS: usize = 2001;
+
+/// Width and depth above this are not a bearing spall (a sanity bound; the bearing-dependent
+/// bound `w_d < D` is checked by [`Defect::new`]) [m].
+pub const MAX_SIZE: f64 = 0.1;
+
+/// Grid points of the coarse scan for the floor minimum at set-up.
+const SCAN_POINTS: usize = 400;
+
+/// Maps an angle to (−π, π] (spec §0.1), also for large arguments such as φ = Ωt.
+/// NaN stays NaN.
+#[inline]
+pub fn wrap(x: f64) -> f64 {
+    if x > -PI && x <= PI {
+        return x;
+    }
+    let mut y = PI - (PI - x).rem_euclid(TAU);
+    if y <= -PI {
+        y += TAU;
+    }
+    y
+}
+
+/// A spall as a scene gives it: ring, width and depth [m], and centre angle θ_d0 [rad]
+/// (C1 convention; for the inner ring at shaft angle φ = 0).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DefectSpec {
+    /// The defective ring.
+    pub ring: Race,
+    /// Width w_d along the track [m].
+    pub width: f64,
+    /// Depth h_d of the floor's deepest point [m].
+    pub depth: f64,
+    /// Angular position θ_d0 of the defect centre on the ring [rad] (default 0).
+    #[serde(default)]
+    pub theta0: f64,
+}
+
+impl DefectSpec {
+    /// Checks the values on their own (fields `defect.width`, `defect.depth`, `defect.theta0`):
+    /// finite, width and depth > 0 and below [`MAX_SIZE`]. [`Defect::new`] adds the check
+    /// against the bearing (w_d < D).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        for (field, v) in [("defect.width", self.width), ("defect.depth", self.depth)] {
+            if !v.is_finite() {
+                return Err(ConfigError::new(
+                    field,
+                    format!("{v} is not a finite number"),
+                ));
+            }
+            if v <= 0.0 {
+                return Err(ConfigError::new(field, format!("{v} m must be > 0")));
+            }
+            if v >= MAX_SIZE {
+                return Err(ConfigError::new(
+                    field,
+                    format!("{v} m is not a bearing spall (must be < {MAX_SIZE} m)"),
+                ));
+            }
+        }
+        if !self.theta0.is_finite() {
+            return Err(ConfigError::new(
+                "defect.theta0",
+                format!("{} is not a finite angle", self.theta0),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Which feature of the spall carries the ball.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ContactKind {
+    /// One of the sharp edges at y = ±w_d/2 (edge radius r_e in the Hertz constant).
+    Corner,
+    /// The quadratic floor (only for spalls shallower than the geometric limit).
+    Floor,
+    /// Paper-literal "point" mode: the profile under the nominal contact point.
+    Profile,
+}
+
+/// The state of one ball–spall contact at one ball position (all SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DefectContact {
+    /// Along-track position of the ball centre from the defect centre, + in +θ [m].
+    pub y_b: f64,
+    /// Drop g ≥ 0 of the ball centre toward the defective race [m].
+    pub g: f64,
+    /// dg/dy_b [-] (= −tan θ_dd: negative where the ball climbs out toward +θ).
+    pub dg_dy: f64,
+    /// Tilt θ_dd of the contact normal, + when the contact point lies ahead of the ball [rad].
+    pub theta_dd: f64,
+    /// Along-track position of the contact point from the defect centre [m].
+    pub y_q: f64,
+    /// Which feature carries the ball.
+    pub kind: ContactKind,
+    /// Hertz constant to use [N/m^1.5]: the edge constant K′ of `kind`, blended in compliance
+    /// with the groove constant over ℓ_b past each edge (C9).
+    pub k_edge: f64,
+    /// The edge constant K′ of `kind` without blending [N/m^1.5].
+    pub k_unblended: f64,
+}
+
+impl DefectContact {
+    /// Overlap on the tilted normal `δ′ = (δ − g) cos θ_dd` from the intact-groove overlap δ
+    /// (eq. 13, spec §4.4); ≤ 0 means the contact is open.
+    #[inline]
+    pub fn deflection(&self, delta: f64) -> f64 {
+        (delta - self.g) * self.theta_dd.cos()
+    }
+
+    /// Approach rate `δ̇′ = cos θ_dd (δ̇ − g′(y_b) ẏ_b)` from the intact-groove rate δ̇ and the
+    /// along-track ball speed ẏ_b (see [`Defect::along_track_rate`]).
+    #[inline]
+    pub fn deflection_rate(&self, delta_dot: f64, y_b_dot: f64) -> f64 {
+        (delta_dot - self.dg_dy * y_b_dot) * self.theta_dd.cos()
+    }
+}
+
+/// One node of the precomputed drop table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DropNode {
+    /// Ball position y_b [m].
+    pub y_b: f64,
+    /// Drop g(y_b) [m] (exact minimum of the rolling-ball filter; point mode: d(y_b)).
+    pub g: f64,
+    /// Contact location y_q [m].
+    pub y_q: f64,
+    /// Contact type.
+    pub kind: ContactKind,
+    /// Profile depth at the contact, d(y_q) [m].
+    d_q: f64,
+    /// Unblended edge constant K′ of this contact [N/m^1.5].
+    pub k: f64,
+    /// Its compliance K′^(−2/3).
+    c: f64,
+}
+
+/// A spall precomputed for one bearing: geometry, the drop table and the edge Hertz constants.
+#[derive(Debug, Clone)]
+pub struct Defect {
+    ring: Race,
+    width: f64,
+    depth: f64,
+    theta0: f64,
+    mode: DefectMode,
+    /// Ball radius R.
+    r: f64,
+    half_width: f64,
+    r_d1: f64,
+    r_d2: f64,
+    theta_e: f64,
+    g_max: f64,
+    max_drop: f64,
+    edge_radius: f64,
+    corner: HertzContact,
+    blend_length: f64,
+    k_groove: f64,
+    c_groove: f64,
+    inv_dy: f64,
+    nodes: Vec<DropNode>,
+}
+
+impl Defect {
+    /// Precomputes a spall on `bearing` (spec §4).
+    ///
+    /// The bearing's `[defect]` section gives the mode (finite/point), the edge radius r_e and
+    /// the blend length ℓ_b: `"b"` is the semi-minor axis of the defective race's contact
+    /// ellipse at `reference_load` [N] (which must then be > 0), a number is metres, 0 is the
+    /// paper's abrupt change. The edge Hertz constants use the bearing's Hertz method.
+    ///
+    /// Errors name the field: `defect.width` / `defect.depth` / `defect.theta0` (see
+    /// [`DefectSpec::validate`]; also `w_d < D`), `defect.edge_radius`, `defect.blend_length`.
+    pub fn new(
+        spec: &DefectSpec,
+        bearing: &Bearing,
+        reference_load: f64,
+    ) -> Result<Defect, ConfigError> {
+        spec.validate()?;
+        let d_ball = bearing.d;
+        let r = 0.5 * d_ball;
+        if !(d_ball.is_finite() && d_ball > 0.0 && bearing.dm.is_finite() && bearing.dm > d_ball) {
+            return Err(ConfigError::new(
+                "bearing.ball_diameter",
+                "the bearing geometry is invalid (need 0 < D < dm)",
+            ));
+        }
+        if spec.width >= d_ball {
+            return Err(ConfigError::new(
+                "defect.width",
+                format!(
+                    "{} m must be smaller than the ball diameter D = {} m (the finite-ball model \
+                     needs the ball to span the spall)",
+                    spec.width, d_ball
+                ),
+            ));
+        }
+        let defaults = &bearing.file.defect;
+        let edge_radius = defaults.edge_radius;
+        if !(edge_radius.is_finite() && edge_radius > 0.0) {
+            return Err(ConfigError::new(
+                "defect.edge_radius",
+                format!("{edge_radius} must be a finite number > 0"),
+            ));
+        }
+        let blend_length = match defaults.blend_length {
+            BlendLength::Named(_) => {
+                if !(reference_load.is_finite() && reference_load > 0.0) {
+                    return Err(ConfigError::new(
+                        "defect.blend_length",
+                        format!(
+                            "\"b\" (the semi-minor axis) needs a finite reference load > 0, \
+                             got {reference_load} N"
+                        ),
+                    ));
+                }
+                bearing.hertz(spec.ring).semi_axes(reference_load).1
+            }
+            BlendLength::Metres(l) => {
+                if !(l.is_finite() && l >= 0.0) {
+                    return Err(ConfigError::new(
+                        "defect.blend_length",
+                        format!("{l} m must be a finite number ≥ 0"),
+                    ));
+                }
+                l
+            }
+        };
+        let k_groove = bearing.k(spec.ring);
+        if !(k_groove.is_finite() && k_groove > 0.0) {
+            return Err(ConfigError::new(
+                format!("contact.K_{}", spec.ring.name()),
+                format!("groove Hertz constant {k_groove} must be finite and > 0"),
+            ));
+        }
+        let solution = match bearing.file.contact.hertz_method {
+            HertzMethod::Exact => HertzSolution::Exact,
+            HertzMethod::HamrockBrewe => HertzSolution::HamrockBrewe,
+        };
+        let e_prime = bearing.e_prime;
+
+        // §4.2: half angle on the track (eq. 15); upper sign outer, lower sign inner.
+        let cos_b = bearing.alpha0.cos();
+        let sign = match spec.ring {
+            Race::Outer => 1.0,
+            Race::Inner => -1.0,
+        };
+        let r_d1 = bearing.dm / (2.0 * cos_b) + sign * r;
+        let r_d2 = 0.5 * bearing.dm + sign * r * cos_b;
+        let half_width = 0.5 * spec.width;
+        let theta_e = (r_d1 / r_d2) * (half_width / r_d1).asin();
+
+        // §4.6: edge (corner) constant, ρ_II = (+1/r_e rolling, 0 transverse).
+        let corner = HertzContact::new(
+            2.0 / d_ball + 1.0 / edge_radius,
+            2.0 / d_ball,
+            e_prime,
+            solution,
+        );
+        let g_max = r - (r * r - half_width * half_width).sqrt();
+
+        let geo = Profile {
+            r,
+            half_width,
+            depth: spec.depth,
+        };
+        let n = TABLE_POINTS;
+        let dy = spec.width / (n - 1) as f64;
+        let mut nodes = Vec::with_capacity(n);
+        for i in 0..n {
+            let y_b = if i == n - 1 {
+                half_width
+            } else {
+                -half_width + i as f64 * dy
+            };
+            let node = match defaults.mode {
+                DefectMode::Finite => {
+                    let (g, y_q, kind) = geo.rolling_ball(y_b);
+                    let k = match kind {
+                        ContactKind::Corner => corner.stiffness,
+                        _ => {
+                            // Concave floor: ρ_II(rolling) = −1/r_floor at the contact point,
+                            // clamped so that the rolling-plane sum stays ≥ 0.2·(4/D).
+                            let sum1 = (2.0 / d_ball - geo.curvature(y_q)).max(0.8 / d_ball);
+                            HertzContact::new(sum1, 2.0 / d_ball, e_prime, solution).stiffness
+                        }
+                    };
+                    DropNode {
+                        y_b,
+                        g,
+                        y_q,
+                        kind,
+                        d_q: geo.depth_at(y_q),
+                        k,
+                        c: k.powf(-2.0 / 3.0),
+                    }
+                }
+                DefectMode::Point => {
+                    // Paper-literal: |r_d| from the parabola, used as convex (eq. 20).
+                    let sum1 = 2.0 / d_ball + geo.curvature(y_b);
+                    let k = HertzContact::new(sum1, 2.0 / d_ball, e_prime, solution).stiffness;
+                    DropNode {
+                        y_b,
+                        g: geo.depth_at(y_b),
+                        y_q: y_b,
+                        kind: ContactKind::Profile,
+                        d_q: geo.depth_at(y_b),
+                        k,
+                        c: k.powf(-2.0 / 3.0),
+                    }
+                }
+            };
+            nodes.push(node);
+        }
+        let max_drop = nodes.iter().map(|n| n.g).fold(0.0, f64::max);
+        Ok(Defect {
+            ring: spec.ring,
+            width: spec.width,
+            depth: spec.depth,
+            theta0: wrap(spec.theta0),
+            mode: defaults.mode,
+            r,
+            half_width,
+            r_d1,
+            r_d2,
+            theta_e,
+            g_max,
+            max_drop,
+            edge_radius,
+            corner,
+            blend_length,
+            k_groove,
+            c_groove: k_groove.powf(-2.0 / 3.0),
+            inv_dy: 1.0 / dy,
+            nodes,
+        })
+    }
+
+    /// The defective ring.
+    pub fn ring(&self) -> Race {
+        self.ring
+    }
+
+    /// Width w_d [m].
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// Depth h_d [m].
+    pub fn depth(&self) -> f64 {
+        self.depth
+    }
+
+    /// Centre angle θ_d0, wrapped to (−π, π] [rad].
+    pub fn theta0(&self) -> f64 {
+        self.theta0
+    }
+
+    /// Finite-ball or paper-literal point model.
+    pub fn mode(&self) -> DefectMode {
+        self.mode
+    }
+
+    /// Half-angle θ_e of the defect on the track (eq. 15) [rad].
+    pub fn half_angle(&self) -> f64 {
+        self.theta_e
+    }
+
+    /// r_d1 = dm/(2 cos α0) ± D/2: track radius of curvature in the inclined profile plane [m].
+    pub fn r_d1(&self) -> f64 {
+        self.r_d1
+    }
+
+    /// r_d2 = dm/2 ± (D/2) cos α0: radius of the contact circle [m].
+    pub fn r_d2(&self) -> f64 {
+        self.r_d2
+    }
+
+    /// Geometric limit of the drop of a finite ball, R − √(R² − w_d²/4) [m] (depth-independent).
+    pub fn g_max(&self) -> f64 {
+        self.g_max
+    }
+
+    /// Largest drop this defect produces in its mode [m]: min(g_max, floor) for the finite ball,
+    /// h_d in point mode.
+    pub fn max_drop(&self) -> f64 {
+        self.max_drop
+    }
+
+    /// Edge radius r_e [m].
+    pub fn edge_radius(&self) -> f64 {
+        self.edge_radius
+    }
+
+    /// Hertz solution of a ball on a corner of radius r_e (eq. 20): K′ and the semi-axis factors
+    /// (major axis transverse) of the edge contact.
+    pub fn corner_hertz(&self) -> &HertzContact {
+        &self.corner
+    }
+
+    /// Edge (corner) Hertz constant K′ [N/m^1.5] (5.81e9 for r_e = 0.1 mm, Table-1 ball).
+    pub fn k_corner(&self) -> f64 {
+        self.corner.stiffness
+    }
+
+    /// Blend length ℓ_b [m] (0: abrupt change).
+    pub fn blend_length(&self) -> f64 {
+        self.blend_length
+    }
+
+    /// Groove Hertz constant of the defective race used by [`Defect::probe`] [N/m^1.5].
+    pub fn k_groove(&self) -> f64 {
+        self.k_groove
+    }
+
+    /// The precomputed drop table (2001 nodes from −w_d/2 to +w_d/2).
+    pub fn table(&self) -> &[DropNode] {
+        &self.nodes
+    }
+
+    /// Profile depth below the intact surface, d(y) = h_d[1 − (2y/w_d)²] for |y| < w_d/2, else 0.
+    #[inline]
+    pub fn depth_at(&self, y: f64) -> f64 {
+        let s = 2.0 * y / self.width;
+        if s.abs() < 1.0 {
+            self.depth * (1.0 - s * s)
+        } else {
+            0.0
+        }
+    }
+
+    /// Ball-to-defect angle (eq. 14, C10) from the ball azimuth θ_br in the ring frame and the
+    /// shaft angle φ: `wrap(θ_br − θ_d0 − φ)` for an inner-ring defect (it spins with the
+    /// shaft), `wrap(θ_br − θ_d0)` for an outer-ring defect (φ ignored) [rad].
+    #[inline]
+    pub fn theta_bd(&self, theta_br: f64, phi: f64) -> f64 {
+        match self.ring {
+            Race::Outer => wrap(theta_br - self.theta0),
+            Race::Inner => wrap(theta_br - self.theta0 - wrap(phi)),
+        }
+    }
+
+    /// Along-track coordinate of the ball, `y_b = r_d1 sin(θ_bd r_d2/r_d1)` [m] (spec §4.3).
+    #[inline]
+    pub fn along_track(&self, theta_bd: f64) -> f64 {
+        self.r_d1 * (theta_bd * self.r_d2 / self.r_d1).sin()
+    }
+
+    /// Along-track speed ẏ_b = r_d2 cos(θ_bd r_d2/r_d1) θ̇_bd [m/s].
+    #[inline]
+    pub fn along_track_rate(&self, theta_bd: f64, theta_bd_dot: f64) -> f64 {
+        self.r_d2 * (theta_bd * self.r_d2 / self.r_d1).cos() * theta_bd_dot
+    }
+
+    /// Signed distance to the zone boundary in angle, θ_e − |θ_bd| [rad]: positive inside the
+    /// defect zone. Its root is the edge-crossing event (spec §9.2).
+    #[inline]
+    pub fn zone_margin(&self, theta_bd: f64) -> f64 {
+        self.theta_e - theta_bd.abs()
+    }
+
+    /// The run-time query: the ball–spall contact at ball-to-defect angle `theta_bd`, or `None`
+    /// outside the zone |θ_bd| < θ_e (one comparison, so far-away balls cost nothing; NaN gives
+    /// `None`). Allocation-free.
+    #[inline]
+    pub fn probe(&self, theta_bd: f64) -> Option<DefectContact> {
+        if !(theta_bd.abs() < self.theta_e) {
+            return None;
+        }
+        self.contact_at(self.along_track(theta_bd))
+    }
+
+    /// The ball–spall contact at along-track ball position `y_b` [m], or `None` for
+    /// |y_b| ≥ w_d/2 (or NaN).
+    ///
+    /// Finite mode: the contact candidates stored at the two table nodes around y_b (a corner,
+    /// or a floor point) are evaluated exactly at y_b, `g = d(y_q) + R − √(R² − (y_q − y_b)²)`,
+    /// and the lowest is taken. This equals the table at the nodes, is exact for corner
+    /// contacts, has the kink at y_b = 0 exactly, and keeps g, dg/dy = −tan θ_dd and θ_dd
+    /// consistent (a straight linear interpolation of y_q would smear the corner switch over a
+    /// table cell). Point mode: closed forms of the parabola, K′ interpolated linearly.
+    #[inline]
+    pub fn contact_at(&self, y_b: f64) -> Option<DefectContact> {
+        if !(y_b.abs() < self.half_width) {
+            return None;
+        }
+        let t = (y_b + self.half_width) * self.inv_dy;
+        let i = (t as usize).min(self.nodes.len() - 2);
+        let (n0, n1) = (&self.nodes[i], &self.nodes[i + 1]);
+        let (g, dg_dy, theta_dd, y_q, kind, k, c) = match self.mode {
+            DefectMode::Finite => {
+                let r2 = self.r * self.r;
+                let mut best: Option<(f64, f64, f64, &DropNode)> = None;
+                for node in [n0, n1] {
+                    if let Some((_, _, _, b)) = best {
+                        if b.y_q == node.y_q {
+                            continue;
+                        }
+                    }
+                    let x = node.y_q - y_b;
+                    let s2 = r2 - x * x;
+                    if s2 <= 0.0 {
+                        continue;
+                    }
+                    let s = s2.sqrt();
+                    let g = node.d_q + self.r - s;
+                    if best.is_none_or(|(bg, _, _, _)| g < bg) {
+                        best = Some((g, x, s, node));
+                    }
+                }
+                match best {
+                    Some((g, x, s, node)) => {
+                        (g, -x / s, x.atan2(s), node.y_q, node.kind, node.k, node.c)
+                    }
+                    None => {
+                        // Unreachable for w_d < D; fall back on the nearest corner.
+                        let y_q = self.half_width.copysign(y_b);
+                        let x = y_q - y_b;
+                        let s = (r2 - x * x).max(0.0).sqrt();
+                        let k = self.corner.stiffness;
+                        (
+                            self.r - s,
+                            if s > 0.0 { -x / s } else { 0.0 },
+                            x.atan2(s),
+                            y_q,
+                            ContactKind::Corner,
+                            k,
+                            k.powf(-2.0 / 3.0),
+                        )
+                    }
+                }
+            }
+            DefectMode::Point => {
+                let w2 = self.width * self.width;
+                let slope = -8.0 * self.depth * y_b / w2; // d′(y_b)
+                let f = (t - i as f64).clamp(0.0, 1.0);
+                let c = n0.c + f * (n1.c - n0.c);
+                let k = 1.0 / (c * c.sqrt());
+                (
+                    self.depth_at(y_b),
+                    slope,
+                    (-slope).atan(),
+                    y_b,
+                    ContactKind::Profile,
+                    k,
+                    c,
+                )
+            }
+        };
+        Some(DefectContact {
+            y_b,
+            g,
+            dg_dy,
+            theta_dd,
+            y_q,
+            kind,
+            k_edge: self.blend(y_b, c, self.c_groove, k),
+            k_unblended: k,
+        })
+    }
+
+    /// The Hertz constant at ball position `y_b` for a race whose intact-groove constant is
+    /// `k_groove` [N/m^1.5]: `k_groove` outside the defect; inside, the compliance K^(−2/3) runs
+    /// linearly from the groove value at each edge to the edge constant K′ of the current
+    /// contact after ℓ_b of travel (spec §4.6, C9); ℓ_b = 0 switches abruptly.
+    pub fn hertz_constant(&self, y_b: f64, k_groove: f64) -> f64 {
+        match self.contact_at(y_b) {
+            None => k_groove,
+            Some(c) => self.blend(
+                y_b,
+                c.k_unblended.powf(-2.0 / 3.0),
+                k_groove.powf(-2.0 / 3.0),
+                c.k_unblended,
+            ),
+        }
+    }
+
+    /// Compliance blend; `c_edge`, `c_groove` are K^(−2/3), `k_edge` = c_edge^(−3/2).
+    #[inline]
+    fn blend(&self, y_b: f64, c_edge: f64, c_groove: f64, k_edge: f64) -> f64 {
+        let s = self.half_width - y_b.abs();
+        if s >= self.blend_length {
+            return k_edge;
+        }
+        let f = (s / self.blend_length).max(0.0);
+        let c = c_groove + f * (c_edge - c_groove);
+        1.0 / (c * c.sqrt())
+    }
+}
+
+/// Set-up geometry of the profile in the rolling plane.
+struct Profile {
+    r: f64,
+    half_width: f64,
+    depth: f64,
+}
+
+impl Profile {
+    fn depth_at(&self, y: f64) -> f64 {
+        let s = y / self.half_width;
+        if s.abs() < 1.0 {
+            self.depth * (1.0 - s * s)
+        } else {
+            0.0
+        }
+    }
+
+    /// Curvature |d″|/(1 + d′²)^(3/2) of the parabola at y [1/m].
+    fn curvature(&self, y: f64) -> f64 {
+        let k2 = 2.0 * self.depth / (self.half_width * self.half_width); // |d″|
+        let slope = k2 * y;
+        k2 / (1.0 + slope * slope).powf(1.5)
+    }
+
+    /// Height of the ball centre drop if it touches the profile at y: d(y) + R − √(R² − (y−y_b)²).
+    fn drop_via(&self, y: f64, y_b: f64) -> f64 {
+        let x = y - y_b;
+        self.depth_at(y) + self.r - (self.r * self.r - x * x).max(0.0).sqrt()
+    }
+
+    /// Rolling-ball filter at y_b (spec §4.4): (g, y_q, kind) by a scan and golden-section
+    /// refinement over the reachable part of the spall; the corners win ties.
+    fn rolling_ball(&self, y_b: f64) -> (f64, f64, ContactKind) {
+        let hw = self.half_width;
+        let lo = (y_b - self.r).max(-hw);
+        let hi = (y_b + self.r).min(hw);
+        let mut best = (f64::INFINITY, y_b, ContactKind::Corner);
+        for corner in [-hw, hw] {
+            if (corner - y_b).abs() <= self.r {
+                let g = self.drop_via(corner, y_b);
+                if g < best.0 {
+                    best = (g, corner, ContactKind::Corner);
+                }
+            }
+        }
+        // Interior scan for the floor.
+        let h = (hi - lo) / SCAN_POINTS as f64;
+        let mut k_best = 0;
+        let mut f_best = f64::INFINITY;
+        for k in 1..SCAN_POINTS {
+            let f = self.drop_via(lo + k as f64 * h, y_b);
+            if f < f_best {
+                f_best = f;
+                k_best = k;
+            }
+        }
+        if k_best > 0 && f_best < best.0 {
+            let (mut a, mut b) = (lo + (k_best - 1) as f64 * h, lo + (k_best + 1) as f64 * h);
+            let inv_phi = 0.5 * (5.0_f64.sqrt() - 1.0);
+            let mut x1 = b - inv_phi * (b - a);
+            let mut x2 = a + inv_phi * (b - a);
+            let mut f1 = self.drop_via(x1, y_b);
+            let mut f2 = self.drop_via(x2, y_b);
+            for _ in 0..100 {
+                if b - a < 1e-15 * (1.0 + hw) {
+                    break;
+                }
+                if f1 < f2 {
+                    b = x2;
+                    x2 = x1;
+                    f2 = f1;
+                    x1 = b - inv_phi * (b - a);
+                    f1 = self.drop_via(x1, y_b);
+                } else {
+                    a = x1;
+                    x1 = x2;
+                    f1 = f2;
+                    x2 = a + inv_phi * (b - a);
+                    f2 = self.drop_via(x2, y_b);
+                }
+            }
+            let y = 0.5 * (a + b);
+            let f = self.drop_via(y, y_b);
+            if f < best.0 {
+                best = (f, y, ContactKind::Floor);
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_maps_into_half_open_interval() {
+        assert_eq!(wrap(PI), PI);
+        assert!((wrap(-PI) - PI).abs() < 1e-15);
+        assert!((wrap(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap(7.0) - (7.0 - TAU)).abs() < 1e-15);
+        assert!((wrap(-7.0) - (-7.0 + TAU)).abs() < 1e-15);
+        let big = 1.0e4 + 0.25;
+        let w = wrap(big);
+        assert!(w > -PI && w <= PI && ((big - w) / TAU - ((big - w) / TAU).round()).abs() < 1e-9);
+        assert!(wrap(-1e-300) <= PI && wrap(-1e-300) > -PI);
+        assert!(wrap(f64::NAN).is_nan());
+    }
+}
