@@ -1,0 +1,213 @@
+//! Event location on the dense output and [`Integrator::advance_with_events`].
+//!
+//! After every accepted step the event functions are evaluated at its end. A function whose sign
+//! changed strictly (or that reached exactly 0 from a non-zero value) has an event in the step; its
+//! root is bracketed on the dense output with the Illinois variant of regula falsi (with bisection
+//! safeguard) to within [`crate::solver::Options::event_tol`], the mode staying frozen. The
+//! integrator lands on the bracket end where the sign has already changed, calls
+//! [`EventSystem::handle_event`] for every function that changed sign by then (index order),
+//! and restarts there. Functions that just fired count as 0 at the restart, so a state that sits
+//! on the far side by round-off (a bouncing ball's height) does not fire again.
+
+use super::dense::{DenseOutput, StepView};
+use super::error::SolverError;
+use super::integrator::{AdvanceOutcome, Integrator};
+use super::system::{EventAction, EventSystem};
+
+/// A sign change from `a` to `b` counts as an event (`a == 0` never does).
+pub fn crosses(a: f64, b: f64) -> bool {
+    (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0)
+}
+
+/// Locate the root of event `index` in `[a, b]` (`g(a) = ga`, `g(b) = gb` of opposite sign, or
+/// `gb == 0`) on the dense output; returns the end of the final bracket on the side of `b`.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn locate<S: EventSystem + ?Sized>(
+    sys: &mut S,
+    dense: &DenseOutput,
+    index: usize,
+    mut a: f64,
+    mut ga: f64,
+    mut b: f64,
+    mut gb: f64,
+    tol: f64,
+    y: &mut [f64],
+    g: &mut [f64],
+) -> f64 {
+    if gb == 0.0 {
+        return b;
+    }
+    let mut side = 0i8;
+    let mut width = b - a;
+    for it in 0..200 {
+        let tol_here = tol.max(4.0 * f64::EPSILON * b.abs());
+        if b - a <= tol_here {
+            break;
+        }
+        let mut m = b - gb * (b - a) / (gb - ga);
+        // Bisection safeguard: every third iteration unless the bracket at least halved.
+        if !(m > a && m < b) || (it % 3 == 2 && b - a > 0.5 * width) {
+            m = 0.5 * (a + b);
+        }
+        if it % 3 == 2 {
+            width = b - a;
+        }
+        // Keep the probe strictly inside, away from the ends by a fraction of the tolerance.
+        let guard = 0.25 * tol_here;
+        m = m.clamp(a + guard.min(0.5 * (b - a)), b - guard.min(0.5 * (b - a)));
+        dense.eval(m, y);
+        sys.events(m, y, g);
+        let gm = g[index];
+        if gm == 0.0 {
+            return m;
+        }
+        if (gm < 0.0) == (ga < 0.0) {
+            a = m;
+            ga = gm;
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = m;
+            gb = gm;
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    b
+}
+
+impl Integrator {
+    fn prepare_events(&mut self, m: usize) {
+        if self.g_old.len() != m {
+            self.g_old = vec![0.0; m];
+            self.g_new = vec![0.0; m];
+            self.g_tmp = vec![0.0; m];
+            self.fired = vec![false; m];
+        }
+    }
+
+    /// Like [`Integrator::advance`], locating events (sign changes of `g`) on the dense output to
+    /// within `event_tol`, landing on the event time, calling `handle_event`, then continuing
+    /// ([`EventAction::Continue`]) or returning early ([`EventAction::Stop`]). The observer sees a
+    /// step cut at an event as ending at the event time, with the state before `handle_event`.
+    pub fn advance_with_events<S: EventSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t_end: f64,
+        mut observer: Option<&mut dyn FnMut(&StepView)>,
+    ) -> Result<AdvanceOutcome, SolverError> {
+        self.check_target(sys.dim(), t_end)?;
+        let m = sys.n_events();
+        self.prepare_events(m);
+        let n = self.n;
+        sys.events(self.t, &self.y, &mut self.g_old);
+        if self.event_mask.len() == m {
+            for (g, &fired) in self.g_old.iter_mut().zip(&self.event_mask) {
+                if fired {
+                    *g = 0.0;
+                }
+            }
+        }
+        let mut attempts = 0u64;
+        while self.t < t_end {
+            let t_old = self.step(sys, t_end, true, &mut attempts)?;
+            sys.events(self.t, &self.y, &mut self.g_new);
+            // Earliest root among the functions that changed sign.
+            let mut t_ev = f64::INFINITY;
+            let mut first = usize::MAX;
+            for i in 0..m {
+                if crosses(self.g_old[i], self.g_new[i]) {
+                    let r = locate(
+                        sys,
+                        &self.dense,
+                        i,
+                        t_old,
+                        self.g_old[i],
+                        self.t,
+                        self.g_new[i],
+                        self.opts.event_tol,
+                        &mut self.ytmp,
+                        &mut self.g_tmp,
+                    );
+                    if r < t_ev {
+                        t_ev = r;
+                        first = i;
+                    }
+                }
+            }
+            if first == usize::MAX {
+                if let Some(obs) = observer.as_mut() {
+                    obs(&StepView {
+                        dense: &self.dense,
+                        t_start: t_old,
+                        t_end: self.t,
+                        y_end: &self.y,
+                    });
+                }
+                std::mem::swap(&mut self.g_old, &mut self.g_new);
+                continue;
+            }
+            // Land on the event: state from the dense output (exact end state if at the end).
+            if t_ev < self.t {
+                self.dense.eval(t_ev, &mut self.ytmp);
+                self.y[..n].copy_from_slice(&self.ytmp[..n]);
+                self.t = t_ev;
+                self.fsal_valid = false;
+            }
+            sys.events(self.t, &self.y, &mut self.g_tmp);
+            for i in 0..m {
+                self.fired[i] = i == first || crosses(self.g_old[i], self.g_tmp[i]);
+            }
+            if let Some(obs) = observer.as_mut() {
+                obs(&StepView {
+                    dense: &self.dense,
+                    t_start: t_old,
+                    t_end: self.t,
+                    y_end: &self.y,
+                });
+            }
+            let mut stop = None;
+            for i in 0..m {
+                if self.fired[i] {
+                    self.stats.events += 1;
+                    if sys.handle_event(i, self.t, &mut self.y) == EventAction::Stop
+                        && stop.is_none()
+                    {
+                        stop = Some(i);
+                    }
+                }
+            }
+            self.fsal_valid = false;
+            sys.events(self.t, &self.y, &mut self.g_old);
+            self.event_mask.clear();
+            self.event_mask.extend_from_slice(&self.fired);
+            for (g, &fired) in self.g_old.iter_mut().zip(&self.fired) {
+                if fired {
+                    *g = 0.0;
+                }
+            }
+            if let Some(index) = stop {
+                return Ok(AdvanceOutcome::Stopped { t: self.t, index });
+            }
+        }
+        Ok(AdvanceOutcome::Reached)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::crosses;
+
+    #[test]
+    fn crossing_rules() {
+        assert!(crosses(-1.0, 1.0));
+        assert!(crosses(1.0, 0.0));
+        assert!(!crosses(0.0, 1.0));
+        assert!(!crosses(0.0, -1.0));
+        assert!(!crosses(1.0, 2.0));
+    }
+}

@@ -1,0 +1,521 @@
+//! The generic tableau-driven stepping engine.
+
+use super::controller::{error_norm, initial_step, Controller};
+use super::dense::{DenseOutput, StepView};
+use super::error::SolverError;
+use super::options::{broadcast, check_atol, check_rtol_scale, Options};
+use super::state::{IntegratorState, Stats};
+use super::system::System;
+use super::tableau::Tableau;
+
+/// Result of [`Integrator::advance_with_events`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AdvanceOutcome {
+    /// The requested end time was reached.
+    Reached,
+    /// An event handler returned [`crate::solver::EventAction::Stop`] at time `t`.
+    Stopped {
+        /// Event time (the integrator's current time).
+        t: f64,
+        /// Index of the event that stopped the integration.
+        index: usize,
+    },
+}
+
+/// Explicit Runge–Kutta integrator owning all its buffers (no allocation while stepping).
+#[derive(Clone, Debug)]
+pub struct Integrator {
+    pub(super) opts: Options,
+    pub(super) tab: &'static Tableau,
+    pub(super) n: usize,
+    pub(super) t: f64,
+    pub(super) y: Vec<f64>,
+    pub(super) y_new: Vec<f64>,
+    pub(super) ytmp: Vec<f64>,
+    /// Stage slots, `slots * n`; slot 0 is `f(t, y)` when `fsal_valid`.
+    pub(super) k: Vec<f64>,
+    pub(super) err5: Vec<f64>,
+    pub(super) err3: Vec<f64>,
+    pub(super) atol: Vec<f64>,
+    pub(super) rtol: Vec<f64>,
+    pub(super) h_next: f64,
+    pub(super) fsal_valid: bool,
+    pub(super) ctrl: Controller,
+    pub(super) stats: Stats,
+    pub(super) dense: DenseOutput,
+    pub(super) g_old: Vec<f64>,
+    pub(super) g_new: Vec<f64>,
+    pub(super) g_tmp: Vec<f64>,
+    pub(super) event_mask: Vec<bool>,
+    pub(super) fired: Vec<bool>,
+}
+
+/// Index of the first non-finite entry.
+pub(super) fn first_non_finite(v: &[f64]) -> Option<usize> {
+    v.iter().position(|x| !x.is_finite())
+}
+
+/// `out = y + h * Σ_j coef_j k_j` over the slots `k` (each of length `y.len()`).
+fn combine(y: &[f64], h: f64, coef: &[f64], k: &[f64], out: &mut [f64]) {
+    let n = y.len();
+    out.copy_from_slice(y);
+    for (j, &c) in coef.iter().enumerate() {
+        if c != 0.0 {
+            let hc = h * c;
+            for (o, &kv) in out.iter_mut().zip(&k[j * n..(j + 1) * n]) {
+                *o += hc * kv;
+            }
+        }
+    }
+}
+
+/// `out = h * Σ_j coef_j k_j`.
+fn weighted(h: f64, coef: &[f64], k: &[f64], out: &mut [f64]) {
+    let n = out.len();
+    out.fill(0.0);
+    for (j, &c) in coef.iter().enumerate() {
+        if c != 0.0 {
+            for (o, &kv) in out.iter_mut().zip(&k[j * n..(j + 1) * n]) {
+                *o += c * kv;
+            }
+        }
+    }
+    for o in out.iter_mut() {
+        *o *= h;
+    }
+}
+
+impl Integrator {
+    /// Validate `options` and allocate every buffer for the state `y0` at time `t0`.
+    pub fn new(options: Options, t0: f64, y0: &[f64]) -> Result<Self, SolverError> {
+        let n = y0.len();
+        options.validate(n)?;
+        if !t0.is_finite() {
+            return Err(SolverError::InvalidOptions(format!(
+                "t0 must be finite, got {t0}"
+            )));
+        }
+        if let Some(i) = first_non_finite(y0) {
+            return Err(SolverError::InvalidOptions(format!(
+                "initial state component {i} is not finite ({})",
+                y0[i]
+            )));
+        }
+        let tab = options.method.tableau();
+        let mut atol = vec![0.0; n];
+        let mut rtol = vec![0.0; n];
+        if options.fixed_step.is_none() {
+            broadcast(&options.atol, 0.0, &mut atol);
+            broadcast(&options.rtol_scale, 1.0, &mut rtol);
+            rtol.iter_mut().for_each(|r| *r *= options.rtol);
+        }
+        Ok(Integrator {
+            tab,
+            n,
+            t: t0,
+            y: y0.to_vec(),
+            y_new: vec![0.0; n],
+            ytmp: vec![0.0; n],
+            k: vec![0.0; tab.slots() * n],
+            err5: vec![0.0; n],
+            err3: vec![0.0; n],
+            atol,
+            rtol,
+            h_next: options.h_init.unwrap_or(0.0),
+            fsal_valid: false,
+            ctrl: Controller::default(),
+            stats: Stats::default(),
+            dense: DenseOutput::new(n, tab),
+            g_old: Vec::new(),
+            g_new: Vec::new(),
+            g_tmp: Vec::new(),
+            event_mask: Vec::new(),
+            fired: Vec::new(),
+            opts: options,
+        })
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    pub fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    /// Work counters.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    /// Dimension of the state.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Step size the controller proposes for the next step (0 before the first step when the
+    /// initial step is automatic).
+    pub fn h_next(&self) -> f64 {
+        self.h_next
+    }
+
+    /// Change the relative tolerance (takes effect on the next step).
+    pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SolverError> {
+        let mut o = self.opts.clone();
+        o.rtol = rtol;
+        o.validate(self.n)?;
+        self.opts = o;
+        self.refresh_tolerances();
+        Ok(())
+    }
+
+    /// Change the absolute tolerances (one value, or one per component).
+    pub fn set_atol(&mut self, atol: &[f64]) -> Result<(), SolverError> {
+        check_atol(atol, self.n)?;
+        let mut o = self.opts.clone();
+        o.atol = atol.to_vec();
+        o.validate(self.n)?;
+        self.opts = o;
+        self.refresh_tolerances();
+        Ok(())
+    }
+
+    /// Change the per-component factors on `rtol` (see [`Options::rtol_scale`]).
+    pub fn set_rtol_scale(&mut self, scale: &[f64]) -> Result<(), SolverError> {
+        check_rtol_scale(scale, self.n)?;
+        self.opts.rtol_scale = scale.to_vec();
+        self.refresh_tolerances();
+        Ok(())
+    }
+
+    fn refresh_tolerances(&mut self) {
+        if self.opts.fixed_step.is_none() {
+            broadcast(&self.opts.atol, 0.0, &mut self.atol);
+            broadcast(&self.opts.rtol_scale, 1.0, &mut self.rtol);
+            let r = self.opts.rtol;
+            self.rtol.iter_mut().for_each(|x| *x *= r);
+        }
+    }
+
+    /// The right-hand side changed discontinuously (inputs changed, mode switched): drop the
+    /// FSAL stage so the next step re-evaluates `f(t, y)`.
+    pub fn discontinuity(&mut self) {
+        self.fsal_valid = false;
+    }
+
+    /// Replace the state (drops the FSAL stage and the event memory; keeps the proposed step).
+    /// Components of `y` beyond the dimension are ignored, missing ones keep their value; use
+    /// [`Integrator::try_set_state`] to have that checked.
+    pub fn set_state(&mut self, t: f64, y: &[f64]) {
+        let m = y.len().min(self.n);
+        self.y[..m].copy_from_slice(&y[..m]);
+        self.t = t;
+        self.fsal_valid = false;
+        self.event_mask.clear();
+    }
+
+    /// [`Integrator::set_state`] with checks of the length and finiteness.
+    pub fn try_set_state(&mut self, t: f64, y: &[f64]) -> Result<(), SolverError> {
+        if y.len() != self.n {
+            return Err(SolverError::DimensionMismatch {
+                expected: self.n,
+                found: y.len(),
+            });
+        }
+        if !t.is_finite() || first_non_finite(y).is_some() {
+            return Err(SolverError::InvalidOptions("state must be finite".into()));
+        }
+        self.set_state(t, y);
+        Ok(())
+    }
+
+    /// Serializable full solver state.
+    pub fn snapshot(&self) -> IntegratorState {
+        IntegratorState {
+            method: self.opts.method,
+            t: self.t,
+            y: self.y.clone(),
+            h_next: self.h_next,
+            fsal: if self.fsal_valid {
+                self.k[..self.n].to_vec()
+            } else {
+                Vec::new()
+            },
+            fsal_valid: self.fsal_valid,
+            err_old: self.ctrl.err_old,
+            last_rejected: self.ctrl.last_rejected,
+            event_mask: self.event_mask.clone(),
+            stats: self.stats,
+        }
+    }
+
+    /// Restore a snapshot (same method and dimension; the options stay those of `self`).
+    pub fn restore(&mut self, s: &IntegratorState) -> Result<(), SolverError> {
+        if s.method != self.opts.method {
+            return Err(SolverError::method_mismatch(self.opts.method, s.method));
+        }
+        if s.y.len() != self.n || (s.fsal_valid && s.fsal.len() != self.n) {
+            return Err(SolverError::StateMismatch(format!(
+                "snapshot has dimension {}, integrator has {}",
+                s.y.len(),
+                self.n
+            )));
+        }
+        if !s.t.is_finite() || first_non_finite(&s.y).is_some() || !(s.h_next >= 0.0) {
+            return Err(SolverError::StateMismatch("snapshot is not finite".into()));
+        }
+        self.t = s.t;
+        self.y.copy_from_slice(&s.y);
+        self.h_next = s.h_next;
+        self.fsal_valid = s.fsal_valid;
+        if s.fsal_valid {
+            self.k[..self.n].copy_from_slice(&s.fsal);
+        }
+        self.ctrl.err_old = s.err_old;
+        self.ctrl.last_rejected = s.last_rejected;
+        self.event_mask.clone_from(&s.event_mask);
+        self.stats = s.stats;
+        Ok(())
+    }
+
+    pub(super) fn check_target(&self, dim: usize, t_end: f64) -> Result<(), SolverError> {
+        if dim != self.n {
+            return Err(SolverError::DimensionMismatch {
+                expected: self.n,
+                found: dim,
+            });
+        }
+        if !t_end.is_finite() || t_end < self.t {
+            return Err(SolverError::InvalidTarget { t: self.t, t_end });
+        }
+        Ok(())
+    }
+
+    /// Integrate to exactly `t_end` (the last step is shortened to land on it; the un-shortened
+    /// proposed step size is retained for the next call, and the FSAL stage is kept).
+    /// `observer` (if given) is called after every accepted step with a view that can
+    /// interpolate the dense output anywhere in `[t_old, t_new]`. On error, [`Integrator::t`] /
+    /// [`Integrator::y`] stay at the last accepted step.
+    pub fn advance<S: System + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t_end: f64,
+        mut observer: Option<&mut dyn FnMut(&StepView)>,
+    ) -> Result<(), SolverError> {
+        self.check_target(sys.dim(), t_end)?;
+        let want_dense = observer.is_some();
+        let mut attempts = 0u64;
+        while self.t < t_end {
+            let t_old = self.step(sys, t_end, want_dense, &mut attempts)?;
+            if let Some(obs) = observer.as_mut() {
+                let view = StepView {
+                    dense: &self.dense,
+                    t_start: t_old,
+                    t_end: self.t,
+                    y_end: &self.y,
+                };
+                obs(&view);
+            }
+        }
+        Ok(())
+    }
+
+    /// Smallest step the controller may propose at the current time (see [`Options::h_min`]).
+    pub(super) fn h_floor(&self) -> f64 {
+        let at = self.t.abs();
+        (self.opts.h_min * at.max(1.0)).max(4.0 * f64::EPSILON * at)
+    }
+
+    /// Make slot 0 hold `f(t, y)`.
+    fn ensure_fsal<S: System + ?Sized>(&mut self, sys: &mut S) -> Result<(), SolverError> {
+        if !self.fsal_valid {
+            let n = self.n;
+            sys.rhs(self.t, &self.y, &mut self.k[..n]);
+            self.stats.rhs_evals += 1;
+            if let Some(i) = first_non_finite(&self.k[..n]) {
+                return Err(SolverError::NonFinite {
+                    t: self.t,
+                    component: i,
+                });
+            }
+            self.fsal_valid = true;
+        }
+        Ok(())
+    }
+
+    fn initial_h<S: System + ?Sized>(&mut self, sys: &mut S, t_end: f64) -> f64 {
+        let n = self.n;
+        let t = self.t;
+        let mut evals = 0;
+        let h = initial_step(
+            self.tab.err_order + 1,
+            &self.y,
+            &self.k[..n],
+            &self.atol,
+            &self.rtol,
+            self.opts.h_max,
+            &mut self.ytmp,
+            &mut self.err5,
+            |h, y1, f1| {
+                evals += 1;
+                sys.rhs(t + h, y1, f1)
+            },
+        );
+        self.stats.rhs_evals += evals;
+        let dist = t_end - t;
+        let h = if dist > 0.0 { h.min(dist) } else { h };
+        h.max(self.h_floor())
+    }
+
+    /// Main stages of a step of size `h` ending at `t_new`; fills `y_new`.
+    fn stages<S: System + ?Sized>(&mut self, sys: &mut S, h: f64, t_new: f64) {
+        let n = self.n;
+        let tab = self.tab;
+        for s in 1..tab.stages {
+            let (done, rest) = self.k.split_at_mut(s * n);
+            let ks = &mut rest[..n];
+            if tab.fsal && s == tab.stages - 1 {
+                combine(&self.y, h, tab.b, done, &mut self.y_new);
+                sys.rhs(t_new, &self.y_new, ks);
+            } else {
+                combine(&self.y, h, tab.a[s], done, &mut self.ytmp);
+                sys.rhs(self.t + tab.c[s] * h, &self.ytmp, ks);
+            }
+        }
+        self.stats.rhs_evals += (tab.stages - 1) as u64;
+        if !tab.fsal {
+            combine(&self.y, h, tab.b, &self.k, &mut self.y_new);
+        }
+    }
+
+    /// Error norm of the step just computed.
+    fn error(&mut self, h: f64) -> f64 {
+        let tab = self.tab;
+        weighted(h, tab.e, &self.k, &mut self.err5);
+        let e3 = if tab.e3.is_empty() {
+            None
+        } else {
+            weighted(h, tab.e3, &self.k, &mut self.err3);
+            Some(&self.err3[..])
+        };
+        error_norm(&self.y, &self.y_new, &self.atol, &self.rtol, &self.err5, e3)
+    }
+
+    /// End derivative (if not yet computed) and extra stages, then the dense coefficients.
+    fn prepare_dense<S: System + ?Sized>(&mut self, sys: &mut S, h: f64, t_new: f64) {
+        let n = self.n;
+        let tab = self.tab;
+        let end = tab.end_slot();
+        if !tab.fsal {
+            sys.rhs(t_new, &self.y_new, &mut self.k[end * n..(end + 1) * n]);
+            self.stats.rhs_evals += 1;
+        }
+        for s in end + 1..tab.slots() {
+            let (done, rest) = self.k.split_at_mut(s * n);
+            combine(&self.y, h, tab.a[s], done, &mut self.ytmp);
+            sys.rhs(self.t + tab.c[s] * h, &self.ytmp, &mut rest[..n]);
+            self.stats.rhs_evals += 1;
+        }
+        self.dense
+            .build(tab, self.t, h, &self.y, &self.y_new, &self.k);
+    }
+
+    /// Take one accepted step towards `t_end` (retrying rejected attempts). Returns the start time
+    /// of the accepted step; `self.t`/`self.y` are its end. With `want_dense` the dense output of
+    /// the step is built.
+    pub(super) fn step<S: System + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t_end: f64,
+        want_dense: bool,
+        attempts: &mut u64,
+    ) -> Result<f64, SolverError> {
+        self.ensure_fsal(sys)?;
+        let fixed = self.opts.fixed_step;
+        if fixed.is_none() && !(self.h_next > 0.0) {
+            self.h_next = self.initial_h(sys, t_end);
+        }
+        loop {
+            if *attempts >= self.opts.max_steps {
+                return Err(SolverError::StepBudget {
+                    t: self.t,
+                    steps: *attempts,
+                });
+            }
+            *attempts += 1;
+            let (h_prop, stretch) = match fixed {
+                Some(h) => (h, 1.0 + 1e-9),
+                None => (self.h_next.min(self.opts.h_max), 1.01),
+            };
+            let dist = t_end - self.t;
+            let last = h_prop * stretch >= dist;
+            let h = if last { dist } else { h_prop };
+            let t_new = if last { t_end } else { self.t + h };
+            if t_new == self.t {
+                return Err(SolverError::StepSizeUnderflow { t: self.t, h });
+            }
+            self.stages(sys, h, t_new);
+            let bad = first_non_finite(&self.y_new);
+            if fixed.is_some() {
+                if let Some(i) = bad {
+                    return Err(SolverError::NonFinite {
+                        t: self.t,
+                        component: i,
+                    });
+                }
+            } else {
+                let err = if bad.is_some() {
+                    f64::INFINITY
+                } else {
+                    self.error(h)
+                };
+                if !(err <= 1.0) {
+                    self.stats.rejected += 1;
+                    let h_new = self.ctrl.reject(self.tab, &self.opts, h, err);
+                    if h_new < self.h_floor() {
+                        return Err(SolverError::StepSizeUnderflow {
+                            t: self.t,
+                            h: h_new,
+                        });
+                    }
+                    self.h_next = h_new;
+                    continue;
+                }
+                let h_new = self
+                    .ctrl
+                    .accept(self.tab, &self.opts, h, err)
+                    .min(self.opts.h_max);
+                // A step shortened to land keeps the un-shortened proposal unless the controller
+                // wants to shrink even the shortened step.
+                self.h_next = if last && h < h_prop && h_new >= h {
+                    h_prop
+                } else {
+                    h_new
+                };
+            }
+            self.stats.record_accepted(h);
+            let t_old = self.t;
+            if want_dense {
+                self.prepare_dense(sys, h, t_new);
+            }
+            std::mem::swap(&mut self.y, &mut self.y_new);
+            self.t = t_new;
+            if self.tab.fsal || want_dense {
+                let e = self.tab.end_slot() * self.n;
+                self.k.copy_within(e..e + self.n, 0);
+                self.fsal_valid = true;
+            } else {
+                self.fsal_valid = false;
+            }
+            self.event_mask.clear();
+            return Ok(t_old);
+        }
+    }
+}

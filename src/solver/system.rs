@@ -1,0 +1,32 @@
+//! The interface between a model and the integrator.
+
+/// A first-order ODE system `y' = f(t, y)`.
+pub trait System {
+    /// Number of state components.
+    fn dim(&self) -> usize;
+    /// Right-hand side; must not allocate. `y` and `dydt` have length [`System::dim`].
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
+}
+
+/// A system with event functions and a discrete mode that changes only at events.
+pub trait EventSystem: System {
+    /// Number of event functions.
+    fn n_events(&self) -> usize;
+    /// Event functions `g_i(t, y)`; a sign change of `g_i` inside an accepted step is an event.
+    /// The system's discrete mode must stay frozen inside a step (only
+    /// [`EventSystem::handle_event`] may change it).
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]);
+    /// Called at the located event time with the (dense-output) state there; the system may switch
+    /// its discrete mode and modify `y`. The integrator then restarts from `(t, y)` (FSAL
+    /// invalidated).
+    fn handle_event(&mut self, index: usize, t: f64, y: &mut [f64]) -> EventAction;
+}
+
+/// What the integrator does after an event was handled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventAction {
+    /// Keep integrating towards the requested end time.
+    Continue,
+    /// Return early from [`crate::solver::Integrator::advance_with_events`] at the event time.
+    Stop,
+}
