@@ -1,0 +1,105 @@
+//! FMI 2.0 C types (`fmi2TypesPlatform.h`, `fmi2FunctionTypes.h`), written for raceway.
+//!
+//! Only what a Co-Simulation FMU needs. Layouts follow the standard headers for the
+//! "default" platform: `fmi2Boolean` is `int`, `fmi2ValueReference` is `unsigned int`.
+
+use std::os::raw::{c_char, c_int, c_uint, c_void};
+
+/// `fmi2TypesPlatform` of the standard headers.
+pub const TYPES_PLATFORM: &[u8] = b"default\0";
+/// `fmi2Version`.
+pub const VERSION: &[u8] = b"2.0\0";
+
+pub type Fmi2Component = *mut c_void;
+pub type Fmi2ComponentEnvironment = *mut c_void;
+pub type Fmi2FmuState = *mut c_void;
+pub type Fmi2ValueReference = c_uint;
+pub type Fmi2Real = f64;
+pub type Fmi2Integer = c_int;
+pub type Fmi2Boolean = c_int;
+pub type Fmi2Char = c_char;
+pub type Fmi2String = *const c_char;
+pub type Fmi2Byte = c_char;
+
+pub const FMI2_TRUE: Fmi2Boolean = 1;
+pub const FMI2_FALSE: Fmi2Boolean = 0;
+
+/// `fmi2Status`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Fmi2Status {
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
+    Pending = 5,
+}
+
+impl Fmi2Status {
+    /// The status name used in log messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fmi2Status::Ok => "fmi2OK",
+            Fmi2Status::Warning => "fmi2Warning",
+            Fmi2Status::Discard => "fmi2Discard",
+            Fmi2Status::Error => "fmi2Error",
+            Fmi2Status::Fatal => "fmi2Fatal",
+            Fmi2Status::Pending => "fmi2Pending",
+        }
+    }
+}
+
+/// `fmi2Type` (passed as a C enum, i.e. an `int`).
+pub type Fmi2Type = c_int;
+pub const FMI2_MODEL_EXCHANGE: Fmi2Type = 0;
+pub const FMI2_CO_SIMULATION: Fmi2Type = 1;
+
+/// `fmi2StatusKind` (a C enum).
+pub type Fmi2StatusKind = c_int;
+pub const FMI2_DO_STEP_STATUS: Fmi2StatusKind = 0;
+pub const FMI2_PENDING_STATUS: Fmi2StatusKind = 1;
+pub const FMI2_LAST_SUCCESSFUL_TIME: Fmi2StatusKind = 2;
+pub const FMI2_TERMINATED: Fmi2StatusKind = 3;
+
+/// `fmi2CallbackLogger`: C-variadic. raceway always calls it with the format `"%s"` and one
+/// string argument, so no importer-side formatting of our text can go wrong.
+pub type Fmi2CallbackLogger = unsafe extern "C" fn(
+    component_environment: Fmi2ComponentEnvironment,
+    instance_name: Fmi2String,
+    status: Fmi2Status,
+    category: Fmi2String,
+    message: Fmi2String,
+    ...
+);
+pub type Fmi2CallbackAllocateMemory = unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void;
+pub type Fmi2CallbackFreeMemory = unsafe extern "C" fn(obj: *mut c_void);
+pub type Fmi2StepFinished =
+    unsafe extern "C" fn(component_environment: Fmi2ComponentEnvironment, status: Fmi2Status);
+
+/// `fmi2CallbackFunctions`. Function pointers are `Option` so that NULL is representable.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct Fmi2CallbackFunctions {
+    pub logger: Option<Fmi2CallbackLogger>,
+    pub allocate_memory: Option<Fmi2CallbackAllocateMemory>,
+    pub free_memory: Option<Fmi2CallbackFreeMemory>,
+    pub step_finished: Option<Fmi2StepFinished>,
+    pub component_environment: Fmi2ComponentEnvironment,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layouts_match_the_c_headers() {
+        assert_eq!(std::mem::size_of::<Fmi2Status>(), 4);
+        assert_eq!(
+            std::mem::size_of::<Fmi2CallbackFunctions>(),
+            5 * std::mem::size_of::<*const ()>()
+        );
+        assert_eq!(std::mem::size_of::<Option<Fmi2CallbackLogger>>(), 8);
+        assert_eq!(std::mem::size_of::<Fmi2Boolean>(), 4);
+    }
+}
