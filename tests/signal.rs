@@ -3,9 +3,8 @@
 //! sidebands, prominence, CSV reading and error handling.
 
 use raceway::signal::{
-    amplitude_spectrum, bandpass, dominant_peak, envelope, envelope_spectrum, harmonics,
-    peak_near, read_csv_column, sidebands, top_peaks, welch_psd, SignalError, Spectrum,
-    WelchConfig, Window,
+    amplitude_spectrum, bandpass, dominant_peak, envelope, envelope_spectrum, harmonics, peak_near,
+    read_csv_column, sidebands, top_peaks, welch_psd, SignalError, Spectrum, WelchConfig, Window,
 };
 use std::f64::consts::PI;
 
@@ -57,7 +56,11 @@ fn on_bin_sinusoid_amplitude_is_exact_for_every_window() {
         assert_eq!(s.len(), n / 2 + 1);
         assert!((s.resolution() - 1.0).abs() < 1e-12);
         assert!((s.value[100] - 1.5).abs() < 1e-9, "{w}: {}", s.value[100]);
-        assert!((s.value[1000] - 0.25).abs() < 1e-9, "{w}: {}", s.value[1000]);
+        assert!(
+            (s.value[1000] - 0.25).abs() < 1e-9,
+            "{w}: {}",
+            s.value[1000]
+        );
         assert!(s.value[0] < 1e-9, "{w}: mean not removed: {}", s.value[0]);
     }
 }
@@ -75,7 +78,11 @@ fn off_bin_sum_of_sinusoids_hann_amplitude_1pct_frequency_01_bin() {
         let raw = s.value[s.bin_of(f).unwrap()];
         let p = peak_near(&s, f, 5.0).unwrap();
         // ... which the refined peak undoes.
-        assert!(rel(p.amplitude, a) < 0.01, "f {f}: A {} vs {a}", p.amplitude);
+        assert!(
+            rel(p.amplitude, a) < 0.01,
+            "f {f}: A {} vs {a}",
+            p.amplitude
+        );
         assert!(p.amplitude >= raw);
         assert!(((p.freq - f) / df).abs() < 0.1, "f {f}: found {}", p.freq);
     }
@@ -235,8 +242,18 @@ fn impulse_train_envelope_peak_at_f0_with_harmonics() {
     for (k, hk) in h.iter().enumerate() {
         let hk = hk.expect("harmonic inside the spectrum");
         let fk = (k + 1) as f64 * f0;
-        assert!(rel(hk.freq, fk) < 0.005, "harmonic {}: {} vs {fk}", k + 1, hk.freq);
-        assert!(hk.is_significant(5.0), "harmonic {}: {}", k + 1, hk.prominence);
+        assert!(
+            rel(hk.freq, fk) < 0.005,
+            "harmonic {}: {} vs {fk}",
+            k + 1,
+            hk.freq
+        );
+        assert!(
+            hk.is_significant(5.0),
+            "harmonic {}: {}",
+            k + 1,
+            hk.prominence
+        );
     }
     // The raw spectrum peaks at the harmonic of f0 nearest the resonance (6·f0 = 5882 Hz).
     let raw = amplitude_spectrum(&x, fs, Window::Hann).unwrap();
@@ -269,8 +286,18 @@ fn am_sidebands_at_plus_minus_shaft_rate() {
     for b in &sb {
         let p = b.peak.unwrap();
         if b.order.abs() == 1 {
-            assert!(rel(p.amplitude, 0.2) < 0.02, "order {}: {}", b.order, p.amplitude);
-            assert!((p.freq - b.expected_hz).abs() < 0.05, "order {}: {}", b.order, p.freq);
+            assert!(
+                rel(p.amplitude, 0.2) < 0.02,
+                "order {}: {}",
+                b.order,
+                p.amplitude
+            );
+            assert!(
+                (p.freq - b.expected_hz).abs() < 0.05,
+                "order {}: {}",
+                b.order,
+                p.freq
+            );
             assert!(p.is_significant(100.0));
         } else {
             assert!(p.amplitude < 1e-3, "order {}: {}", b.order, p.amplitude);
@@ -331,7 +358,13 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(peak_near(&s, -5.0, 1.0).is_none());
     assert!(dominant_peak(&s, 40.0, 30.0).is_none());
     assert!(top_peaks(&s, 3).is_empty(), "a constant has no peaks");
-    assert_eq!(harmonics(&s, 20.0, 4, 1.0).iter().filter(|h| h.is_none()).count(), 2);
+    assert_eq!(
+        harmonics(&s, 20.0, 4, 1.0)
+            .iter()
+            .filter(|h| h.is_none())
+            .count(),
+        2
+    );
 }
 
 fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {
@@ -370,7 +403,10 @@ fn csv_errors_are_clear() {
     let path = temp_csv("cols.csv", "time,a,b\n0,1,2\n0.1,1,2\n");
     let e = read_csv_column(&path, "pedestal.a.z", 0.0).unwrap_err();
     let msg = e.to_string();
-    assert!(msg.contains("pedestal.a.z") && msg.contains("time, a, b"), "{msg}");
+    assert!(
+        msg.contains("pedestal.a.z") && msg.contains("time, a, b"),
+        "{msg}"
+    );
     assert!(matches!(e, SignalError::MissingColumn { .. }));
 
     // One missing sample in the middle: non-uniform.
@@ -384,14 +420,20 @@ fn csv_errors_are_clear() {
     assert!(e.to_string().contains("uniform"), "{e}");
 
     // Repeated time stamp.
-    let path = temp_csv("dup.csv", "time,x\n0,1\n1,1\n1,1\n2,1\n3,1\n4,1\n5,1\n6,1\n7,1\n");
+    let path = temp_csv(
+        "dup.csv",
+        "time,x\n0,1\n1,1\n1,1\n2,1\n3,1\n4,1\n5,1\n6,1\n7,1\n",
+    );
     let e = read_csv_column(&path, "x", 0.0).unwrap_err();
     assert!(e.to_string().contains("does not increase"), "{e}");
 
     // A non-numeric cell names its line and column.
     let path = temp_csv("bad.csv", "time,x\n0,1\n1,oops\n");
     let e = read_csv_column(&path, "x", 0.0).unwrap_err().to_string();
-    assert!(e.contains("line 3") && e.contains("'x'") && e.contains("oops"), "{e}");
+    assert!(
+        e.contains("line 3") && e.contains("'x'") && e.contains("oops"),
+        "{e}"
+    );
 
     let missing = std::env::temp_dir().join("raceway-signal-test-does-not-exist.csv");
     let e = read_csv_column(&missing, "x", 0.0).unwrap_err().to_string();

@@ -32,19 +32,19 @@ JSON output (--json), stable keys; a value that does not exist is null:
   shaft_hz                shaft rate used for sidebands, or null
   top_peaks[]             {freq_hz, value, amplitude, prominence}, largest first
   expected[]              {name, expected_hz, found_hz, value, amplitude, prominence,
-                           rel_error, sidebands[], harmonics[]}
+                           significant, rel_error, sidebands[], harmonics[]}
     sidebands[]           {order (-2,-1,1,2), expected_hz, found_hz, amplitude, prominence}
     harmonics[]           {order (1..N), expected_hz, found_hz, amplitude, prominence}
 freq/found_hz are refined to sub-bin precision; amplitude is the amplitude of the sinusoid \
 that gives the peak (scalloping loss undone); value is the refined peak height in value_kind \
 units; prominence is the peak over the local median as an amplitude ratio (>= 3, about 10 dB, \
-means a real peak); rel_error = (found_hz - expected_hz) / expected_hz.";
+means a real peak, and significant = prominence >= 3); rel_error = (found_hz - expected_hz) / expected_hz.";
 
 /// Spectrum, Welch PSD or envelope spectrum of one column of a simulator CSV.
 ///
 /// Prints the largest peaks and, for each expected frequency, the peak found within the
 /// tolerance, its amplitude, prominence and relative frequency error, the sidebands at
-/// ±1, ±2 shaft rates and the harmonics. See `--help` for the JSON keys.
+/// ±1, ±2 shaft rates and the harmonics. The JSON keys are listed at the end of `--help`.
 #[derive(clap::Args)]
 #[command(after_long_help = JSON_HELP)]
 pub struct Args {
@@ -121,6 +121,9 @@ fn parse_expect(s: &str) -> Result<(String, f64), String> {
     Ok((name.to_string(), hz))
 }
 
+/// Prominence (amplitude ratio over the local median) from which a peak counts as present.
+const SIGNIFICANT: f64 = 3.0;
+
 /// One peak as reported.
 #[derive(Serialize)]
 struct PeakOut {
@@ -172,6 +175,7 @@ struct ExpectedOut {
     value: Option<f64>,
     amplitude: Option<f64>,
     prominence: Option<f64>,
+    significant: bool,
     rel_error: Option<f64>,
     sidebands: Vec<LineOut>,
     harmonics: Vec<LineOut>,
@@ -336,6 +340,7 @@ pub fn run(args: Args) -> Result<(), String> {
                 value: peak.map(|p| p.value),
                 amplitude: peak.map(|p| p.amplitude),
                 prominence: peak.map(|p| p.prominence),
+                significant: peak.is_some_and(|p| p.is_significant(SIGNIFICANT)),
                 rel_error: peak.map(|p| p.rel_error(*f)),
                 sidebands: sb,
                 harmonics: harm,
@@ -386,6 +391,15 @@ pub fn run(args: Args) -> Result<(), String> {
     Ok(())
 }
 
+/// Prominence for text output: one decimal, or exponent notation when huge.
+fn fmt_prom(v: f64) -> String {
+    if v.is_finite() && v < 1e4 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.1e}")
+    }
+}
+
 fn fmt_opt(v: Option<f64>, f: impl Fn(f64) -> String) -> String {
     v.map_or_else(|| "-".to_string(), f)
 }
@@ -419,8 +433,11 @@ fn print_text(r: &Report, kind: SpectrumKind) {
     );
     for p in &r.top_peaks {
         println!(
-            "  {:>12.3}  {:>11.4e}  {:>11.4e}  {:>10.1}",
-            p.freq_hz, p.amplitude, p.value, p.prominence
+            "  {:>12.3}  {:>11.4e}  {:>11.4e}  {:>10}",
+            p.freq_hz,
+            p.amplitude,
+            p.value,
+            fmt_prom(p.prominence)
         );
     }
     if r.expected.is_empty() {
@@ -442,15 +459,17 @@ fn print_text(r: &Report, kind: SpectrumKind) {
         "  {:<10} {:>12}  {:>12}  {:>9}  {:>11}  {:>10}",
         "name", "expected", "found [Hz]", "error", "amplitude", "prominence"
     );
+    println!("  (* = not significant: prominence below {SIGNIFICANT})");
     for e in &r.expected {
         println!(
-            "  {:<10} {:>12.3}  {:>12}  {:>9}  {:>11}  {:>10}",
+            "  {:<10} {:>12.3}  {:>12}  {:>9}  {:>11}  {:>10}{}",
             e.name,
             e.expected_hz,
             fmt_opt(e.found_hz, |v| format!("{v:.3}")),
             fmt_opt(e.rel_error, |v| format!("{:+.3}%", 100.0 * v)),
             fmt_opt(e.amplitude, |v| format!("{v:.4e}")),
-            fmt_opt(e.prominence, |v| format!("{v:.1}")),
+            fmt_opt(e.prominence, fmt_prom),
+            if e.significant { "" } else { " *" },
         );
         if !e.sidebands.is_empty() {
             let sb: Vec<String> = e

@@ -59,7 +59,7 @@ fn analytic_with(
     planner.plan_fft_forward(n).process(&mut buf);
     let half = n / 2;
     for (k, b) in buf.iter_mut().enumerate() {
-        let single = k == 0 || (n % 2 == 0 && k == half);
+        let single = k == 0 || (n.is_multiple_of(2) && k == half);
         let gain = if k > half || k < k_lo || k > k_hi {
             0.0
         } else if single {

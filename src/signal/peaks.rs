@@ -237,12 +237,13 @@ pub fn sidebands(
         .collect()
 }
 
-/// The `n` largest local maxima (each the largest bin within its window's main-lobe half-width,
-/// DC excluded), refined and sorted by decreasing height.
+/// The `n` largest local maxima (each the largest bin within its window's main-lobe half-width),
+/// refined and sorted by decreasing height. DC and the bins inside its main lobe (`k ≤`
+/// [`Window::main_lobe_half_width`], which hold leakage of the removed mean) are skipped.
 pub fn top_peaks(s: &Spectrum, n: usize) -> Vec<Peak> {
     let len = s.len();
     let lobe = s.window.main_lobe_half_width();
-    let mut maxima: Vec<usize> = (1..len)
+    let mut maxima: Vec<usize> = (lobe + 1..len)
         .filter(|&k| {
             let v = s.value[k];
             v > 0.0

@@ -135,7 +135,7 @@ pub(crate) fn amplitude_spectrum_with(
     let mut freq = Vec::with_capacity(half + 1);
     let mut value = Vec::with_capacity(half + 1);
     for (k, xk) in buf.iter().take(half + 1).enumerate() {
-        let single = k == 0 || (n % 2 == 0 && k == half);
+        let single = k == 0 || (n.is_multiple_of(2) && k == half);
         let scale = if single { 1.0 } else { 2.0 };
         freq.push(k as f64 * df);
         value.push(scale * xk.norm() / sum_w);

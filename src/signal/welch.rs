@@ -93,7 +93,7 @@ pub(crate) fn welch_psd_with(
         .iter()
         .enumerate()
         .map(|(k, a)| {
-            let single = k == 0 || (len % 2 == 0 && k == half);
+            let single = k == 0 || (len.is_multiple_of(2) && k == half);
             a * norm * if single { 1.0 } else { 2.0 }
         })
         .collect();

@@ -62,7 +62,7 @@ impl Window {
                 a.iter()
                     .enumerate()
                     .map(|(m, am)| {
-                        let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+                        let sign = if m.is_multiple_of(2) { 1.0 } else { -1.0 };
                         sign * am * (m as f64 * phase).cos()
                     })
                     .sum()
@@ -115,7 +115,7 @@ impl Window {
         let d2 = d * d;
         let mut sum = a[0];
         for (m, am) in a.iter().enumerate().skip(1) {
-            let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+            let sign = if m.is_multiple_of(2) { 1.0 } else { -1.0 };
             let m2 = (m * m) as f64;
             sum += sign * am * d2 / (d2 - m2);
         }
