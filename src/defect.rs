@@ -457,6 +457,15 @@ impl Defect {
         }
     }
 
+    /// Radius of curvature of the floor parabola at y, `|r_d| = (1 + d′²)^(3/2)/|d″|` [m]
+    /// (used convex in point mode, concave for floor contacts; 2.83 mm at the edge of a
+    /// 2.0 × 0.5 mm spall).
+    pub fn profile_radius(&self, y: f64) -> f64 {
+        let k2 = 8.0 * self.depth / (self.width * self.width);
+        let slope = k2 * y;
+        (1.0 + slope * slope).powf(1.5) / k2
+    }
+
     /// Ball-to-defect angle (eq. 14, C10) from the ball azimuth θ_br in the ring frame and the
     /// shaft angle φ: `wrap(θ_br − θ_d0 − φ)` for an inner-ring defect (it spins with the
     /// shaft), `wrap(θ_br − θ_d0)` for an outer-ring defect (φ ignored) [rad].
