@@ -501,7 +501,8 @@ impl Defect {
     /// `None`). Allocation-free.
     #[inline]
     pub fn probe(&self, theta_bd: f64) -> Option<DefectContact> {
-        if !(theta_bd.abs() < self.theta_e) {
+        let a = theta_bd.abs();
+        if a.is_nan() || a >= self.theta_e {
             return None;
         }
         self.contact_at(self.along_track(theta_bd))
@@ -518,7 +519,8 @@ impl Defect {
     /// table cell). Point mode: closed forms of the parabola, K′ interpolated linearly.
     #[inline]
     pub fn contact_at(&self, y_b: f64) -> Option<DefectContact> {
-        if !(y_b.abs() < self.half_width) {
+        let a = y_b.abs();
+        if a.is_nan() || a >= self.half_width {
             return None;
         }
         let t = (y_b + self.half_width) * self.inv_dy;
