@@ -1,1 +1,997 @@
-//! (in progress)
+//! L1: Jones–Harris quasi-static load distribution with centrifugal force and gyroscopic
+//! friction under outer-race control (spec §6 L1).
+//!
+//! # Model
+//! Ball j sits at azimuth `θ_j = 2πj/z` (convention C1: `e_r(θ) = (0, −sin θ, cos θ)`, so a
+//! radial load `F_z = −F_r` centres the load zone at θ = π). In the ball's (x, r) plane its
+//! centre `X = (X1, X2)` is measured from the outer groove centre. The inner groove centre is at
+//! `A_j = A_0 + (δ_a, δ_y e_r,y(θ_j) + δ_z e_r,z(θ_j))`, where `A_0` is the unloaded offset
+//! between the groove-centre circles of [`Bearing::groove_centre`]. Then
+//! - `δ_o = |X| − (f_o−½)D`, `e_o = X/|X|`, `Q_o = K_o δ_o^{3/2}`;
+//! - `δ_i = |A − X| − (f_i−½)D`, `e_i = (A − X)/|A − X|`, `Q_i = K_i δ_i^{3/2}`;
+//! - ball equilibrium `Q_i e_i − Q_o e_o + F_c e_r + F_g t_o = 0`, with
+//!   `F_c = m_b r_b ω_c²` (`r_b` the actual ball-centre radius), `F_g = 2 J ω_c ω_R sin(−β)/D`
+//!   along `t_o = (−cos α_o, sin α_o)`, and ω_c, ω_R, β from the loaded outer-race-control
+//!   formulas ([`crate::kinematics::outer_race_control`]) at the ball's current α_i, α_o;
+//! - ring equilibrium `(F_a, F_y, F_z) = Σ_j Q_i,j (e_i,x, e_i,r e_r(θ_j))`.
+//!
+//! # Solver
+//! 1. A first guess from the closed-form pure-axial solution ([`pure_axial`]) plus a Stribeck
+//!    estimate of the radial deflection.
+//! 2. The zero-speed problem is the minimum of a convex potential
+//!    `Σ (2/5) K_n (|A_j| − BD)_+^{5/2} − F·δ` (series constant K_n): damped Newton on it gives a
+//!    robust start whatever the load direction.
+//! 3. Full problem: per ball, a 2×2 Newton on X (analytic Hertz Jacobian; the weak dependence of
+//!    ω_c, ω_R, β on the angles is lagged, converging to 1e-9 N); around it, Newton on the ring
+//!    unknowns with a central finite-difference Jacobian and a backtracking line search, until
+//!    the force residual is ≤ 1e-6 N and the last step ≤ 1e-10 m.
+//!
+//! Deep-groove bearings (α0 = 0) with F_a = 0: by symmetry δ_a = 0 solves the axial equation
+//! exactly (every α and hence the gyroscopic friction is zero), so the axial DOF is fixed at 0
+//! and only (δ_y, δ_z) are solved; the axial stiffness is still reported. An angular-contact
+//! bearing (α0 > 0) cannot carry a load with F_a ≤ 0: the inner-ring balance
+//! `F_a = Σ Q_i sin α_i` would need balls beyond the groove bottom, on the low-shoulder side.
+//! That is reported as [`QuasiStaticError::BeyondGeometry`].
+//!
+//! Physical limits (beyond them Hertz theory and the groove geometry are meaningless): a contact
+//! deflection above [`MAX_DEFLECTION_OVER_D`]·D, or a loaded contact angle of magnitude above
+//! [`MAX_CONTACT_ANGLE_DEG`].
+
+use crate::geometry::{Bearing, Race};
+use crate::kinematics::{frequencies_from_cage, outer_race_control, FaultFrequencies};
+use serde::Serialize;
+use std::f64::consts::PI;
+use std::fmt;
+
+/// Largest contact deflection accepted, as a fraction of the ball diameter (1 % of D is about
+/// 100× the ISO 76 permanent-deformation criterion of 1e-4 D).
+pub const MAX_DEFLECTION_OVER_D: f64 = 0.01;
+/// Largest loaded contact angle magnitude accepted [deg] ("reaching 90°").
+pub const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
+/// Finite-difference step of the reported stiffness matrix [m] (spec §6 L1).
+pub const STIFFNESS_STEP: f64 = 1e-8;
+/// Convergence tolerance on ring displacements [m].
+pub const TOL_DISPLACEMENT: f64 = 1e-10;
+/// Convergence tolerance on the ring force balance [N].
+pub const TOL_FORCE: f64 = 1e-6;
+
+/// A ball counts as loaded when its inner contact force exceeds the force tolerance
+/// (rounding of the groove geometry can leave zero-load contacts at ~1e-17 N).
+pub fn is_loaded(q_inner: f64) -> bool {
+    q_inner > TOL_FORCE
+}
+
+const BALL_TOL_FORCE: f64 = 1e-9;
+const MAX_BALL_ITER: usize = 60;
+const MAX_RING_ITER: usize = 60;
+const MAX_CONVEX_ITER: usize = 200;
+const FD_JACOBIAN_STEP: f64 = 1e-9;
+
+/// External load on the inner ring and shaft speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LoadCase {
+    /// Shaft (inner-ring) speed Ω [rad/s].
+    pub speed: f64,
+    /// Axial force along +x [N].
+    pub fa: f64,
+    /// Force along +y [N].
+    pub fy: f64,
+    /// Force along +z [N] (a radial load F_r of the paper is `fz = −F_r`, C13).
+    pub fz: f64,
+}
+
+impl LoadCase {
+    /// The paper's load case: `fa` along +x, `fr` along −z, speed in rpm.
+    pub fn from_fa_fr_rpm(fa: f64, fr: f64, rpm: f64) -> Self {
+        Self {
+            speed: rpm * 2.0 * PI / 60.0,
+            fa,
+            fy: 0.0,
+            fz: -fr,
+        }
+    }
+}
+
+/// Equilibrium of one ball.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BallEquilibrium {
+    /// Azimuth θ_j = 2πj/z [rad].
+    pub theta: f64,
+    /// Inner contact force Q_i [N].
+    pub q_inner: f64,
+    /// Outer contact force Q_o [N].
+    pub q_outer: f64,
+    /// Inner contact angle α_i [rad].
+    pub alpha_inner: f64,
+    /// Outer contact angle α_o [rad].
+    pub alpha_outer: f64,
+    /// Inner contact deflection δ_i [m] (negative: gap).
+    pub delta_inner: f64,
+    /// Outer contact deflection δ_o [m] (negative: gap).
+    pub delta_outer: f64,
+    /// Orbital (cage) speed ω_c of this ball [rad/s].
+    pub cage_speed: f64,
+    /// Spin speed in the cage frame ω_R [rad/s] (negative for Ω > 0).
+    pub spin_speed: f64,
+    /// Attitude angle β [rad]: spin axis `cos β e_x − sin β e_r`.
+    pub beta: f64,
+    /// Ball centre relative to the outer groove centre, (axial, radial) [m].
+    pub x: [f64; 2],
+    /// Centrifugal force F_c [N].
+    pub centrifugal: f64,
+    /// Gyroscopic friction force F_g at the outer contact [N] (along t_o).
+    pub gyro_force: f64,
+}
+
+/// Quasi-static solution.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct QuasiStatic {
+    /// Shaft speed it was solved for [rad/s].
+    pub speed: f64,
+    /// Inner-ring axial displacement δ_a [m].
+    pub delta_axial: f64,
+    /// Inner-ring displacement along y [m].
+    pub delta_y: f64,
+    /// Inner-ring displacement along z [m].
+    pub delta_z: f64,
+    /// One entry per ball, j = 0..z−1.
+    pub balls: Vec<BallEquilibrium>,
+    /// Mean ω_c over the loaded balls (see [`is_loaded`]) [rad/s].
+    pub cage_speed: f64,
+    /// Mean ω_R over the loaded balls [rad/s].
+    pub spin_speed: f64,
+    /// Stiffness ∂F_i/∂δ_j of the ball set acting on the inner ring, in (x, y, z) [N/m]
+    /// (central differences, h = 1e-8 m, balls re-equilibrated).
+    pub stiffness: [[f64; 3]; 3],
+    /// Ring Newton iterations (convex start + full problem).
+    pub iterations: usize,
+    /// Final ring force residual, max norm [N].
+    pub residual: f64,
+}
+
+impl QuasiStatic {
+    /// Radial displacement |(δ_y, δ_z)| [m].
+    pub fn delta_radial(&self) -> f64 {
+        self.delta_y.hypot(self.delta_z)
+    }
+
+    /// Balls whose inner contact carries load (see [`is_loaded`]).
+    pub fn loaded_balls(&self) -> impl Iterator<Item = &BallEquilibrium> {
+        self.balls.iter().filter(|b| is_loaded(b.q_inner))
+    }
+
+    /// Outer-race-control frequencies from the mean cage and spin speeds [Hz]. At zero speed
+    /// every frequency is zero.
+    pub fn frequencies(&self, b: &Bearing) -> FaultFrequencies {
+        let fs = self.speed / (2.0 * PI);
+        if self.speed == 0.0 {
+            return frequencies_from_cage(b, 0.0, 0.0, 0.0);
+        }
+        frequencies_from_cage(
+            b,
+            fs,
+            self.cage_speed / self.speed,
+            self.spin_speed / self.speed,
+        )
+    }
+
+    /// Sum of the inner contact forces acting on the ring, Σ Q_i (e_i,x, e_i,r e_r(θ_j)) [N].
+    pub fn ring_force(&self) -> [f64; 3] {
+        let mut f = [0.0; 3];
+        for ball in &self.balls {
+            let (s, c) = ball.alpha_inner.sin_cos();
+            let (st, ct) = ball.theta.sin_cos();
+            f[0] += ball.q_inner * s;
+            f[1] += ball.q_inner * c * (-st);
+            f[2] += ball.q_inner * c * ct;
+        }
+        f
+    }
+}
+
+/// Why the quasi-static solve failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum QuasiStaticError {
+    /// An input is NaN or infinite; names it.
+    NonFinite {
+        /// Which input.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// No ball is loaded between the rings, so the ring position is undetermined.
+    NoBallLoaded(String),
+    /// The load exceeds what the geometry can carry.
+    BeyondGeometry(String),
+    /// Newton did not converge.
+    NotConverged {
+        /// Which loop.
+        stage: &'static str,
+        /// Iterations spent.
+        iterations: usize,
+        /// Last residual (max norm) [N].
+        residual: f64,
+    },
+}
+
+impl fmt::Display for QuasiStaticError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            QuasiStaticError::NonFinite { name, value } => {
+                write!(f, "input '{name}' is not a finite number ({value})")
+            }
+            QuasiStaticError::NoBallLoaded(why) => write!(f, "no ball is loaded: {why}"),
+            QuasiStaticError::BeyondGeometry(why) => {
+                write!(f, "load beyond what the bearing geometry can carry: {why}")
+            }
+            QuasiStaticError::NotConverged {
+                stage,
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "{stage} Newton did not converge in {iterations} iterations (residual {residual:.3e} N)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for QuasiStaticError {}
+
+/// Closed-form pure-axial solution at zero speed: every ball carries the same load.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PureAxial {
+    /// Loaded contact angle α (both contacts) [rad].
+    pub alpha: f64,
+    /// Ball load Q (both contacts) [N].
+    pub q: f64,
+    /// Total ball deflection δ_i + δ_o [m].
+    pub delta_total: f64,
+    /// Inner-ring axial displacement δ_a [m].
+    pub delta_axial: f64,
+}
+
+/// Pure-axial load `fa` > 0 at zero speed, in closed form up to one monotone 1-D root:
+/// with `L = |A_0|` the unloaded groove-centre distance and α0 its direction,
+/// `cos α = L cos α0 / |A|`, `δ = |A| − BD`, `Q = K_n δ^{3/2}`, and `F_a = z Q sin α`, so
+/// `F_a = z K_n (L cos α0 / cos α − BD)^{3/2} sin α`, solved for α by bisection;
+/// then `δ_a = L cos α0 tan α − L sin α0`.
+pub fn pure_axial(b: &Bearing, fa: f64) -> Result<PureAxial, QuasiStaticError> {
+    if !fa.is_finite() {
+        return Err(QuasiStaticError::NonFinite {
+            name: "fa",
+            value: fa,
+        });
+    }
+    if fa <= 0.0 {
+        return Err(QuasiStaticError::NoBallLoaded(format!(
+            "a pure axial load must be > 0 (got Fa = {fa} N)"
+        )));
+    }
+    let g = Geometry::new(b);
+    let (a0x, a0r) = (g.a0[0], g.a0[1]);
+    let kn = b.k_series();
+    let z = b.z as f64;
+    let bd = g.ri + g.ro;
+    let force = |alpha: f64| -> f64 {
+        let d = (a0r / alpha.cos() - bd).max(0.0);
+        z * kn * d.powf(1.5) * alpha.sin()
+    };
+    // force(α) is 0 until the balls touch and increases monotonically after.
+    let lo0 = 0.0;
+    let hi0 = MAX_CONTACT_ANGLE_DEG.to_radians();
+    if force(hi0) < fa {
+        return Err(QuasiStaticError::BeyondGeometry(format!(
+            "Fa = {fa} N would push the contact angle past {MAX_CONTACT_ANGLE_DEG}°"
+        )));
+    }
+    let (mut lo, mut hi) = (lo0, hi0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if force(mid) < fa {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < 1e-16 {
+            break;
+        }
+    }
+    let alpha = 0.5 * (lo + hi);
+    let delta_total = a0r / alpha.cos() - bd;
+    let res = PureAxial {
+        alpha,
+        q: kn * delta_total.max(0.0).powf(1.5),
+        delta_total,
+        delta_axial: a0r * alpha.tan() - a0x,
+    };
+    // deflection of the stiffer-constant contact is the larger share
+    let share = 1.0 / (1.0 + (b.k_outer / b.k_inner).powf(2.0 / 3.0));
+    let dmax = delta_total * share.max(1.0 - share);
+    if dmax > MAX_DEFLECTION_OVER_D * b.d {
+        return Err(QuasiStaticError::BeyondGeometry(format!(
+            "Fa = {fa} N needs a contact deflection of {:.1} µm, above the limit {:.1} µm \
+             ({}% of D)",
+            dmax * 1e6,
+            MAX_DEFLECTION_OVER_D * b.d * 1e6,
+            MAX_DEFLECTION_OVER_D * 100.0
+        )));
+    }
+    Ok(res)
+}
+
+/// Geometry constants of the quasi-static problem.
+struct Geometry<'a> {
+    b: &'a Bearing,
+    /// Unloaded inner-minus-outer groove-centre offset (axial, radial) [m].
+    a0: [f64; 2],
+    /// (f_i − ½) D and (f_o − ½) D [m].
+    ri: f64,
+    ro: f64,
+    /// Outer groove-centre circle radius [m].
+    r_go: f64,
+    /// (−sin θ_j, cos θ_j) per ball.
+    er: Vec<[f64; 2]>,
+    theta: Vec<f64>,
+}
+
+impl<'a> Geometry<'a> {
+    fn new(b: &'a Bearing) -> Self {
+        let (xi, rgi) = b.groove_centre(Race::Inner);
+        let (xo, rgo) = b.groove_centre(Race::Outer);
+        let theta: Vec<f64> = (0..b.z).map(|j| 2.0 * PI * j as f64 / b.z as f64).collect();
+        Self {
+            b,
+            a0: [xi - xo, rgi - rgo],
+            ri: (b.f_inner - 0.5) * b.d,
+            ro: (b.f_outer - 0.5) * b.d,
+            r_go: rgo,
+            er: theta.iter().map(|t| [-t.sin(), t.cos()]).collect(),
+            theta,
+        }
+    }
+
+    /// Inner groove centre relative to the outer one for ball j at ring displacement u.
+    fn a(&self, j: usize, u: &[f64; 3]) -> [f64; 2] {
+        [
+            self.a0[0] + u[0],
+            self.a0[1] + u[1] * self.er[j][0] + u[2] * self.er[j][1],
+        ]
+    }
+}
+
+/// Stiffness K(δ^{3/2} e) derivative for a contact whose centre offset is `v`:
+/// `K[1.5 δ^½ e eᵀ + δ^{3/2}/|v| (I − e eᵀ)]`.
+fn hertz_jacobian(k: f64, delta: f64, v: [f64; 2], nv: f64) -> [[f64; 2]; 2] {
+    if delta <= 0.0 {
+        return [[0.0; 2]; 2];
+    }
+    let e = [v[0] / nv, v[1] / nv];
+    let a = 1.5 * k * delta.sqrt();
+    let c = k * delta.powf(1.5) / nv;
+    let mut m = [[0.0; 2]; 2];
+    for i in 0..2 {
+        for l in 0..2 {
+            let id = if i == l { 1.0 } else { 0.0 };
+            m[i][l] = a * e[i] * e[l] + c * (id - e[i] * e[l]);
+        }
+    }
+    m
+}
+
+/// Evaluation of one ball at centre X.
+#[derive(Clone, Copy)]
+struct BallEval {
+    residual: [f64; 2],
+    jac: [[f64; 2]; 2],
+    eq: BallEquilibrium,
+    e_i: [f64; 2],
+}
+
+/// Centrifugal and gyroscopic forces on a ball at centre `x` with groove offset `a`, on (x, r):
+/// `F_c e_r + F_g t_o`, with (F_c, F_g, ω_c, ω_R, β).
+fn speed_forces(g: &Geometry, omega: f64, a: [f64; 2], x: [f64; 2]) -> ([f64; 2], [f64; 5]) {
+    let b = g.b;
+    let alpha_o = x[0].atan2(x[1]);
+    let alpha_i = (a[0] - x[0]).atan2(a[1] - x[1]);
+    let rc = outer_race_control(b, alpha_i, alpha_o);
+    let wc = rc.cage_ratio * omega;
+    let wr = rc.spin_ratio * omega;
+    let fc = b.ball_mass * (g.r_go + x[1]) * wc * wc;
+    let fg = 2.0 * b.ball_inertia * wc * wr * (-rc.beta).sin() / b.d;
+    let (so, co) = alpha_o.sin_cos();
+    ([-fg * co, fc + fg * so], [fc, fg, wc, wr, rc.beta])
+}
+
+fn eval_ball(g: &Geometry, omega: f64, theta: f64, a: [f64; 2], x: [f64; 2]) -> BallEval {
+    let b = g.b;
+    let nx = x[0].hypot(x[1]);
+    let e_o = [x[0] / nx, x[1] / nx];
+    let d_o = nx - g.ro;
+    let q_o = if d_o > 0.0 {
+        b.k_outer * d_o.powf(1.5)
+    } else {
+        0.0
+    };
+    let y = [a[0] - x[0], a[1] - x[1]];
+    let ny = y[0].hypot(y[1]);
+    let e_i = [y[0] / ny, y[1] / ny];
+    let d_i = ny - g.ri;
+    let q_i = if d_i > 0.0 {
+        b.k_inner * d_i.powf(1.5)
+    } else {
+        0.0
+    };
+    let (extra, [fc, fg, wc, wr, beta]) = speed_forces(g, omega, a, x);
+    let residual = [
+        q_i * e_i[0] - q_o * e_o[0] + extra[0],
+        q_i * e_i[1] - q_o * e_o[1] + extra[1],
+    ];
+    let ji = hertz_jacobian(b.k_inner, d_i, y, ny);
+    let jo = hertz_jacobian(b.k_outer, d_o, x, nx);
+    let mut jac = [[0.0; 2]; 2];
+    for i in 0..2 {
+        for l in 0..2 {
+            jac[i][l] = -ji[i][l] - jo[i][l];
+        }
+    }
+    if omega != 0.0 {
+        // the speed forces vary slowly with X: central differences
+        let h = 1e-9;
+        for l in 0..2 {
+            let mut xp = x;
+            let mut xm = x;
+            xp[l] += h;
+            xm[l] -= h;
+            let (fp, _) = speed_forces(g, omega, a, xp);
+            let (fm, _) = speed_forces(g, omega, a, xm);
+            for i in 0..2 {
+                jac[i][l] += (fp[i] - fm[i]) / (2.0 * h);
+            }
+        }
+    }
+    BallEval {
+        residual,
+        jac,
+        e_i,
+        eq: BallEquilibrium {
+            theta,
+            q_inner: q_i,
+            q_outer: q_o,
+            alpha_inner: y[0].atan2(y[1]),
+            alpha_outer: x[0].atan2(x[1]),
+            delta_inner: d_i,
+            delta_outer: d_o,
+            cage_speed: wc,
+            spin_speed: wr,
+            beta,
+            x,
+            centrifugal: fc,
+            gyro_force: fg,
+        },
+    }
+}
+
+fn norm2(v: [f64; 2]) -> f64 {
+    v[0].hypot(v[1])
+}
+
+/// Zero-speed ball position for groove-centre offset A: collinear contacts sharing the total
+/// deflection so that K_i δ_i^{3/2} = K_o δ_o^{3/2}. An unloaded ball sits mid-gap.
+fn zero_speed_x(g: &Geometry, a: [f64; 2]) -> [f64; 2] {
+    let na = norm2(a);
+    let e = [a[0] / na, a[1] / na];
+    let s = na - g.ri - g.ro;
+    let d_o = if s > 0.0 {
+        s / (1.0 + (g.b.k_outer / g.b.k_inner).powf(2.0 / 3.0))
+    } else {
+        0.5 * s
+    };
+    [e[0] * (g.ro + d_o), e[1] * (g.ro + d_o)]
+}
+
+/// Solves the equilibrium of ball j for groove offset `a`, starting at `x0`.
+fn solve_ball(
+    g: &Geometry,
+    omega: f64,
+    j: usize,
+    a: [f64; 2],
+    x0: Option<[f64; 2]>,
+) -> Result<BallEval, QuasiStaticError> {
+    let theta = g.theta[j];
+    if norm2(a) < 1e-3 * (g.ri + g.ro) {
+        return Err(QuasiStaticError::BeyondGeometry(format!(
+            "the groove centres of ball {j} coincide: the rings are displaced past each other"
+        )));
+    }
+    let xz = zero_speed_x(g, a);
+    if omega == 0.0 {
+        // Exact: no centrifugal or gyroscopic force, the contacts are collinear.
+        return Ok(eval_ball(g, omega, theta, a, xz));
+    }
+    let mut x = match x0 {
+        Some(x) if x[0].is_finite() && x[1].is_finite() && norm2(x) > g.ro => x,
+        _ => {
+            // make sure the outer contact is closed so the Jacobian is regular
+            let wc = 0.5 * omega.abs();
+            let fc = g.b.ball_mass * 0.5 * g.b.dm * wc * wc;
+            let d_c = (fc / g.b.k_outer).powf(2.0 / 3.0);
+            let n = norm2(xz);
+            let r = n.max(g.ro + d_c);
+            [xz[0] / n * r, xz[1] / n * r]
+        }
+    };
+    let step_cap = 0.1 * g.ro;
+    let mut ev = eval_ball(g, omega, theta, a, x);
+    let mut rn = norm2(ev.residual);
+    for _ in 0..MAX_BALL_ITER {
+        if rn <= BALL_TOL_FORCE {
+            return Ok(ev);
+        }
+        let m = ev.jac;
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        let scale = m[0][0].abs().max(m[1][1].abs()).max(1e-300);
+        let mut p = if det.abs() > 1e-14 * scale * scale {
+            [
+                -(m[1][1] * ev.residual[0] - m[0][1] * ev.residual[1]) / det,
+                -(-m[1][0] * ev.residual[0] + m[0][0] * ev.residual[1]) / det,
+            ]
+        } else {
+            // both contacts open: move outward with the net force
+            let r = ev.residual;
+            let n = norm2(r).max(1e-300);
+            [r[0] / n * 1e-7, r[1] / n * 1e-7]
+        };
+        let pn = norm2(p);
+        if pn > step_cap {
+            p = [p[0] * step_cap / pn, p[1] * step_cap / pn];
+        }
+        let mut lambda = 1.0;
+        let mut accepted = false;
+        for _ in 0..40 {
+            let xt = [x[0] + lambda * p[0], x[1] + lambda * p[1]];
+            let et = eval_ball(g, omega, theta, a, xt);
+            let rt = norm2(et.residual);
+            if rt.is_finite() && rt < rn {
+                x = xt;
+                ev = et;
+                rn = rt;
+                accepted = true;
+                break;
+            }
+            lambda *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+    }
+    if rn <= TOL_FORCE {
+        Ok(ev)
+    } else {
+        Err(QuasiStaticError::NotConverged {
+            stage: "per-ball",
+            iterations: MAX_BALL_ITER,
+            residual: rn,
+        })
+    }
+}
+
+/// All balls at ring displacement `u`; `xs` is the warm start and is updated.
+struct RingEval {
+    force: [f64; 3],
+    balls: Vec<BallEval>,
+}
+
+fn eval_ring(
+    g: &Geometry,
+    omega: f64,
+    u: &[f64; 3],
+    xs: &[[f64; 2]],
+) -> Result<RingEval, QuasiStaticError> {
+    let mut force = [0.0; 3];
+    let mut balls = Vec::with_capacity(g.theta.len());
+    for j in 0..g.theta.len() {
+        let a = g.a(j, u);
+        let x0 = xs.get(j).copied();
+        let ev = solve_ball(g, omega, j, a, x0)?;
+        let q = ev.eq.q_inner;
+        force[0] += q * ev.e_i[0];
+        force[1] += q * ev.e_i[1] * g.er[j][0];
+        force[2] += q * ev.e_i[1] * g.er[j][1];
+        balls.push(ev);
+    }
+    Ok(RingEval { force, balls })
+}
+
+fn inf_norm3(v: &[f64; 3]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// Solves `m p = rhs` on the active DOFs (inactive: p = 0), Gaussian elimination with partial
+/// pivoting and a tiny Levenberg regularisation when the matrix is (nearly) singular.
+fn solve3(m: [[f64; 3]; 3], rhs: [f64; 3], active: [bool; 3]) -> Option<[f64; 3]> {
+    let scale = (0..3)
+        .filter(|&i| active[i])
+        .fold(0.0_f64, |s, i| s.max(m[i][i].abs()));
+    if scale <= 0.0 || !scale.is_finite() {
+        return None;
+    }
+    let attempt = |mu: f64| -> Option<[f64; 3]> {
+        let mut a = [[0.0; 4]; 3];
+        for i in 0..3 {
+            for l in 0..3 {
+                a[i][l] = if active[i] && active[l] { m[i][l] } else { 0.0 };
+            }
+            if active[i] {
+                a[i][i] += mu;
+                a[i][3] = rhs[i];
+            } else {
+                a[i][i] = 1.0;
+                a[i][3] = 0.0;
+            }
+        }
+        for c in 0..3 {
+            let piv = (c..3).max_by(|&p, &q| a[p][c].abs().total_cmp(&a[q][c].abs()))?;
+            a.swap(c, piv);
+            let pv = a[c][c];
+            if pv.abs() <= 1e-13 * scale.max(1.0) || !pv.is_finite() {
+                return None;
+            }
+            for r in 0..3 {
+                if r != c {
+                    let f = a[r][c] / pv;
+                    let row_c = a[c];
+                    for (v, w) in a[r].iter_mut().zip(row_c.iter()).skip(c) {
+                        *v -= f * w;
+                    }
+                }
+            }
+        }
+        let p = [a[0][3] / a[0][0], a[1][3] / a[1][1], a[2][3] / a[2][2]];
+        p.iter().all(|v| v.is_finite()).then_some(p)
+    };
+    attempt(0.0).or_else(|| attempt(1e-9 * scale))
+}
+
+/// Zero-speed convex start: minimises Σ (2/5) K_n s_+^{5/2} − F·u.
+fn convex_start(
+    g: &Geometry,
+    f_ext: [f64; 3],
+    mut u: [f64; 3],
+    active: [bool; 3],
+    limit: f64,
+) -> Result<([f64; 3], usize), QuasiStaticError> {
+    let kn = g.b.k_series();
+    let bd = g.ri + g.ro;
+    let z = g.theta.len();
+    // potential, gradient, Hessian
+    let eval = |u: &[f64; 3]| -> (f64, [f64; 3], [[f64; 3]; 3], bool) {
+        let mut phi = -(f_ext[0] * u[0] + f_ext[1] * u[1] + f_ext[2] * u[2]);
+        let mut grad = [-f_ext[0], -f_ext[1], -f_ext[2]];
+        let mut h = [[0.0; 3]; 3];
+        let mut any = false;
+        for j in 0..z {
+            let a = g.a(j, u);
+            let na = norm2(a);
+            let s = na - bd;
+            if s <= 0.0 {
+                continue;
+            }
+            any = true;
+            phi += 0.4 * kn * s.powf(2.5);
+            let q = kn * s.powf(1.5);
+            let e = [a[0] / na, a[1] / na];
+            // P = ∂A/∂u: rows (1,0,0) and (0, er_y, er_z)
+            let p = [[1.0, 0.0, 0.0], [0.0, g.er[j][0], g.er[j][1]]];
+            let hj = hertz_jacobian(kn, s, a, na);
+            for c in 0..3 {
+                grad[c] += q * (e[0] * p[0][c] + e[1] * p[1][c]);
+                for d in 0..3 {
+                    let mut acc = 0.0;
+                    for k in 0..2 {
+                        for l in 0..2 {
+                            acc += p[k][c] * hj[k][l] * p[l][d];
+                        }
+                    }
+                    h[c][d] += acc;
+                }
+            }
+        }
+        for c in 0..3 {
+            if !active[c] {
+                grad[c] = 0.0;
+            }
+        }
+        (phi, grad, h, any)
+    };
+    let fnorm = inf_norm3(&f_ext).max(1.0);
+    let mut it = 0;
+    let (mut phi, mut grad, mut h, mut any) = eval(&u);
+    while it < MAX_CONVEX_ITER {
+        it += 1;
+        if inf_norm3(&grad) <= 1e-9 * fnorm {
+            break;
+        }
+        let p = if any {
+            solve3(h, [-grad[0], -grad[1], -grad[2]], active)
+        } else {
+            None
+        };
+        let p = match p {
+            Some(p) => p,
+            None => {
+                // nothing loaded yet: move towards the load
+                let n = inf_norm3(&grad).max(1e-300);
+                [
+                    -grad[0] / n * 1e-6,
+                    -grad[1] / n * 1e-6,
+                    -grad[2] / n * 1e-6,
+                ]
+            }
+        };
+        let slope: f64 = (0..3).map(|c| grad[c] * p[c]).sum();
+        let mut lambda = 1.0;
+        let mut moved = false;
+        for _ in 0..60 {
+            let ut = [
+                u[0] + lambda * p[0],
+                u[1] + lambda * p[1],
+                u[2] + lambda * p[2],
+            ];
+            let (pt, gt, ht, at) = eval(&ut);
+            if pt.is_finite() && pt <= phi + 1e-4 * lambda * slope.min(0.0) {
+                u = ut;
+                phi = pt;
+                grad = gt;
+                h = ht;
+                any = at;
+                moved = true;
+                break;
+            }
+            lambda *= 0.5;
+        }
+        if inf_norm3(&u) > limit {
+            return Err(QuasiStaticError::BeyondGeometry(format!(
+                "no equilibrium found before the ring displacement passed {:.1} µm",
+                limit * 1e6
+            )));
+        }
+        let step = lambda * inf_norm3(&p);
+        if !moved || step < 1e-14 {
+            break;
+        }
+    }
+    Ok((u, it))
+}
+
+fn check_input(case: &LoadCase) -> Result<(), QuasiStaticError> {
+    for (name, value) in [
+        ("speed", case.speed),
+        ("fa", case.fa),
+        ("fy", case.fy),
+        ("fz", case.fz),
+    ] {
+        if !value.is_finite() {
+            return Err(QuasiStaticError::NonFinite { name, value });
+        }
+    }
+    Ok(())
+}
+
+/// Solves the Jones–Harris quasi-static problem for a load case (see the module docs).
+pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticError> {
+    check_input(case)?;
+    let g = Geometry::new(b);
+    let omega = case.speed;
+    let f_ext = [case.fa, case.fy, case.fz];
+    let fr = case.fy.hypot(case.fz);
+    let deep_groove = b.alpha0 == 0.0;
+    if b.alpha0 > 0.0 && case.fa <= 0.0 && (fr > 0.0 || case.fa < 0.0) {
+        return Err(QuasiStaticError::BeyondGeometry(format!(
+            "an angular-contact bearing (α0 = {:.2}°) needs an axial load Fa > 0 to carry a \
+             load (Fa = {} N, Fr = {} N): its inner-ring balance Fa = Σ Q sin α would push the \
+             balls past the groove bottom onto the low shoulder",
+            b.alpha0.to_degrees(),
+            case.fa,
+            fr
+        )));
+    }
+    let active = [!(deep_groove && case.fa == 0.0), true, true];
+    let limit = 5.0 * MAX_DEFLECTION_OVER_D * b.d + (g.ri + g.ro);
+
+    // First guess: closed-form pure axial, plus a Stribeck radial deflection.
+    let mut u0 = [0.0; 3];
+    if case.fa > 0.0 {
+        u0[0] = pure_axial(b, case.fa)?.delta_axial;
+    }
+    if fr > 0.0 {
+        let qmax = 5.0 * fr / (b.z as f64 * b.alpha0.cos().max(0.1));
+        let d = (qmax / b.k_series()).powf(2.0 / 3.0) * 0.5;
+        u0[1] = case.fy / fr * d;
+        u0[2] = case.fz / fr * d;
+    }
+    let (mut u, it_convex) = convex_start(&g, f_ext, u0, active, limit)?;
+
+    // Full problem.
+    let z = b.z;
+    let mut xs: Vec<[f64; 2]> = (0..z).map(|j| zero_speed_x(&g, g.a(j, &u))).collect();
+    let mut re = eval_ring(&g, omega, &u, &xs)?;
+    let resid = |f: &[f64; 3]| -> [f64; 3] {
+        let mut r = [f[0] - f_ext[0], f[1] - f_ext[1], f[2] - f_ext[2]];
+        for c in 0..3 {
+            if !active[c] {
+                r[c] = 0.0;
+            }
+        }
+        r
+    };
+    let mut r = resid(&re.force);
+    let mut rn = inf_norm3(&r);
+    let mut last_step = f64::INFINITY;
+    let mut it = 0;
+    let mut converged = false;
+    while it < MAX_RING_ITER {
+        if rn <= TOL_FORCE && last_step <= TOL_DISPLACEMENT {
+            converged = true;
+            break;
+        }
+        it += 1;
+        xs = re.balls.iter().map(|e| e.eq.x).collect();
+        let any_loaded = re.balls.iter().any(|e| e.eq.q_inner > 0.0);
+        let p = if any_loaded {
+            let jac = fd_jacobian(&g, omega, &u, &xs, FD_JACOBIAN_STEP, active)?;
+            solve3(jac, [-r[0], -r[1], -r[2]], active)
+        } else {
+            None
+        };
+        let p = match p {
+            Some(p) => p,
+            None if rn > 0.0 => {
+                // no inner contact closed yet (e.g. centrifugal gap): move toward the load
+                let n = rn.max(1e-300);
+                [-r[0] / n * 1e-7, -r[1] / n * 1e-7, -r[2] / n * 1e-7]
+            }
+            None => break,
+        };
+        let mut lambda = 1.0;
+        let mut accepted = false;
+        for _ in 0..40 {
+            let ut = [
+                u[0] + lambda * p[0],
+                u[1] + lambda * p[1],
+                u[2] + lambda * p[2],
+            ];
+            let et = eval_ring(&g, omega, &ut, &xs)?;
+            let rt = resid(&et.force);
+            let rtn = inf_norm3(&rt);
+            if rtn < rn || (rtn <= TOL_FORCE && rn <= TOL_FORCE) {
+                u = ut;
+                re = et;
+                r = rt;
+                rn = rtn;
+                accepted = true;
+                break;
+            }
+            lambda *= 0.5;
+        }
+        last_step = lambda * inf_norm3(&p);
+        if !accepted {
+            if rn <= TOL_FORCE {
+                converged = true;
+            }
+            break;
+        }
+        if inf_norm3(&u) > limit {
+            return Err(QuasiStaticError::BeyondGeometry(format!(
+                "no equilibrium found before the ring displacement passed {:.1} µm",
+                limit * 1e6
+            )));
+        }
+    }
+    if !converged && rn <= TOL_FORCE && last_step <= TOL_DISPLACEMENT {
+        converged = true;
+    }
+    let loaded: Vec<&BallEquilibrium> = re
+        .balls
+        .iter()
+        .map(|e| &e.eq)
+        .filter(|e| is_loaded(e.q_inner))
+        .collect();
+    if loaded.is_empty() {
+        return Err(QuasiStaticError::NoBallLoaded(
+            if inf_norm3(&f_ext) == 0.0 {
+                "zero external load: the rings are free within the balls' play".into()
+            } else {
+                "no inner contact closes under this load".into()
+            },
+        ));
+    }
+    if !converged {
+        return Err(QuasiStaticError::NotConverged {
+            stage: "ring",
+            iterations: it + it_convex,
+            residual: rn,
+        });
+    }
+    check_limits(b, &re)?;
+
+    let n = loaded.len() as f64;
+    let cage_speed = loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n;
+    let spin_speed = loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n;
+    xs = re.balls.iter().map(|e| e.eq.x).collect();
+    let stiffness = fd_jacobian(&g, omega, &u, &xs, STIFFNESS_STEP, [true; 3])?;
+    Ok(QuasiStatic {
+        speed: omega,
+        delta_axial: u[0],
+        delta_y: u[1],
+        delta_z: u[2],
+        balls: re.balls.iter().map(|e| e.eq).collect(),
+        cage_speed,
+        spin_speed,
+        stiffness,
+        iterations: it + it_convex,
+        residual: rn,
+    })
+}
+
+fn check_limits(b: &Bearing, re: &RingEval) -> Result<(), QuasiStaticError> {
+    let dlim = MAX_DEFLECTION_OVER_D * b.d;
+    let alim = MAX_CONTACT_ANGLE_DEG.to_radians();
+    for (j, e) in re.balls.iter().map(|e| &e.eq).enumerate() {
+        let dmax = e.delta_inner.max(e.delta_outer);
+        if dmax > dlim {
+            return Err(QuasiStaticError::BeyondGeometry(format!(
+                "ball {j} has a contact deflection of {:.1} µm, above the limit {:.1} µm \
+                 ({}% of D)",
+                dmax * 1e6,
+                dlim * 1e6,
+                MAX_DEFLECTION_OVER_D * 100.0
+            )));
+        }
+        if is_loaded(e.q_inner) {
+            for (name, a) in [("inner", e.alpha_inner), ("outer", e.alpha_outer)] {
+                if a.abs() > alim {
+                    return Err(QuasiStaticError::BeyondGeometry(format!(
+                        "ball {j}: {name} contact angle {:.1}° beyond ±{MAX_CONTACT_ANGLE_DEG}°",
+                        a.to_degrees()
+                    )));
+                }
+                if b.alpha0 > 0.0 && a <= 0.0 {
+                    return Err(QuasiStaticError::BeyondGeometry(format!(
+                        "ball {j}: {name} contact angle {:.2}° crosses the groove bottom of an \
+                         angular-contact bearing (more axial load Fa is needed)",
+                        a.to_degrees()
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Central-difference Jacobian ∂F_ring/∂u (columns of inactive DOFs are zero).
+fn fd_jacobian(
+    g: &Geometry,
+    omega: f64,
+    u: &[f64; 3],
+    xs: &[[f64; 2]],
+    h: f64,
+    active: [bool; 3],
+) -> Result<[[f64; 3]; 3], QuasiStaticError> {
+    let mut jac = [[0.0; 3]; 3];
+    for c in 0..3 {
+        if !active[c] {
+            continue;
+        }
+        let mut up = *u;
+        let mut um = *u;
+        up[c] += h;
+        um[c] -= h;
+        let fp = eval_ring(g, omega, &up, xs)?.force;
+        let fm = eval_ring(g, omega, &um, xs)?.force;
+        for r in 0..3 {
+            jac[r][c] = (fp[r] - fm[r]) / (2.0 * h);
+        }
+    }
+    Ok(jac)
+}
