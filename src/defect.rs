@@ -28,7 +28,7 @@ use std::f64::consts::{PI, TAU};
 pub const TABLE_POINTS: usize = 2001;
 
 /// Width and depth above this are not a bearing spall (a sanity bound; the bearing-dependent
-/// bound `w_d < D` is checked by [`Defect::new`]) [m].
+/// bound `w_d < D` is checked by [`Defect::new`]) \[m\].
 pub const MAX_SIZE: f64 = 0.1;
 
 /// Grid points of the coarse scan for the floor minimum at set-up.
@@ -48,18 +48,18 @@ pub fn wrap(x: f64) -> f64 {
     y
 }
 
-/// A spall as a scene gives it: ring, width and depth [m], and centre angle θ_d0 [rad]
+/// A spall as a scene gives it: ring, width and depth \[m\], and centre angle θ_d0 \[rad\]
 /// (C1 convention; for the inner ring at shaft angle φ = 0).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DefectSpec {
     /// The defective ring.
     pub ring: Race,
-    /// Width w_d along the track [m].
+    /// Width w_d along the track \[m\].
     pub width: f64,
-    /// Depth h_d of the floor's deepest point [m].
+    /// Depth h_d of the floor's deepest point \[m\].
     pub depth: f64,
-    /// Angular position θ_d0 of the defect centre on the ring [rad] (default 0).
+    /// Angular position θ_d0 of the defect centre on the ring \[rad\] (default 0).
     #[serde(default)]
     pub theta0: f64,
 }
@@ -110,15 +110,15 @@ pub enum ContactKind {
 /// The state of one ball–spall contact at one ball position (all SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DefectContact {
-    /// Along-track position of the ball centre from the defect centre, + in +θ [m].
+    /// Along-track position of the ball centre from the defect centre, + in +θ \[m\].
     pub y_b: f64,
-    /// Drop g ≥ 0 of the ball centre toward the defective race [m].
+    /// Drop g ≥ 0 of the ball centre toward the defective race \[m\].
     pub g: f64,
-    /// dg/dy_b [-] (= −tan θ_dd: negative where the ball climbs out toward +θ).
+    /// dg/dy_b \[-\] (= −tan θ_dd: negative where the ball climbs out toward +θ).
     pub dg_dy: f64,
-    /// Tilt θ_dd of the contact normal, + when the contact point lies ahead of the ball [rad].
+    /// Tilt θ_dd of the contact normal, + when the contact point lies ahead of the ball \[rad\].
     pub theta_dd: f64,
-    /// Along-track position of the contact point from the defect centre [m].
+    /// Along-track position of the contact point from the defect centre \[m\].
     pub y_q: f64,
     /// Which feature carries the ball.
     pub kind: ContactKind,
@@ -148,15 +148,15 @@ impl DefectContact {
 /// One node of the precomputed drop table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DropNode {
-    /// Ball position y_b [m].
+    /// Ball position y_b \[m\].
     pub y_b: f64,
-    /// Drop g(y_b) [m] (exact minimum of the rolling-ball filter; point mode: d(y_b)).
+    /// Drop g(y_b) \[m\] (exact minimum of the rolling-ball filter; point mode: d(y_b)).
     pub g: f64,
-    /// Contact location y_q [m].
+    /// Contact location y_q \[m\].
     pub y_q: f64,
     /// Contact type.
     pub kind: ContactKind,
-    /// Profile depth at the contact, d(y_q) [m].
+    /// Profile depth at the contact, d(y_q) \[m\].
     d_q: f64,
     /// Unblended edge constant K′ of this contact [N/m^1.5].
     pub k: f64,
@@ -194,7 +194,7 @@ impl Defect {
     ///
     /// The bearing's `[defect]` section gives the mode (finite/point), the edge radius r_e and
     /// the blend length ℓ_b: `"b"` is the semi-minor axis of the defective race's contact
-    /// ellipse at `reference_load` [N] (which must then be > 0), a number is metres, 0 is the
+    /// ellipse at `reference_load` \[N\] (which must then be > 0), a number is metres, 0 is the
     /// paper's abrupt change. The edge Hertz constants use the bearing's Hertz method.
     ///
     /// Errors name the field: `defect.width` / `defect.depth` / `defect.theta0` (see
@@ -369,17 +369,17 @@ impl Defect {
         self.ring
     }
 
-    /// Width w_d [m].
+    /// Width w_d \[m\].
     pub fn width(&self) -> f64 {
         self.width
     }
 
-    /// Depth h_d [m].
+    /// Depth h_d \[m\].
     pub fn depth(&self) -> f64 {
         self.depth
     }
 
-    /// Centre angle θ_d0, wrapped to (−π, π] [rad].
+    /// Centre angle θ_d0, wrapped to (−π, π] \[rad\].
     pub fn theta0(&self) -> f64 {
         self.theta0
     }
@@ -389,33 +389,33 @@ impl Defect {
         self.mode
     }
 
-    /// Half-angle θ_e of the defect on the track (eq. 15) [rad].
+    /// Half-angle θ_e of the defect on the track (eq. 15) \[rad\].
     pub fn half_angle(&self) -> f64 {
         self.theta_e
     }
 
-    /// r_d1 = dm/(2 cos α0) ± D/2: track radius of curvature in the inclined profile plane [m].
+    /// r_d1 = dm/(2 cos α0) ± D/2: track radius of curvature in the inclined profile plane \[m\].
     pub fn r_d1(&self) -> f64 {
         self.r_d1
     }
 
-    /// r_d2 = dm/2 ± (D/2) cos α0: radius of the contact circle [m].
+    /// r_d2 = dm/2 ± (D/2) cos α0: radius of the contact circle \[m\].
     pub fn r_d2(&self) -> f64 {
         self.r_d2
     }
 
-    /// Geometric limit of the drop of a finite ball, R − √(R² − w_d²/4) [m] (depth-independent).
+    /// Geometric limit of the drop of a finite ball, R − √(R² − w_d²/4) \[m\] (depth-independent).
     pub fn g_max(&self) -> f64 {
         self.g_max
     }
 
-    /// Largest drop this defect produces in its mode [m]: min(g_max, floor) for the finite ball,
+    /// Largest drop this defect produces in its mode \[m\]: min(g_max, floor) for the finite ball,
     /// h_d in point mode.
     pub fn max_drop(&self) -> f64 {
         self.max_drop
     }
 
-    /// Edge radius r_e [m].
+    /// Edge radius r_e \[m\].
     pub fn edge_radius(&self) -> f64 {
         self.edge_radius
     }
@@ -431,7 +431,7 @@ impl Defect {
         self.corner.stiffness
     }
 
-    /// Blend length ℓ_b [m] (0: abrupt change).
+    /// Blend length ℓ_b \[m\] (0: abrupt change).
     pub fn blend_length(&self) -> f64 {
         self.blend_length
     }
@@ -457,7 +457,7 @@ impl Defect {
         }
     }
 
-    /// Radius of curvature of the floor parabola at y, `|r_d| = (1 + d′²)^(3/2)/|d″|` [m]
+    /// Radius of curvature of the floor parabola at y, `|r_d| = (1 + d′²)^(3/2)/|d″|` \[m\]
     /// (used convex in point mode, concave for floor contacts; 2.83 mm at the edge of a
     /// 2.0 × 0.5 mm spall).
     pub fn profile_radius(&self, y: f64) -> f64 {
@@ -468,7 +468,7 @@ impl Defect {
 
     /// Ball-to-defect angle (eq. 14, C10) from the ball azimuth θ_br in the ring frame and the
     /// shaft angle φ: `wrap(θ_br − θ_d0 − φ)` for an inner-ring defect (it spins with the
-    /// shaft), `wrap(θ_br − θ_d0)` for an outer-ring defect (φ ignored) [rad].
+    /// shaft), `wrap(θ_br − θ_d0)` for an outer-ring defect (φ ignored) \[rad\].
     #[inline]
     pub fn theta_bd(&self, theta_br: f64, phi: f64) -> f64 {
         match self.ring {
@@ -477,19 +477,19 @@ impl Defect {
         }
     }
 
-    /// Along-track coordinate of the ball, `y_b = r_d1 sin(θ_bd r_d2/r_d1)` [m] (spec §4.3).
+    /// Along-track coordinate of the ball, `y_b = r_d1 sin(θ_bd r_d2/r_d1)` \[m\] (spec §4.3).
     #[inline]
     pub fn along_track(&self, theta_bd: f64) -> f64 {
         self.r_d1 * (theta_bd * self.r_d2 / self.r_d1).sin()
     }
 
-    /// Along-track speed ẏ_b = r_d2 cos(θ_bd r_d2/r_d1) θ̇_bd [m/s].
+    /// Along-track speed ẏ_b = r_d2 cos(θ_bd r_d2/r_d1) θ̇_bd \[m/s\].
     #[inline]
     pub fn along_track_rate(&self, theta_bd: f64, theta_bd_dot: f64) -> f64 {
         self.r_d2 * (theta_bd * self.r_d2 / self.r_d1).cos() * theta_bd_dot
     }
 
-    /// Signed distance to the zone boundary in angle, θ_e − |θ_bd| [rad]: positive inside the
+    /// Signed distance to the zone boundary in angle, θ_e − |θ_bd| \[rad\]: positive inside the
     /// defect zone. Its root is the edge-crossing event (spec §9.2).
     #[inline]
     pub fn zone_margin(&self, theta_bd: f64) -> f64 {
@@ -508,7 +508,7 @@ impl Defect {
         self.contact_at(self.along_track(theta_bd))
     }
 
-    /// The ball–spall contact at along-track ball position `y_b` [m], or `None` for
+    /// The ball–spall contact at along-track ball position `y_b` \[m\], or `None` for
     /// |y_b| ≥ w_d/2 (or NaN).
     ///
     /// Finite mode: the contact candidates stored at the two table nodes around y_b (a corner,

@@ -25,7 +25,7 @@ const SERIES_LIMIT: f64 = 1e-3;
 
 /// The traction curve κ(u) of one lubricated contact, precomputed from a `[traction]` section.
 ///
-/// The same curve is used at both races (C8). All methods take the slip *speed* u ≥ 0 [m/s];
+/// The same curve is used at both races (C8). All methods take the slip *speed* u ≥ 0 \[m/s\];
 /// a negative argument is treated as |u|.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TractionCurve {
@@ -33,9 +33,9 @@ pub struct TractionCurve {
     pub law: TractionLaw,
     /// ADORE coefficient A = κ0 − κ∞ (zero for the piecewise law, which does not use it).
     pub a: f64,
-    /// ADORE coefficient B [s/m] (zero for the piecewise law).
+    /// ADORE coefficient B \[s/m\] (zero for the piecewise law).
     pub b: f64,
-    /// ADORE coefficient C [s/m] (zero for the piecewise law).
+    /// ADORE coefficient C \[s/m\] (zero for the piecewise law).
     pub c: f64,
     /// ADORE coefficient D = κ∞ (zero for the piecewise law).
     pub d: f64,
@@ -43,11 +43,11 @@ pub struct TractionCurve {
     pub kappa_0: f64,
     /// κm: maximum traction.
     pub kappa_max: f64,
-    /// u_m: slip speed of the maximum [m/s].
+    /// u_m: slip speed of the maximum \[m/s\].
     pub u_max: f64,
     /// κ∞: traction at large slip.
     pub kappa_inf: f64,
-    /// Regularisation speed for a non-zero κ0 in [`TractionCurve::kappa_over_u`] [m/s]
+    /// Regularisation speed for a non-zero κ0 in [`TractionCurve::kappa_over_u`] \[m/s\]
     /// (0.01·u_m; unused when κ0 = 0).
     pub u_reg: f64,
 }
@@ -126,7 +126,7 @@ impl TractionCurve {
         (self.a, self.b, self.c, self.d)
     }
 
-    /// Traction coefficient κ(u) at slip speed `u` [m/s] (exact law, κ(0) = κ0 for ADORE).
+    /// Traction coefficient κ(u) at slip speed `u` \[m/s\] (exact law, κ(0) = κ0 for ADORE).
     #[inline]
     pub fn kappa(&self, u: f64) -> f64 {
         let u = u.abs();
@@ -136,7 +136,7 @@ impl TractionCurve {
         }
     }
 
-    /// κ(u)/u [s/m], finite and smooth down to u = 0, where it equals dκ/du(0) = B − C·A.
+    /// κ(u)/u \[s/m\], finite and smooth down to u = 0, where it equals dκ/du(0) = B − C·A.
     ///
     /// This is what the strip method needs: the traction force is `−Q (κ/u) u⃗`, with no
     /// division by |u⃗|. For the ADORE law it is evaluated as
@@ -169,7 +169,7 @@ impl TractionCurve {
         }
     }
 
-    /// Initial slope dκ/du at u = 0⁺ [s/m]: B − C·A (ADORE; 0.486 s/m by default) or κm/u_m
+    /// Initial slope dκ/du at u = 0⁺ \[s/m\]: B − C·A (ADORE; 0.486 s/m by default) or κm/u_m
     /// (piecewise). It sets the slip relaxation rate (spec §9.1).
     pub fn dkappa_du0(&self) -> f64 {
         match self.law {
@@ -178,8 +178,8 @@ impl TractionCurve {
         }
     }
 
-    /// Traction force components on the body whose slip is `(u1, u2)` [m/s] under normal load
-    /// `q` [N]: `−q κ(|u|) u/|u|` (spec §3.4), i.e. opposite to the slip. Zero slip gives zero
+    /// Traction force components on the body whose slip is `(u1, u2)` \[m/s\] under normal load
+    /// `q` \[N\]: `−q κ(|u|) u/|u|` (spec §3.4), i.e. opposite to the slip. Zero slip gives zero
     /// force (no division by zero).
     #[inline]
     pub fn force(&self, u1: f64, u2: f64, q: f64) -> (f64, f64) {
