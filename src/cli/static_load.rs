@@ -1,8 +1,170 @@
-//! (in progress)
+//! `raceway static`: quasi-static (L1) load distribution, ring displacements, stiffness and
+//! outer-race-control frequencies.
 
+use raceway::config::DEFAULT_PRESET;
+use raceway::geometry::Bearing;
+use raceway::quasi_static::{is_loaded, solve, LoadCase};
+use serde_json::json;
+use std::f64::consts::TAU;
+
+/// Arguments of `raceway static`.
 #[derive(clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Bearing: a preset (niu2014-table1, cwru-6205-de, cwru-6203-fe, ims-za2115) or a TOML file
+    #[arg(long, default_value = DEFAULT_PRESET)]
+    pub bearing: String,
+    /// Axial load on the inner ring along +x [N]
+    #[arg(long, allow_negative_numbers = true)]
+    pub fa: f64,
+    /// Radial load on the inner ring along −z [N]
+    #[arg(long, allow_negative_numbers = true)]
+    pub fr: f64,
+    /// Shaft speed [rpm] (centrifugal and gyroscopic effects; 0 = static)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub speed_rpm: f64,
+    /// Print JSON (SI units: m, N, rad, rad/s, N/m; frequencies in Hz) instead of tables
+    #[arg(long)]
+    pub json: bool,
+}
 
-pub fn run(_args: Args) -> Result<(), String> {
-    Err("not implemented yet".into())
+/// Runs the subcommand.
+pub fn run(args: Args) -> Result<(), String> {
+    for (name, v) in [
+        ("--fa", args.fa),
+        ("--fr", args.fr),
+        ("--speed-rpm", args.speed_rpm),
+    ] {
+        if !v.is_finite() {
+            return Err(format!("{name} {v}: not a finite number"));
+        }
+    }
+    let b = Bearing::load(&args.bearing).map_err(|e| e.to_string())?;
+    let case = LoadCase::from_fa_fr_rpm(args.fa, args.fr, args.speed_rpm);
+    let q = solve(&b, &case).map_err(|e| e.to_string())?;
+    let freq = q.frequencies(&b);
+    let name = if b.file.name.is_empty() {
+        args.bearing.clone()
+    } else {
+        b.file.name.clone()
+    };
+
+    if args.json {
+        let balls: Vec<_> = q
+            .balls
+            .iter()
+            .map(|e| {
+                json!({
+                    "theta": e.theta,
+                    "q_inner": e.q_inner,
+                    "q_outer": e.q_outer,
+                    "alpha_inner": e.alpha_inner,
+                    "alpha_outer": e.alpha_outer,
+                    "delta_inner": e.delta_inner,
+                    "delta_outer": e.delta_outer,
+                    "cage_speed": e.cage_speed,
+                    "spin_speed": e.spin_speed,
+                    "beta": e.beta,
+                    "x": e.x,
+                    "centrifugal": e.centrifugal,
+                    "gyro_force": e.gyro_force,
+                })
+            })
+            .collect();
+        let out = json!({
+            "bearing": name,
+            "speed_rpm": args.speed_rpm,
+            "fa": args.fa,
+            "fr": args.fr,
+            "delta_axial": q.delta_axial,
+            "delta_radial": q.delta_radial(),
+            "delta_y": q.delta_y,
+            "delta_z": q.delta_z,
+            "stiffness": q.stiffness,
+            "cage_speed": q.cage_speed,
+            "spin_speed": q.spin_speed,
+            "frequencies": freq,
+            "iterations": q.iterations,
+            "residual": q.residual,
+            "balls": balls,
+        });
+        let text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+        println!("{text}");
+        return Ok(());
+    }
+
+    println!(
+        "Bearing {name}: z = {}, α0 = {:.2}°; Fa = {} N (+x), Fr = {} N (−z), shaft {} rpm",
+        b.z,
+        b.alpha0.to_degrees(),
+        args.fa,
+        args.fr,
+        args.speed_rpm
+    );
+    println!(
+        "Solved in {} Newton iterations, force residual {:.1e} N",
+        q.iterations, q.residual
+    );
+    println!();
+    println!("Inner-ring displacement relative to the outer ring:");
+    println!(
+        "  δa = {:9.4} µm   δr = {:9.4} µm   (δy = {:.4} µm, δz = {:.4} µm)",
+        um(q.delta_axial),
+        um(q.delta_radial()),
+        um(q.delta_y),
+        um(q.delta_z)
+    );
+    println!();
+    println!("Balls (θ from +z toward −y; load zone of Fr at θ = 180°):");
+    println!(
+        "  {:>3} {:>7} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "j", "θ [°]", "Q_i [N]", "Q_o [N]", "α_i [°]", "α_o [°]", "F_c [N]", "F_g [N]", "FTF [Hz]"
+    );
+    for (j, e) in q.balls.iter().enumerate() {
+        println!(
+            "  {:>3} {:>7.2} {:>9.2} {:>9.2} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}{}",
+            j,
+            e.theta.to_degrees(),
+            e.q_inner,
+            e.q_outer,
+            e.alpha_inner.to_degrees(),
+            e.alpha_outer.to_degrees(),
+            e.centrifugal,
+            e.gyro_force,
+            e.cage_speed / TAU,
+            if is_loaded(e.q_inner) {
+                ""
+            } else {
+                "  (unloaded)"
+            }
+        );
+    }
+    println!();
+    println!("Stiffness ∂F/∂δ [N/m] (rows F_x, F_y, F_z; columns δx, δy, δz):");
+    for row in &q.stiffness {
+        println!("  {:>12.4e} {:>12.4e} {:>12.4e}", row[0], row[1], row[2]);
+    }
+    println!();
+    if args.speed_rpm == 0.0 {
+        println!("Shaft at rest: no cage speed.");
+    } else {
+        println!(
+            "Outer-race control, mean over loaded balls: cage {:.3} rad/s, spin {:.1} rad/s",
+            q.cage_speed, q.spin_speed
+        );
+        println!(
+            "  FTF {:.3} Hz   BPFO {:.2} Hz   BPFI {:.2} Hz   BSF {:.2} Hz   2BSF {:.2} Hz",
+            freq.ftf, freq.bpfo, freq.bpfi, freq.bsf, freq.two_bsf
+        );
+    }
+    Ok(())
+}
+
+/// Metres to micrometres, with values below the printed precision shown as 0 (not −0).
+fn um(x: f64) -> f64 {
+    let v = x * 1e6;
+    if v.abs() < 5e-5 {
+        0.0
+    } else {
+        v
+    }
 }
