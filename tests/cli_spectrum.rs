@@ -135,15 +135,15 @@ fn envelope_with_sidecar_metadata_finds_fault_and_shaft_sidebands() {
     assert_eq!(sb.len(), 4);
     for s in sb {
         let order = s["order"].as_i64().unwrap();
-        let a = num(&s["amplitude"]);
         if order.abs() == 1 {
-            assert!(rel(a, 0.075) < 0.03, "{s}");
+            assert!(rel(num(&s["amplitude"]), 0.075) < 0.03, "{s}");
             assert!(
                 (num(&s["found_hz"]) - num(&s["expected_hz"])).abs() < 0.2,
                 "{s}"
             );
         } else {
-            assert!(a < 0.005, "{s}");
+            // No line at ±2 shaft rates: no local maximum there (null) or only leakage.
+            assert!(s["amplitude"].as_f64().is_none_or(|a| a < 0.005), "{s}");
         }
     }
     // The shaft line itself is the second largest.

@@ -306,6 +306,24 @@ fn am_sidebands_at_plus_minus_shaft_rate() {
 }
 
 #[test]
+fn search_next_to_a_strong_line_ignores_its_flank() {
+    // 5 Hz bins; a strong tone at 1001 Hz. Searching 1008 ± 3 Hz covers only its falling flank.
+    let (fs, n) = (5_000.0, 1_000);
+    let strong = sines(fs, n, 0.0, &[(1.0, 1001.0, 0.0)]);
+    let s = amplitude_spectrum(&strong, fs, Window::Hann).unwrap();
+    assert!(peak_near(&s, 1008.0, 3.0).is_none());
+    assert!(dominant_peak(&s, 1004.0, 1012.0).is_none());
+    // A weak line that is really there is found.
+    let both = sines(fs, n, 0.0, &[(1.0, 1001.0, 0.0), (0.05, 1030.0, 0.0)]);
+    let s = amplitude_spectrum(&both, fs, Window::Hann).unwrap();
+    let p = peak_near(&s, 1030.0, 3.0).unwrap();
+    assert!(
+        (p.freq - 1030.0).abs() < 0.5 && rel(p.amplitude, 0.05) < 0.05,
+        "{p:?}"
+    );
+}
+
+#[test]
 fn bandpass_keeps_only_the_band() {
     let (fs, n) = (10_000.0, 10_000);
     let x = sines(fs, n, 1.0, &[(1.0, 200.0, 0.0), (1.0, 2000.0, 0.5)]);

@@ -419,7 +419,7 @@ fn print_text(r: &Report, kind: SpectrumKind) {
         r.file, r.signal, r.window
     );
     println!(
-        "  fs {} Hz, {} samples from t = {} s ({:.4} s), resolution {:.4} Hz, up to {} Hz",
+        "  fs {} Hz, {} samples from t = {} s ({:.4} s), resolution {:.4} Hz, up to {:.1} Hz",
         r.fs_hz, r.n_samples, r.t0_s, r.duration_s, r.resolution_hz, r.fmax_hz
     );
     let units = match kind {

@@ -8,7 +8,7 @@
 //!   ([`amplitude_spectrum`]): a sinusoid of amplitude `A` gives a peak of height `A`;
 //! - [`welch`]: Welch's averaged periodogram ([`welch_psd`]), a one-sided power spectral
 //!   density in units²/Hz whose integral is the signal variance (Parseval);
-//! - [`envelope`]: FFT band-pass, analytic signal by the FFT Hilbert transform, envelope and
+//! - [`mod@envelope`]: FFT band-pass, analytic signal by the FFT Hilbert transform, envelope and
 //!   envelope spectrum ([`envelope_spectrum`]);
 //! - [`peaks`]: peak picking with sub-bin refinement matched to the window shape, harmonics,
 //!   sidebands and a prominence test (peak over local median);

@@ -164,16 +164,27 @@ pub fn refine(s: &Spectrum, bin: usize) -> Option<Peak> {
     })
 }
 
-/// Index of the largest bin among `k_lo..=k_hi` (clamped to the spectrum, DC excluded).
+/// True if bin `k` is not smaller than its neighbours (a peak, not the shoulder of one).
+fn is_local_max(s: &Spectrum, k: usize) -> bool {
+    let v = s.value[k];
+    (k == 0 || s.value[k - 1] <= v) && (k + 1 >= s.len() || s.value[k + 1] <= v)
+}
+
+/// Index of the largest local maximum among bins `k_lo..=k_hi` (clamped to the spectrum, DC
+/// excluded). Bins on the flank of a larger peak outside the range are not local maxima, so a
+/// search next to a strong line does not return that line's shoulder.
 fn argmax(s: &Spectrum, k_lo: usize, k_hi: usize) -> Option<usize> {
     let k_lo = k_lo.max(1);
     let k_hi = k_hi.min(s.len().checked_sub(1)?);
-    (k_lo..=k_hi).max_by(|a, b| s.value[*a].total_cmp(&s.value[*b]))
+    (k_lo..=k_hi)
+        .filter(|&k| is_local_max(s, k))
+        .max_by(|a, b| s.value[*a].total_cmp(&s.value[*b]))
 }
 
-/// The largest peak within `f_expected ± tol_hz` (the window is widened to at least ±1 bin),
-/// refined. DC is never returned. None if the window lies outside the spectrum or the inputs
-/// are not finite and positive.
+/// The largest peak (local maximum) within `f_expected ± tol_hz` (the window is widened to at
+/// least ±1 bin), refined. DC is never returned. None if the window holds no local maximum
+/// (e.g. only the flank of a stronger line next to it), lies outside the spectrum, or the
+/// inputs are not finite and positive.
 pub fn peak_near(s: &Spectrum, f_expected: f64, tol_hz: f64) -> Option<Peak> {
     if s.is_empty() || !(f_expected.is_finite() && f_expected > 0.0 && tol_hz.is_finite()) {
         return None;
@@ -190,8 +201,8 @@ pub fn peak_near(s: &Spectrum, f_expected: f64, tol_hz: f64) -> Option<Peak> {
     refine(s, argmax(s, k_lo, k_hi)?)
 }
 
-/// The largest peak with `lo ≤ f ≤ hi` Hz, DC excluded, refined. None if no bin lies in the
-/// band.
+/// The largest peak (local maximum) with `lo ≤ f ≤ hi` Hz, DC excluded, refined. None if the
+/// band holds no local maximum.
 pub fn dominant_peak(s: &Spectrum, lo: f64, hi: f64) -> Option<Peak> {
     if s.is_empty() || lo.is_nan() || hi.is_nan() || hi < lo {
         return None;
