@@ -4,10 +4,15 @@
 //! changed strictly (or that reached exactly 0 from a non-zero value) has an event in the step; its
 //! root is bracketed on the dense output with the Illinois variant of regula falsi (with bisection
 //! safeguard) to within [`crate::solver::Options::event_tol`], the mode staying frozen. The
-//! integrator lands on the bracket end where the sign has already changed, calls
+//! integrator takes the bracket end where the sign has already changed as the event time,
+//! re-integrates from the step start to exactly that time with the method itself (so the event
+//! state has the method's accuracy, not the interpolant's), calls
 //! [`EventSystem::handle_event`] for every function that changed sign by then (index order),
 //! and restarts there. Functions that just fired count as 0 at the restart, so a state that sits
-//! on the far side by round-off (a bouncing ball's height) does not fire again.
+//! on the far side by round-off (a bouncing ball's height) does not fire again; a function that
+//! is exactly 0 at a step start takes its reference sign from a probe just inside the step
+//! (`t_old + max(1e-3 h, 100 event_tol)`), so leaving zero is not an event but coming back is.
+//! Like every sign-change detector, two roots of one function inside one step are not seen.
 
 use super::dense::{DenseOutput, StepView};
 use super::error::SolverError;
@@ -52,8 +57,8 @@ pub(super) fn locate<S: EventSystem + ?Sized>(
         if it % 3 == 2 {
             width = b - a;
         }
-        // Keep the probe strictly inside, away from the ends by a fraction of the tolerance.
-        let guard = 0.25 * tol_here;
+        // Keep the probe strictly inside the bracket, a few ulps away from its ends.
+        let guard = 4.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
         m = m.clamp(a + guard.min(0.5 * (b - a)), b - guard.min(0.5 * (b - a)));
         dense.eval(m, y);
         sys.events(m, y, g);
@@ -86,7 +91,11 @@ impl Integrator {
             self.g_old = vec![0.0; m];
             self.g_new = vec![0.0; m];
             self.g_tmp = vec![0.0; m];
+            self.g_ref = vec![0.0; m];
             self.fired = vec![false; m];
+        }
+        if self.event_mask.capacity() < m {
+            self.event_mask.reserve(m - self.event_mask.len());
         }
     }
 
@@ -103,7 +112,6 @@ impl Integrator {
         self.check_target(sys.dim(), t_end)?;
         let m = sys.n_events();
         self.prepare_events(m);
-        let n = self.n;
         sys.events(self.t, &self.y, &mut self.g_old);
         if self.event_mask.len() == m {
             for (g, &fired) in self.g_old.iter_mut().zip(&self.event_mask) {
@@ -116,17 +124,32 @@ impl Integrator {
         while self.t < t_end {
             let t_old = self.step(sys, t_end, true, &mut attempts)?;
             sys.events(self.t, &self.y, &mut self.g_new);
+            // Functions sitting exactly at 0 at the step start (just fired) take their reference
+            // sign from a probe just inside the step.
+            let h = self.t - t_old;
+            let t_probe = t_old + (1e-3 * h).max(100.0 * self.opts.event_tol).min(0.5 * h);
+            self.g_ref.copy_from_slice(&self.g_old);
+            if self.g_old.contains(&0.0) {
+                self.dense.eval(t_probe, &mut self.ytmp);
+                sys.events(t_probe, &self.ytmp, &mut self.g_tmp);
+                for i in 0..m {
+                    if self.g_old[i] == 0.0 {
+                        self.g_ref[i] = self.g_tmp[i];
+                    }
+                }
+            }
             // Earliest root among the functions that changed sign.
             let mut t_ev = f64::INFINITY;
             let mut first = usize::MAX;
             for i in 0..m {
-                if crosses(self.g_old[i], self.g_new[i]) {
+                let a = if self.g_old[i] == 0.0 { t_probe } else { t_old };
+                if crosses(self.g_ref[i], self.g_new[i]) {
                     let r = locate(
                         sys,
                         &self.dense,
                         i,
-                        t_old,
-                        self.g_old[i],
+                        a,
+                        self.g_ref[i],
                         self.t,
                         self.g_new[i],
                         self.opts.event_tol,
@@ -151,16 +174,24 @@ impl Integrator {
                 std::mem::swap(&mut self.g_old, &mut self.g_new);
                 continue;
             }
-            // Land on the event: state from the dense output (exact end state if at the end).
+            // Land on the event: re-integrate from the step start to the event time with the
+            // method itself (error-controlled, mode still frozen), so the state handed to
+            // handle_event has the method's accuracy rather than the interpolant's.
             if t_ev < self.t {
-                self.dense.eval(t_ev, &mut self.ytmp);
-                self.y[..n].copy_from_slice(&self.ytmp[..n]);
-                self.t = t_ev;
+                std::mem::swap(&mut self.y, &mut self.y_new);
+                self.t = t_old;
                 self.fsal_valid = false;
+                let h_keep = self.h_next;
+                while self.t < t_ev {
+                    self.step(sys, t_ev, false, &mut attempts)?;
+                }
+                self.h_next = h_keep;
             }
             sys.events(self.t, &self.y, &mut self.g_tmp);
             for i in 0..m {
-                self.fired[i] = i == first || crosses(self.g_old[i], self.g_tmp[i]);
+                let started_here = self.g_old[i] != 0.0 || t_ev >= t_probe;
+                self.fired[i] =
+                    i == first || (started_here && crosses(self.g_ref[i], self.g_tmp[i]));
             }
             if let Some(obs) = observer.as_mut() {
                 obs(&StepView {

@@ -46,6 +46,7 @@ pub struct Integrator {
     pub(super) g_old: Vec<f64>,
     pub(super) g_new: Vec<f64>,
     pub(super) g_tmp: Vec<f64>,
+    pub(super) g_ref: Vec<f64>,
     pub(super) event_mask: Vec<bool>,
     pub(super) fired: Vec<bool>,
 }
@@ -129,6 +130,7 @@ impl Integrator {
             g_old: Vec::new(),
             g_new: Vec::new(),
             g_tmp: Vec::new(),
+            g_ref: Vec::new(),
             event_mask: Vec::new(),
             fired: Vec::new(),
             opts: options,
@@ -268,7 +270,11 @@ impl Integrator {
                 self.n
             )));
         }
-        if !s.t.is_finite() || first_non_finite(&s.y).is_some() || !(s.h_next >= 0.0) {
+        if !s.t.is_finite()
+            || first_non_finite(&s.y).is_some()
+            || s.h_next.is_nan()
+            || s.h_next < 0.0
+        {
             return Err(SolverError::StateMismatch("snapshot is not finite".into()));
         }
         self.t = s.t;
@@ -439,7 +445,7 @@ impl Integrator {
     ) -> Result<f64, SolverError> {
         self.ensure_fsal(sys)?;
         let fixed = self.opts.fixed_step;
-        if fixed.is_none() && !(self.h_next > 0.0) {
+        if fixed.is_none() && (self.h_next.is_nan() || self.h_next <= 0.0) {
             self.h_next = self.initial_h(sys, t_end);
         }
         loop {
@@ -476,7 +482,7 @@ impl Integrator {
                 } else {
                     self.error(h)
                 };
-                if !(err <= 1.0) {
+                if err.is_nan() || err > 1.0 {
                     self.stats.rejected += 1;
                     let h_new = self.ctrl.reject(self.tab, &self.opts, h, err);
                     if h_new < self.h_floor() {

@@ -4,6 +4,8 @@
 //! Slots: 0..=11 the twelve main stages (Hairer's k1..k12), 12 = `f(t+h, y1)`, 13..=15 the extra
 //! dense-output stages (Hairer's stages 14, 15, 16).
 
+#![allow(clippy::excessive_precision, clippy::unreadable_literal)]
+
 use crate::solver::tableau::Tableau;
 
 const C2: f64 = 0.526001519587677318785587544488e-01;

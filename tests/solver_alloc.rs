@@ -1,0 +1,88 @@
+//! The stepping loop does not allocate: a counting global allocator watches `advance` and
+//! `advance_with_events` after the first call (which may size the event buffers).
+
+use raceway::solver::*;
+use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+struct Counting;
+static COUNT: AtomicUsize = AtomicUsize::new(0);
+static ON: AtomicBool = AtomicBool::new(false);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        if ON.load(Ordering::SeqCst) {
+            COUNT.fetch_add(1, Ordering::SeqCst);
+        }
+        unsafe { SysAlloc.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { SysAlloc.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        if ON.load(Ordering::SeqCst) {
+            COUNT.fetch_add(1, Ordering::SeqCst);
+        }
+        unsafe { SysAlloc.realloc(p, l, n) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+struct Ball;
+impl System for Ball {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], d: &mut [f64]) {
+        d[0] = y[1];
+        d[1] = -9.81 - 0.1 * y[1];
+    }
+}
+impl EventSystem for Ball {
+    fn n_events(&self) -> usize {
+        1
+    }
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        g[0] = y[0];
+    }
+    fn handle_event(&mut self, _i: usize, _t: f64, y: &mut [f64]) -> EventAction {
+        y[1] = -0.9 * y[1];
+        EventAction::Continue
+    }
+}
+
+#[test]
+fn stepping_does_not_allocate() {
+    for m in Method::ALL {
+        let o = if m == Method::Rk4 {
+            Options::fixed(m, 1e-3)
+        } else {
+            Options::new(m, 1e-8, vec![1e-8])
+        };
+        let mut it = Integrator::new(o, 0.0, &[1.0, 0.0]).unwrap();
+        let mut sum = 0.0;
+        let mut buf = [0.0; 2];
+        let mut obs = |v: &StepView| {
+            v.interpolate(0.5 * (v.t_start() + v.t_end()), &mut buf);
+            sum += buf[0];
+        };
+        it.advance_with_events(&mut Ball, 0.1, Some(&mut obs))
+            .unwrap();
+        ON.store(true, Ordering::SeqCst);
+        it.advance_with_events(&mut Ball, 5.0, Some(&mut obs))
+            .unwrap();
+        it.advance(&mut Ball, 6.0, None).unwrap();
+        it.advance(&mut Ball, 7.0, Some(&mut obs)).unwrap();
+        ON.store(false, Ordering::SeqCst);
+        let n = COUNT.swap(0, Ordering::SeqCst);
+        assert!(
+            it.stats().events > 2,
+            "{m}: {:?} y={:?}",
+            it.stats(),
+            it.y()
+        );
+        assert_eq!(n, 0, "{m}: {n} allocations while stepping");
+    }
+}
