@@ -131,6 +131,11 @@ fn envelope_with_sidecar_metadata_finds_fault_and_shaft_sidebands() {
     let e = &expected[1];
     assert!(num(&e["rel_error"]).abs() < 0.003, "{e}");
     assert!(rel(num(&e["amplitude"]), 0.5) < 0.02, "{e}");
+    // Harmonic 1 is the fundamental itself; 2·1329 Hz has no line (null or leakage only).
+    assert_eq!(e["harmonics"][0]["found_hz"], e["found_hz"]);
+    assert!(e["harmonics"][1]["amplitude"]
+        .as_f64()
+        .is_none_or(|a| a < 0.005));
     let sb = e["sidebands"].as_array().unwrap();
     assert_eq!(sb.len(), 4);
     for s in sb {

@@ -34,7 +34,8 @@ JSON output (--json), stable keys; a value that does not exist is null:
   expected[]              {name, expected_hz, found_hz, value, amplitude, prominence,
                            significant, rel_error, sidebands[], harmonics[]}
     sidebands[]           {order (-2,-1,1,2), expected_hz, found_hz, amplitude, prominence}
-    harmonics[]           {order (1..N), expected_hz, found_hz, amplitude, prominence}
+    harmonics[]           {order (1..N), expected_hz, found_hz, amplitude, prominence};
+                          expected_hz = order * found_hz of the fundamental if found
 freq/found_hz are refined to sub-bin precision; amplitude is the amplitude of the sinusoid \
 that gives the peak (scalloping loss undone); value is the refined peak height in value_kind \
 units; prominence is the peak over the local median as an amplitude ratio (>= 3, about 10 dB, \
@@ -327,12 +328,24 @@ pub fn run(args: Args) -> Result<(), String> {
                     .collect(),
                 _ => Vec::new(),
             };
+            // Harmonics of a found line are searched at multiples of its refined frequency,
+            // which is accurate to a fraction of a bin (< 0.1 bin, so < 0.1·k bins at order
+            // k): ±(2 + 0.1·k) bins keep other lines out of the window. Without a fundamental
+            // the full tolerance per order applies.
             let base = peak.as_ref().map_or(*f, |p| p.freq);
-            let harm = harmonics(&spec, base, args.harmonics, tol * f)
-                .iter()
-                .enumerate()
-                .map(|(i, p)| LineOut::new(i as i32 + 1, (i + 1) as f64 * base, p.as_ref()))
-                .collect();
+            let harm = match peak.as_ref() {
+                Some(p) => (1..=args.harmonics)
+                    .map(|k| {
+                        let tol_k = (2.0 + 0.1 * k as f64) * spec.resolution();
+                        peak_near(&spec, k as f64 * p.freq, tol_k)
+                    })
+                    .collect(),
+                None => harmonics(&spec, base, args.harmonics, tol * f),
+            }
+            .iter()
+            .enumerate()
+            .map(|(i, p)| LineOut::new(i as i32 + 1, (i + 1) as f64 * base, p.as_ref()))
+            .collect();
             ExpectedOut {
                 name: name.clone(),
                 expected_hz: *f,
