@@ -777,13 +777,14 @@ fn per_component_atol_is_honoured() {
 
 // ---------------------------------------------------------------- dense output
 
-/// Dense output of each method against the closed form between the steps.
+/// Dense output of each method against the closed form between the steps (rtol 1e-11).
+/// Measured worst errors: DOP853 5.8e-10, DOPRI5 6.1e-10, RKF45 (cubic Hermite) 9.0e-9.
 #[test]
 fn dense_output_accuracy() {
     for (m, tol) in [
-        (Method::Dop853, 1e-9),
-        (Method::Dopri5, 1e-7),
-        (Method::Rkf45, 1e-6),
+        (Method::Dop853, 5e-9),
+        (Method::Dopri5, 5e-9),
+        (Method::Rkf45, 1e-7),
     ] {
         let mut it = Integrator::new(
             Options::new(m, 1e-11, vec![1e-11]),
