@@ -1,5 +1,461 @@
-//! Packs the raceway cdylib into `target/fmu/BallBearing.fmu` (filled in by the FMU issue).
+//! Packs the raceway cdylib into `target/fmu/BallBearing.fmu`.
+//!
+//! ```text
+//! cargo run --release -p fmu-build -- [--bearing <preset|file.toml>] [--out target/fmu/BallBearing.fmu]
+//! cargo run -p fmu-build -- --write-model-description     # refresh modelDescription/modelDescription.xml
+//! ```
+//!
+//! Steps: build the release cdylib (`cargo build --release --lib -p raceway`, honouring
+//! `CARGO_TARGET_DIR`), generate modelDescription.xml and documentation/index.html from the
+//! variable table for the chosen bearing, run the cross-check reference (inputs, outputs,
+//! options) in-process through the same FMI shell the shared library exports, and zip it all.
+
+use clap::Parser;
+use raceway::config::{BearingFile, DEFAULT_PRESET, PRESETS};
+use raceway::fmi::ballbearing::{BallBearing, BEARING_RESOURCE};
+use raceway::fmi::bindings::*;
+use raceway::fmi::shell as sh;
+use raceway::fmi::shell::Variable;
+use std::ffi::{CStr, CString};
+use std::io::Write;
+use std::os::raw::c_char;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+#[derive(Parser, Debug)]
+#[command(about = "Build the BallBearing FMI 2.0 Co-Simulation FMU")]
+struct Args {
+    /// Bearing of the FMU: a preset name or a bearing TOML file.
+    #[arg(long, default_value = DEFAULT_PRESET)]
+    bearing: String,
+    /// Output file [default: <target dir>/fmu/BallBearing.fmu].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Only (re)write modelDescription/modelDescription.xml (default preset) and exit.
+    #[arg(long)]
+    write_model_description: bool,
+    /// Use this shared library instead of building one.
+    #[arg(long)]
+    lib: Option<PathBuf>,
+    /// Skip the reference run (documentation/BallBearing_ref.csv gets only its header).
+    #[arg(long)]
+    no_reference: bool,
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("fmu-build lives in the workspace")
+        .to_path_buf()
+}
+
+fn target_dir() -> PathBuf {
+    match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(d) if !d.is_empty() => {
+            let p = PathBuf::from(d);
+            if p.is_absolute() {
+                p
+            } else {
+                workspace_root().join(p)
+            }
+        }
+        _ => workspace_root().join("target"),
+    }
+}
+
+fn fail(msg: impl AsRef<str>) -> ! {
+    eprintln!("fmu-build: error: {}", msg.as_ref());
+    std::process::exit(1);
+}
+
+fn build_cdylib() -> PathBuf {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    eprintln!("fmu-build: cargo build --release --lib -p raceway");
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--lib", "-p", "raceway"])
+        .current_dir(workspace_root())
+        .status()
+        .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
+    if !status.success() {
+        fail("cargo build of the raceway cdylib failed");
+    }
+    let lib = target_dir().join("release").join("libraceway.so");
+    if !lib.is_file() {
+        fail(format!("{} was not produced", lib.display()));
+    }
+    lib
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reference run through the FMI shell (the same code as the shared library)
+// ---------------------------------------------------------------------------------------------
+
+/// Logger for the in-process run. With the format "%s" the message is the sixth argument,
+/// which the C ABIs of linux64 (x86-64, aarch64) pass like a fixed argument.
+unsafe extern "C" fn print_logger(
+    _env: Fmi2ComponentEnvironment,
+    _name: Fmi2String,
+    status: Fmi2Status,
+    _category: Fmi2String,
+    _fmt: Fmi2String,
+    msg: *const c_char,
+) {
+    let m = unsafe { CStr::from_ptr(msg) }.to_string_lossy();
+    eprintln!("fmu-build: reference run: [{}] {m}", status.name());
+}
+
+/// The reference experiment: StartTime, StopTime, StepSize, RelTol.
+const START: f64 = raceway::fmi::DEFAULT_START_TIME;
+const STOP: f64 = raceway::fmi::DEFAULT_STOP_TIME;
+const STEP: f64 = raceway::fmi::DEFAULT_STEP_SIZE;
+const RELTOL: f64 = raceway::fmi::DEFAULT_TOLERANCE;
+
+/// Rows of the input table: (time, shaft.speed, load.Fx, load.Fy, load.Fz). Piecewise constant
+/// with a radial-load step at 30 ms and a speed step at 60 ms (duplicate time rows mark the
+/// discontinuities, as in the FMI cross-check format).
+fn input_rows(start: [f64; 4]) -> Vec<(f64, [f64; 4])> {
+    let [w, fx, fy, fz] = start;
+    let w2 = 10500.0 * std::f64::consts::PI / 30.0;
+    let fz2 = fz * 1.5;
+    vec![
+        (0.0, [w, fx, fy, fz]),
+        (0.03, [w, fx, fy, fz]),
+        (0.03, [w, fx, fy, fz2]),
+        (0.06, [w, fx, fy, fz2]),
+        (0.06, [w2, fx, fy, fz2]),
+        (STOP, [w2, fx, fy, fz2]),
+    ]
+}
+
+/// The input at a communication point as fmpy applies it (right-hand value at a discontinuity;
+/// times within a relative 1e-9 count as equal).
+fn input_at(rows: &[(f64, [f64; 4])], t: f64) -> [f64; 4] {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+    let mut v = rows[0].1;
+    for (rt, rv) in rows {
+        if *rt < t || close(*rt, t) {
+            v = *rv;
+        }
+    }
+    v
+}
+
+struct Reference {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+    note: Option<String>,
+}
+
+fn reference_run(
+    bearing: &BearingFile,
+    bearing_text: &str,
+    vars: &[Variable],
+    inputs: &[(f64, [f64; 4])],
+) -> Reference {
+    let outputs: Vec<&Variable> = vars
+        .iter()
+        .filter(|v| v.causality == sh::Causality::Output)
+        .collect();
+    let mut header = vec!["time".to_string()];
+    header.extend(outputs.iter().map(|v| v.name.clone()));
+    let mut rows = Vec::new();
+    let guid = CString::new(raceway::fmi::guid(bearing)).expect("no NUL");
+    // Resources: a temporary folder with the bearing, like the unzipped FMU.
+    let dir = std::env::temp_dir().join(format!("fmu-build-ref-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
+    std::fs::write(dir.join(BEARING_RESOURCE), bearing_text)
+        .unwrap_or_else(|e| fail(format!("{e}")));
+    let uri = CString::new(format!("file://{}", dir.display())).expect("no NUL");
+    // SAFETY: see print_logger.
+    let logger: Fmi2CallbackLogger = unsafe {
+        std::mem::transmute::<
+            unsafe extern "C" fn(
+                Fmi2ComponentEnvironment,
+                Fmi2String,
+                Fmi2Status,
+                Fmi2String,
+                Fmi2String,
+                *const c_char,
+            ),
+            Fmi2CallbackLogger,
+        >(print_logger)
+    };
+    let cb = Fmi2CallbackFunctions {
+        logger: Some(logger),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: std::ptr::null_mut(),
+    };
+    let input_vrs = [1u32, 2, 3, 4];
+    let real_out: Vec<u32> = outputs
+        .iter()
+        .filter(|v| v.ty == sh::VarType::Real)
+        .map(|v| v.vr)
+        .collect();
+    let int_out: Vec<u32> = outputs
+        .iter()
+        .filter(|v| v.ty == sh::VarType::Integer)
+        .map(|v| v.vr)
+        .collect();
+    let note = unsafe {
+        let c = sh::instantiate::<BallBearing>(
+            c"reference".as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            uri.as_ptr(),
+            &cb,
+            0,
+            0,
+        );
+        if c.is_null() {
+            fail("the reference instance could not be created");
+        }
+        let sample = |c: Fmi2Component, t: f64| -> Result<Vec<String>, String> {
+            let mut r = vec![0.0; real_out.len()];
+            let mut i = vec![0; int_out.len()];
+            if sh::get_real::<BallBearing>(c, real_out.as_ptr(), r.len(), r.as_mut_ptr())
+                != Fmi2Status::Ok
+                || sh::get_integer::<BallBearing>(c, int_out.as_ptr(), i.len(), i.as_mut_ptr())
+                    != Fmi2Status::Ok
+            {
+                return Err(format!("reading the outputs at t = {t} failed"));
+            }
+            let mut row = vec![format!("{t}")];
+            let (mut ri, mut ii) = (r.iter(), i.iter());
+            for v in &outputs {
+                row.push(match v.ty {
+                    sh::VarType::Integer => ii.next().expect("counted").to_string(),
+                    _ => format!("{}", ri.next().expect("counted")),
+                });
+            }
+            Ok(row)
+        };
+        let run = |rows: &mut Vec<Vec<String>>| -> Result<(), String> {
+            let ok = |s: Fmi2Status, what: &str| {
+                if s == Fmi2Status::Ok {
+                    Ok(())
+                } else {
+                    Err(format!("{what} returned {}", s.name()))
+                }
+            };
+            ok(
+                sh::setup_experiment::<BallBearing>(c, 1, RELTOL, START, 1, STOP),
+                "fmi2SetupExperiment",
+            )?;
+            ok(
+                sh::enter_initialization_mode::<BallBearing>(c),
+                "fmi2EnterInitializationMode",
+            )?;
+            let u = input_at(inputs, START);
+            ok(
+                sh::set_real::<BallBearing>(c, input_vrs.as_ptr(), 4, u.as_ptr()),
+                "fmi2SetReal",
+            )?;
+            ok(
+                sh::exit_initialization_mode::<BallBearing>(c),
+                "fmi2ExitInitializationMode",
+            )?;
+            rows.push(sample(c, START)?);
+            let n = ((STOP - START) / STEP).round() as usize;
+            let mut t = START;
+            for k in 0..n {
+                // fmpy's communication points: start + (k+1)·interval, not an accumulated sum
+                let next = START + (k + 1) as f64 * STEP;
+                let u = input_at(inputs, t);
+                ok(
+                    sh::set_real::<BallBearing>(c, input_vrs.as_ptr(), 4, u.as_ptr()),
+                    "fmi2SetReal",
+                )?;
+                ok(
+                    sh::do_step::<BallBearing>(c, t, next - t, 1),
+                    &format!("fmi2DoStep at t = {t}"),
+                )?;
+                t = next;
+                rows.push(sample(c, t)?);
+            }
+            ok(sh::terminate::<BallBearing>(c), "fmi2Terminate")?;
+            Ok(())
+        };
+        let r = run(&mut rows);
+        sh::free_instance::<BallBearing>(c);
+        r.err()
+    };
+    let _ = std::fs::remove_dir_all(&dir);
+    if note.is_some() {
+        rows.clear();
+    }
+    Reference { header, rows, note }
+}
+
+fn csv_line(cells: &[String]) -> String {
+    cells.join(",") + "\n"
+}
+
+fn quoted(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(",")
+        + "\n"
+}
+
+// ---------------------------------------------------------------------------------------------
+
 fn main() {
-    eprintln!("fmu-build: not implemented yet");
-    std::process::exit(2);
+    let args = Args::parse();
+
+    if args.write_model_description {
+        let b = BearingFile::default_preset();
+        let path = workspace_root()
+            .join("modelDescription")
+            .join("modelDescription.xml");
+        std::fs::create_dir_all(path.parent().expect("has a parent"))
+            .unwrap_or_else(|e| fail(format!("{e}")));
+        std::fs::write(&path, raceway::fmi::model_description_xml(&b))
+            .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
+        eprintln!("fmu-build: wrote {}", path.display());
+        return;
+    }
+
+    // The bearing and its file text (shipped as resources/bearing.toml).
+    let (bearing, bearing_text) = match PRESETS.iter().find(|(n, _)| *n == args.bearing) {
+        Some((_, text)) => (
+            BearingFile::load(&args.bearing).unwrap_or_else(|e| fail(e.to_string())),
+            text.to_string(),
+        ),
+        None => {
+            let text = std::fs::read_to_string(&args.bearing)
+                .unwrap_or_else(|e| fail(format!("bearing '{}': {e}", args.bearing)));
+            let b = BearingFile::from_toml_str(&text, &args.bearing)
+                .unwrap_or_else(|e| fail(e.to_string()));
+            (b, text)
+        }
+    };
+
+    let lib = args.lib.clone().unwrap_or_else(build_cdylib);
+    let so = std::fs::read(&lib).unwrap_or_else(|e| fail(format!("{}: {e}", lib.display())));
+
+    let xml = raceway::fmi::model_description_xml(&bearing);
+    let vars: Vec<Variable> = raceway::fmi::variables::table(&bearing)
+        .into_iter()
+        .map(|e| e.var)
+        .collect();
+    eprintln!("fmu-build: probing the fidelity levels");
+    let avail = raceway::fmi::docs::fidelity_availability(&bearing);
+    let html = raceway::fmi::docs::documentation_html(&bearing, &avail);
+
+    // Cross-check style reference.
+    let start_inputs =
+        [1u32, 2, 3, 4].map(
+            |vr| match vars.iter().find(|v| v.vr == vr).map(|v| &v.start) {
+                Some(sh::Start::Real(x)) => *x,
+                _ => fail("input table changed: vr 1..4 must be the Real inputs"),
+            },
+        );
+    let inputs = input_rows(start_inputs);
+    let mut in_csv =
+        quoted(&["time", "shaft.speed", "load.Fx", "load.Fy", "load.Fz"].map(String::from));
+    for (t, v) in &inputs {
+        in_csv += &csv_line(&[t, &v[0], &v[1], &v[2], &v[3]].map(|x| format!("{x}")));
+    }
+    let opt = format!("StartTime,{START}\nStopTime,{STOP}\nStepSize,{STEP}\nRelTol,{RELTOL}\n");
+    let reference = if args.no_reference {
+        Reference {
+            header: Vec::new(),
+            rows: Vec::new(),
+            note: Some("skipped with --no-reference".into()),
+        }
+    } else {
+        eprintln!("fmu-build: reference run ({START} .. {STOP} s, step {STEP} s)");
+        reference_run(&bearing, &bearing_text, &vars, &inputs)
+    };
+    let mut ref_csv = if reference.header.is_empty() {
+        String::from("\"time\"\n")
+    } else {
+        quoted(&reference.header)
+    };
+    for r in &reference.rows {
+        ref_csv += &csv_line(r);
+    }
+    if let Some(n) = &reference.note {
+        eprintln!(
+            "fmu-build: warning: no reference results ({n}); BallBearing_ref.csv has only its header \
+             and documentation/REFERENCE_SKIPPED.txt says why"
+        );
+    }
+
+    // The archive.
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| target_dir().join("fmu").join("BallBearing.fmu"));
+    if let Some(dir) = out.parent() {
+        std::fs::create_dir_all(dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
+    }
+    let tmp = out.with_extension("fmu.part");
+    let file =
+        std::fs::File::create(&tmp).unwrap_or_else(|e| fail(format!("{}: {e}", tmp.display())));
+    let mut zip = zip::ZipWriter::new(file);
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .unix_permissions(0o644);
+    let mut add = |name: &str, data: &[u8], mode: u32| {
+        zip.start_file(name, opts.unix_permissions(mode))
+            .and_then(|_| zip.write_all(data).map_err(Into::into))
+            .unwrap_or_else(|e| fail(format!("zip {name}: {e}")));
+    };
+    add("modelDescription.xml", xml.as_bytes(), 0o644);
+    add("binaries/linux64/BallBearing.so", &so, 0o755);
+    add("documentation/index.html", html.as_bytes(), 0o644);
+    add("documentation/BallBearing_in.csv", in_csv.as_bytes(), 0o644);
+    add(
+        "documentation/BallBearing_ref.csv",
+        ref_csv.as_bytes(),
+        0o644,
+    );
+    add("documentation/BallBearing_ref.opt", opt.as_bytes(), 0o644);
+    if let Some(n) = &reference.note {
+        let text = format!(
+            "The reference run was not computed: {n}\nThe FMU itself is complete; rebuild it with fmu-build once the simulation runs.\n"
+        );
+        add(
+            "documentation/REFERENCE_SKIPPED.txt",
+            text.as_bytes(),
+            0o644,
+        );
+    }
+    add(
+        &format!("resources/{BEARING_RESOURCE}"),
+        bearing_text.as_bytes(),
+        0o644,
+    );
+    add(
+        "resources/default-scene.toml",
+        raceway::scene::DEFAULT_SCENE.as_bytes(),
+        0o644,
+    );
+    for (name, text) in PRESETS {
+        add(
+            &format!("resources/presets/{name}.toml"),
+            text.as_bytes(),
+            0o644,
+        );
+    }
+    zip.finish().unwrap_or_else(|e| fail(format!("zip: {e}")));
+    std::fs::rename(&tmp, &out).unwrap_or_else(|e| fail(format!("{}: {e}", out.display())));
+    println!(
+        "fmu-build: wrote {} (bearing '{}', {} balls, GUID {}, {} variables{})",
+        out.display(),
+        bearing.name,
+        bearing.bearing.z,
+        raceway::fmi::guid(&bearing),
+        vars.len(),
+        if reference.note.is_some() {
+            ", no reference results"
+        } else {
+            ""
+        }
+    );
 }

@@ -1,0 +1,434 @@
+//! The BallBearing model behind the generic shell: a [`Scene`] edited by the parameters until
+//! `fmi2ExitInitializationMode`, then a [`Simulation`] stepped by `fmi2DoStep`.
+//! No physics here: everything is delegated to [`Simulation`].
+
+use super::codec::{ByteReader, ByteWriter};
+use super::shell::{
+    FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER,
+};
+use super::variables::{table, Config, Input, Param, Role, Stat};
+use crate::config::BearingFile;
+use crate::scene::Scene;
+use crate::simulation::{Inputs, SimError, Simulation};
+use std::path::Path;
+
+/// Name of the bearing description inside the FMU's `resources/`.
+pub const BEARING_RESOURCE: &str = "bearing.toml";
+
+/// Version of the model part of the serialized FMU state.
+const MODEL_STATE_VERSION: u32 = 1;
+
+/// Reads `resources/bearing.toml`, or the default preset when there is none.
+pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
+    if let Some(dir) = resource_dir {
+        let p = dir.join(BEARING_RESOURCE);
+        if p.is_file() {
+            let text = std::fs::read_to_string(&p)
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+            let b = BearingFile::from_toml_str(&text, &p.display().to_string())
+                .map_err(|e| format!("invalid bearing file {}: {e}", p.display()))?;
+            return Ok((b, p.display().to_string()));
+        }
+    }
+    Ok((
+        BearingFile::default_preset(),
+        format!(
+            "built-in preset '{}' (no {BEARING_RESOURCE} in the resources)",
+            crate::config::DEFAULT_PRESET
+        ),
+    ))
+}
+
+/// The live simulation and the exact scene it was built from.
+struct Live {
+    sim: Simulation,
+    scene: Scene,
+}
+
+/// The BallBearing FMU model.
+pub struct BallBearing {
+    guid: String,
+    vars: Vec<Variable>,
+    roles: Vec<Role>,
+    /// The configuration as instantiated (for fmi2Reset).
+    initial: Config,
+    cfg: Config,
+    inputs: Inputs,
+    start_time: f64,
+    tolerance: Option<f64>,
+    initialized: bool,
+    live: Option<Live>,
+    outputs: Vec<f64>,
+    outputs_valid: bool,
+}
+
+fn sim_err(e: SimError) -> String {
+    e.to_string()
+}
+
+impl BallBearing {
+    /// A model for `bearing` (what fmi2Instantiate builds after reading the resources).
+    pub fn new(bearing: &BearingFile) -> Self {
+        let entries = table(bearing);
+        let guid = super::guid(bearing);
+        let cfg = Config::default_for(bearing);
+        let inputs = Inputs::from_scene(&cfg.scene);
+        let n_out = entries
+            .iter()
+            .filter(|e| matches!(e.role, Role::Output(_)))
+            .count();
+        Self {
+            guid,
+            vars: entries.iter().map(|e| e.var.clone()).collect(),
+            roles: entries.iter().map(|e| e.role).collect(),
+            initial: cfg.clone(),
+            cfg,
+            inputs,
+            start_time: 0.0,
+            tolerance: None,
+            initialized: false,
+            live: None,
+            outputs: vec![0.0; n_out],
+            outputs_valid: false,
+        }
+    }
+
+    /// The scene the simulation is built from: parameters, defect, tolerance override and the
+    /// current inputs as the operating point (so the initial state is the equilibrium at the
+    /// inputs). Validated, with errors naming the FMU variable.
+    fn scene_to_build(&self) -> Result<Scene, String> {
+        let mut s = self.cfg.scene.clone();
+        s.defect = self.cfg.defect.spec();
+        if let Some(t) = self.tolerance {
+            if !(t > 0.0 && t < 0.1) {
+                return Err(format!(
+                    "the tolerance {t} of fmi2SetupExperiment is outside (0, 0.1) (it overrides solver.rtol)"
+                ));
+            }
+            s.solver.rtol = t;
+        }
+        s.operating.speed_rpm = self.inputs.shaft_speed * 30.0 / std::f64::consts::PI;
+        s.operating.fa = self.inputs.fx;
+        s.operating.fy = self.inputs.fy;
+        s.operating.fr = -self.inputs.fz;
+        self.inputs.check().map_err(sim_err)?;
+        s.bearing.validate().map_err(|e| e.to_string())?;
+        s.validate().map_err(|e| e.to_string())?;
+        Ok(s)
+    }
+
+    fn build(&self) -> Result<Live, String> {
+        let scene = self.scene_to_build()?;
+        let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+        sim.set_inputs(self.inputs).map_err(sim_err)?;
+        Ok(Live { sim, scene })
+    }
+
+    fn ensure_live(&mut self) -> Result<&mut Live, String> {
+        if self.live.is_none() {
+            self.live = Some(self.build()?);
+            self.outputs_valid = false;
+        }
+        Ok(self.live.as_mut().expect("just built"))
+    }
+
+    fn refresh_outputs(&mut self) -> Result<(), String> {
+        if !self.outputs_valid {
+            let mut out = std::mem::take(&mut self.outputs);
+            let r = self.ensure_live().map(|l| l.sim.outputs(&mut out));
+            self.outputs = out;
+            r?;
+            self.outputs_valid = true;
+        }
+        Ok(())
+    }
+
+    /// Before initialization a change of a parameter or input invalidates the provisional
+    /// simulation (built only to answer output queries in initialization mode).
+    fn invalidate(&mut self) {
+        if !self.initialized {
+            self.live = None;
+        }
+        self.outputs_valid = false;
+    }
+}
+
+impl FmuModel for BallBearing {
+    const MODEL_IDENTIFIER: &'static str = "BallBearing";
+
+    fn instantiate(args: &InstantiateArgs, log: &Logger) -> Result<Self, String> {
+        let (bearing, origin) = load_bearing(args.resource_dir.as_deref())?;
+        if log.enabled(LOG_EVENTS) {
+            log.log(
+                super::bindings::Fmi2Status::Ok,
+                LOG_EVENTS,
+                &format!(
+                    "bearing '{}' ({} balls) from {origin}",
+                    bearing.name, bearing.bearing.z
+                ),
+            );
+        }
+        Ok(Self::new(&bearing))
+    }
+
+    fn guid(&self) -> &str {
+        &self.guid
+    }
+
+    fn variables(&self) -> &[Variable] {
+        &self.vars
+    }
+
+    fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        _stop_time: Option<f64>,
+    ) -> Result<(), String> {
+        if let Some(t) = tolerance {
+            if !(t > 0.0 && t < 0.1) {
+                return Err(format!(
+                    "tolerance = {t}: the integrator's relative tolerance must lie in (0, 0.1)"
+                ));
+            }
+        }
+        self.tolerance = tolerance;
+        self.start_time = start_time;
+        self.invalidate();
+        Ok(())
+    }
+
+    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        // Always rebuild: the provisional simulation may predate the last parameter change.
+        let live = self.build()?;
+        if log.enabled(LOG_EVENTS) {
+            log.log(
+                super::bindings::Fmi2Status::Ok,
+                LOG_EVENTS,
+                &format!(
+                    "initialized: fidelity {} ({}), method {}, rtol {:e}, defect {:?}",
+                    live.scene.fidelity.code(),
+                    live.scene.fidelity.name(),
+                    live.scene.solver.method.name(),
+                    live.scene.solver.rtol,
+                    live.scene.defect
+                ),
+            );
+        }
+        self.live = Some(live);
+        self.initialized = true;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: f64, t_end: f64, log: &Logger) -> StepResult {
+        let start = self.start_time;
+        let Some(live) = self.live.as_mut() else {
+            return StepResult::Error("no simulation (internal error)".into());
+        };
+        let before = live.sim.stats();
+        let r = live.sim.advance(t_end - start);
+        self.outputs_valid = false;
+        match r {
+            Ok(()) => {}
+            Err(SimError::Solver { t: tg, message }) => {
+                return StepResult::Discard {
+                    message: format!("integration failed at t = {}: {message}", start + tg),
+                    last_good_time: start + tg,
+                }
+            }
+            Err(e) => return StepResult::Error(e.to_string()),
+        }
+        if log.enabled(LOG_SOLVER) {
+            let s = live.sim.stats();
+            log.log(
+                super::bindings::Fmi2Status::Ok,
+                LOG_SOLVER,
+                &format!(
+                    "t = {t} → {t_end}: {} steps, {} rejected, {} rhs evaluations",
+                    s.steps - before.steps,
+                    s.rejected - before.rejected,
+                    s.rhs_evals - before.rhs_evals
+                ),
+            );
+        }
+        if let Err(e) = self.refresh_outputs() {
+            return StepResult::Error(e);
+        }
+        if let Some(i) = self.outputs.iter().position(|v| !v.is_finite()) {
+            let name = self
+                .roles
+                .iter()
+                .zip(&self.vars)
+                .find(|(r, _)| **r == Role::Output(i))
+                .map_or("?", |(_, v)| v.name.as_str());
+            return StepResult::Discard {
+                message: format!("output '{name}' became {} at t = {t_end}", self.outputs[i]),
+                last_good_time: t,
+            };
+        }
+        StepResult::Ok
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.cfg = self.initial.clone();
+        self.inputs = Inputs::from_scene(&self.cfg.scene);
+        self.start_time = 0.0;
+        self.tolerance = None;
+        self.initialized = false;
+        self.live = None;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    fn get_real(&mut self, index: usize) -> Result<f64, String> {
+        match self.roles[index] {
+            Role::Input(i) => Ok(i.get(&self.inputs)),
+            Role::Param(p) => Ok(self.cfg.get(p)),
+            Role::Output(i) => {
+                self.refresh_outputs()?;
+                Ok(self.outputs[i])
+            }
+            Role::Stat(_) => Err("not a Real".into()),
+        }
+    }
+
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        match self.roles[index] {
+            Role::Input(i) => {
+                let mut next = self.inputs;
+                i.set(&mut next, value);
+                if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
+                    live.sim.set_inputs(next).map_err(sim_err)?;
+                } else {
+                    next.check().map_err(sim_err)?;
+                }
+                self.inputs = next;
+                self.invalidate();
+                Ok(())
+            }
+            Role::Param(p) => {
+                self.cfg.set(p, value)?;
+                self.invalidate();
+                Ok(())
+            }
+            _ => Err(format!("'{}' cannot be set", self.vars[index].name)),
+        }
+    }
+
+    fn get_integer(&mut self, index: usize) -> Result<i32, String> {
+        match self.roles[index] {
+            Role::Param(p) => Ok(self.cfg.get(p) as i32),
+            Role::Stat(s) => {
+                let st = self.ensure_live()?.sim.stats();
+                let v = match s {
+                    Stat::Steps => st.steps,
+                    Stat::Rejected => st.rejected,
+                    Stat::RhsEvals => st.rhs_evals,
+                };
+                Ok(v.min(i32::MAX as u64) as i32)
+            }
+            _ => Err(format!("'{}' is not an Integer", self.vars[index].name)),
+        }
+    }
+
+    fn set_integer(&mut self, index: usize, value: i32) -> Result<(), String> {
+        match self.roles[index] {
+            Role::Param(p) => {
+                self.cfg.set(p, value as f64)?;
+                self.invalidate();
+                Ok(())
+            }
+            _ => Err(format!("'{}' cannot be set", self.vars[index].name)),
+        }
+    }
+
+    fn save_state(&self) -> Vec<u8> {
+        let mut w = ByteWriter::new();
+        w.u32(MODEL_STATE_VERSION).u32(Param::ALL.len() as u32);
+        for p in Param::ALL {
+            w.f64(self.cfg.get(p));
+        }
+        for i in Input::ALL {
+            w.f64(i.get(&self.inputs));
+        }
+        w.f64(self.start_time)
+            .opt_f64(self.tolerance)
+            .bool(self.initialized);
+        match (&self.live, self.initialized) {
+            (Some(live), true) => {
+                let op = &live.scene.operating;
+                w.bool(true)
+                    .f64(op.speed_rpm)
+                    .f64(op.fa)
+                    .f64(op.fr)
+                    .f64(op.fy)
+                    .f64(live.scene.solver.rtol)
+                    .bytes(&live.sim.save_state());
+            }
+            _ => {
+                w.bool(false);
+            }
+        }
+        w.into_bytes()
+    }
+
+    fn restore_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let mut r = ByteReader::new(bytes);
+        let v = r.u32("model state version")?;
+        if v != MODEL_STATE_VERSION {
+            return Err(format!(
+                "BallBearing state version {v} is not supported (expected {MODEL_STATE_VERSION})"
+            ));
+        }
+        let n = r.u32("parameter count")? as usize;
+        if n != Param::ALL.len() {
+            return Err(format!(
+                "the state has {n} parameters, this FMU {}",
+                Param::ALL.len()
+            ));
+        }
+        let mut cfg = self.initial.clone();
+        for p in Param::ALL {
+            let x = r.f64(p.name())?;
+            cfg.set(p, x).map_err(|e| format!("corrupt state: {e}"))?;
+        }
+        let mut inputs = self.inputs;
+        for i in Input::ALL {
+            i.set(&mut inputs, r.f64("input")?);
+        }
+        let start_time = r.f64("start time")?;
+        let tolerance = r.opt_f64("tolerance")?;
+        let initialized = r.bool("initialized flag")?;
+        let live = if r.bool("simulation flag")? {
+            let speed = r.f64("operating speed")?;
+            let fa = r.f64("operating fa")?;
+            let fr = r.f64("operating fr")?;
+            let fy = r.f64("operating fy")?;
+            let rtol = r.f64("rtol")?;
+            let sim_bytes = r.bytes("simulation state")?;
+            r.finish("the BallBearing state")?;
+            let mut scene = cfg.scene.clone();
+            scene.defect = cfg.defect.spec();
+            scene.operating.speed_rpm = speed;
+            scene.operating.fa = fa;
+            scene.operating.fr = fr;
+            scene.operating.fy = fy;
+            scene.solver.rtol = rtol;
+            let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+            sim.restore_state(sim_bytes).map_err(sim_err)?;
+            Some(Live { sim, scene })
+        } else {
+            r.finish("the BallBearing state")?;
+            None
+        };
+        self.cfg = cfg;
+        self.inputs = inputs;
+        self.start_time = start_time;
+        self.tolerance = tolerance;
+        self.initialized = initialized;
+        self.live = live;
+        self.outputs_valid = false;
+        Ok(())
+    }
+}
