@@ -7,7 +7,10 @@
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
-use crate::scene::Scene;
+use crate::models::lumped::LumpedModel;
+use crate::models::Model;
+use crate::scene::{Fidelity, MethodName, Scene};
+use crate::solver::{Integrator, IntegratorState, Method, Options, StepView, System};
 use std::fmt;
 
 /// The continuous inputs (the FMU's `shaft.speed`, `load.Fx/Fy/Fz`).
@@ -194,12 +197,54 @@ pub struct WorkStats {
     pub rhs_evals: u64,
 }
 
+/// Output sampling of an advance: the interval and the callback receiving (time, outputs).
+type Sampler<'a> = (f64, &'a mut dyn FnMut(f64, &[f64]));
+
 /// One simulation run.
 pub struct Simulation {
     scene: Scene,
     bearing: Bearing,
+    model: Box<dyn Model>,
+    integrator: Integrator,
     inputs: Inputs,
-    time: f64,
+    /// Scratch for interpolated states between stops (CLI sampling).
+    samples: Vec<f64>,
+    sample_times: Vec<f64>,
+}
+
+/// Lets the integrator drive a model (the integrator knows nothing about bearings).
+struct ModelSystem<'a>(&'a mut dyn Model);
+
+impl System for ModelSystem<'_> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        self.0.rhs(t, y, dydt)
+    }
+}
+
+/// The versioned, pointer-free snapshot of a simulation.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Snapshot {
+    format: String,
+    version: u32,
+    fidelity: String,
+    dim: usize,
+    inputs: Inputs,
+    model: Vec<f64>,
+    integrator: IntegratorState,
+}
+
+const SNAPSHOT_FORMAT: &str = "raceway-simulation";
+const SNAPSHOT_VERSION: u32 = 1;
+
+fn method_of(m: MethodName) -> Method {
+    match m {
+        MethodName::Rkf45 => Method::Rkf45,
+        MethodName::Dopri5 => Method::Dopri5,
+        MethodName::Dop853 => Method::Dop853,
+    }
 }
 
 impl Simulation {
@@ -207,12 +252,43 @@ impl Simulation {
     pub fn new(scene: &Scene) -> Result<Self, SimError> {
         scene.validate()?;
         let bearing = Bearing::new(&scene.bearing)?;
+        let inputs = Inputs::from_scene(scene);
+        inputs.check()?;
+        let mut model: Box<dyn Model> = match scene.fidelity {
+            Fidelity::Lumped => Box::new(LumpedModel::new(scene, &bearing, &inputs)?),
+            other => {
+                return Err(SimError::Unsupported(format!(
+                    "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
+                    other.name(),
+                    other.code()
+                )))
+            }
+        };
+        let n = model.dim();
+        let mut y0 = vec![0.0; n];
+        model.initial_state(&mut y0);
+        model.update_mode(0.0, &y0);
+        let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
+            .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
         Ok(Self {
             scene: scene.clone(),
             bearing,
-            inputs: Inputs::from_scene(scene),
-            time: 0.0,
+            model,
+            integrator,
+            inputs,
+            samples: Vec::new(),
+            sample_times: Vec::new(),
         })
+    }
+
+    fn options(scene: &Scene, model: &dyn Model) -> Options {
+        let mut nominal = vec![0.0; model.dim()];
+        model.nominal(&mut nominal);
+        let rtol = scene.solver.rtol;
+        let atol = nominal.iter().map(|v| v * rtol).collect();
+        let mut o = Options::new(method_of(scene.solver.method), rtol, atol);
+        o.max_steps = scene.solver.max_steps;
+        o
     }
 
     pub fn scene(&self) -> &Scene {
@@ -225,40 +301,134 @@ impl Simulation {
 
     /// Current time [s].
     pub fn time(&self) -> f64 {
-        self.time
+        self.integrator.t()
     }
 
     pub fn inputs(&self) -> Inputs {
         self.inputs
     }
 
-    /// Sets the inputs from now on (piecewise constant until the next change).
+    /// Sets the inputs from now on (piecewise constant until the next change). Unchanged
+    /// inputs are free; a change is a discontinuity for the integrator.
     pub fn set_inputs(&mut self, inputs: Inputs) -> Result<(), SimError> {
         inputs.check()?;
+        if inputs == self.inputs {
+            return Ok(());
+        }
         self.inputs = inputs;
+        let t = self.integrator.t();
+        self.model.set_inputs(&inputs, t, self.integrator.y());
+        self.model.update_mode(t, self.integrator.y());
+        self.integrator.discontinuity();
         Ok(())
     }
 
-    /// Advances to exactly `t_end` (> current time).
-    pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
-        Err(SimError::Unsupported(format!(
-            "advance to {t_end}: dynamic models are not wired yet"
-        )))
+    /// Changes the relative tolerance (absolute tolerances follow: rtol × nominal).
+    pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SimError> {
+        if !(rtol > 0.0 && rtol < 0.1) {
+            return Err(SimError::Config(ConfigError::new(
+                "solver.rtol",
+                format!("{rtol} must lie in (0, 0.1)"),
+            )));
+        }
+        self.scene.solver.rtol = rtol;
+        let t = self.integrator.t();
+        let y = self.integrator.y().to_vec();
+        self.integrator =
+            Integrator::new(Self::options(&self.scene, self.model.as_ref()), t, &y)
+                .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
+        Ok(())
     }
 
-    /// Advances to `t_end`, sampling the outputs every `dt`.
+    /// Advances to exactly `t_end`, landing on every known discontinuity of the model on the way.
+    /// On failure the simulation stays at its last good time ([`SimError::Solver`]).
+    pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
+        self.advance_impl(t_end, None)
+    }
+
+    /// Advances to `t_end` and calls `sample(t, outputs)` at every multiple of `dt` in
+    /// (current time, t_end], from the integrator's dense output (no extra steps).
     pub fn advance_sampled(
         &mut self,
         t_end: f64,
-        _dt: f64,
-        _sample: &mut dyn FnMut(f64, &[f64]),
+        dt: f64,
+        sample: &mut dyn FnMut(f64, &[f64]),
     ) -> Result<(), SimError> {
-        self.advance(t_end)
+        self.advance_impl(t_end, Some((dt, sample)))
     }
 
-    /// The cage speed the model uses [rad/s].
-    pub fn cage_speed(&self) -> f64 {
-        0.0
+    fn advance_impl(
+        &mut self,
+        t_end: f64,
+        mut sampling: Option<Sampler<'_>>,
+    ) -> Result<(), SimError> {
+        if !t_end.is_finite() {
+            return Err(SimError::Input(format!("end time {t_end} is not finite")));
+        }
+        let t0 = self.integrator.t();
+        if t_end < t0 {
+            return Err(SimError::Input(format!(
+                "cannot advance backwards from t = {t0} s to {t_end} s"
+            )));
+        }
+        let n = self.model.dim();
+        let n_out = output_table(self.bearing.z).len();
+        let mut out_buf = vec![0.0; n_out];
+        while self.integrator.t() < t_end {
+            let t = self.integrator.t();
+            let stop = self.model.next_stop(t, self.integrator.y(), t_end);
+            let target = stop.unwrap_or(t_end);
+            self.samples.clear();
+            self.sample_times.clear();
+            let result = {
+                let mut sys = ModelSystem(self.model.as_mut());
+                match sampling.as_mut() {
+                    None => self.integrator.advance(&mut sys, target, None),
+                    Some((dt, _)) => {
+                        let dt = *dt;
+                        let samples = &mut self.samples;
+                        let times = &mut self.sample_times;
+                        let mut buf = vec![0.0; n];
+                        let mut obs = |v: &StepView| {
+                            let mut k = (v.t_start() / dt).floor() as i64 + 1;
+                            loop {
+                                let ts = k as f64 * dt;
+                                if ts > v.t_end() * (1.0 + 1e-15) {
+                                    break;
+                                }
+                                if ts > v.t_start() {
+                                    v.interpolate(ts.min(v.t_end()), &mut buf);
+                                    samples.extend_from_slice(&buf);
+                                    times.push(ts);
+                                }
+                                k += 1;
+                            }
+                        };
+                        self.integrator.advance(&mut sys, target, Some(&mut obs))
+                    }
+                }
+            };
+            // Outputs of the samples of this interval use its (frozen) discrete mode.
+            if let Some((_, cb)) = sampling.as_mut() {
+                for (i, &ts) in self.sample_times.iter().enumerate() {
+                    let y = &self.samples[i * n..(i + 1) * n];
+                    self.model.outputs(ts, y, &mut out_buf);
+                    cb(ts, &out_buf);
+                }
+            }
+            if let Err(e) = result {
+                return Err(SimError::Solver {
+                    t: self.integrator.t(),
+                    message: e.to_string(),
+                });
+            }
+            if stop.is_some() {
+                let t = self.integrator.t();
+                self.model.update_mode(t, self.integrator.y());
+                self.integrator.discontinuity();
+            }
+        }
+        Ok(())
     }
 
     /// The output table of this simulation.
@@ -268,21 +438,71 @@ impl Simulation {
 
     /// Fills `out` (length `output_table().len()`) with the outputs at the current time.
     pub fn outputs(&mut self, out: &mut [f64]) {
-        out.iter_mut().for_each(|v| *v = 0.0);
+        let t = self.integrator.t();
+        // The model's outputs evaluate its right-hand side at (t, y): copy y out of the integrator.
+        let y = self.integrator.y().to_vec();
+        self.model.outputs(t, &y, out);
+    }
+
+    /// The cage speed the model uses [rad/s].
+    pub fn cage_speed(&self) -> f64 {
+        self.model.cage_speed()
     }
 
     /// Integrator work since the start.
     pub fn stats(&self) -> WorkStats {
-        WorkStats::default()
+        let s = self.integrator.stats();
+        WorkStats {
+            steps: s.steps,
+            rejected: s.rejected,
+            rhs_evals: s.rhs_evals,
+        }
     }
 
     /// A pointer-free snapshot from which [`Simulation::restore_state`] continues bit-identically.
     pub fn save_state(&self) -> Vec<u8> {
-        Vec::new()
+        let snap = Snapshot {
+            format: SNAPSHOT_FORMAT.into(),
+            version: SNAPSHOT_VERSION,
+            fidelity: self.scene.fidelity.name().into(),
+            dim: self.model.dim(),
+            inputs: self.inputs,
+            model: self.model.discrete_state(),
+            integrator: self.integrator.snapshot(),
+        };
+        serde_json::to_vec(&snap).expect("a snapshot serializes")
     }
 
     /// Restores a snapshot taken from a simulation of the same scene.
-    pub fn restore_state(&mut self, _bytes: &[u8]) -> Result<(), SimError> {
-        Err(SimError::State("not wired yet".into()))
+    pub fn restore_state(&mut self, bytes: &[u8]) -> Result<(), SimError> {
+        let snap: Snapshot = serde_json::from_slice(bytes)
+            .map_err(|e| SimError::State(format!("not a raceway simulation snapshot: {e}")))?;
+        if snap.format != SNAPSHOT_FORMAT || snap.version != SNAPSHOT_VERSION {
+            return Err(SimError::State(format!(
+                "snapshot format {} v{} is not {SNAPSHOT_FORMAT} v{SNAPSHOT_VERSION}",
+                snap.format, snap.version
+            )));
+        }
+        if snap.fidelity != self.scene.fidelity.name() || snap.dim != self.model.dim() {
+            return Err(SimError::State(format!(
+                "snapshot of a '{}' model with {} states does not fit this '{}' model with {}",
+                snap.fidelity,
+                snap.dim,
+                self.scene.fidelity.name(),
+                self.model.dim()
+            )));
+        }
+        snap.inputs.check()?;
+        self.integrator
+            .restore(&snap.integrator)
+            .map_err(|e| SimError::State(e.to_string()))?;
+        self.inputs = snap.inputs;
+        let t = self.integrator.t();
+        self.model.set_inputs(&snap.inputs, t, self.integrator.y());
+        self.model
+            .set_discrete_state(&snap.model)
+            .map_err(SimError::State)?;
+        self.model.update_mode(t, self.integrator.y());
+        Ok(())
     }
 }

@@ -6,7 +6,7 @@
 //! prescribed) at which the integrator must land and the model may switch a frozen discrete
 //! mode (spec `solvers.md`, "Events").
 
-// pub mod lumped; (enabled once quasi_static lands)
+pub mod lumped;
 
 use crate::simulation::Inputs;
 
