@@ -508,6 +508,15 @@ fn field_from_toml_error(msg: &str, span: Option<std::ops::Range<usize>>, text: 
     if let Some(rest) = msg.strip_prefix("unknown field `") {
         if let Some(end) = rest.find('`') {
             let key = &rest[..end];
+            // An unknown section is reported at its own header.
+            let own_header = span.and_then(|p| {
+                let p = p.min(text.len());
+                let start = text[..p].rfind('\n').map_or(0, |i| i + 1);
+                text[start..].lines().next().and_then(header_name)
+            });
+            if own_header.as_deref() == Some(key) {
+                return key.to_string();
+            }
             return match section_at(span, text) {
                 Some(sec) => format!("{sec}.{key}"),
                 None => key.to_string(),
@@ -544,14 +553,19 @@ fn field_from_toml_error(msg: &str, span: Option<std::ops::Range<usize>>, text: 
     section_at(span, text).unwrap_or_default()
 }
 
-/// The `[section]` header in force at byte offset `pos`.
+/// The `[section]` header in force at byte offset `pos` (the line holding `pos` included, since
+/// toml reports a table's missing keys at its header). Trailing comments are ignored.
 fn section_at(pos: Option<usize>, text: &str) -> Option<String> {
     let pos = pos?.min(text.len());
-    text[..pos].lines().rev().find_map(|l| {
-        let t = l.trim();
-        (t.starts_with('[') && t.ends_with(']') && !t.starts_with("[["))
-            .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_string())
-    })
+    let line_end = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
+    text[..line_end].lines().rev().find_map(header_name)
+}
+
+/// `Some("name")` when the line is a `[name]` table header (not an array of tables).
+fn header_name(line: &str) -> Option<String> {
+    let t = line.split('#').next().unwrap_or("").trim();
+    (t.starts_with('[') && t.ends_with(']') && !t.starts_with("[["))
+        .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_string())
 }
 
 #[cfg(test)]

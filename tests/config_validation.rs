@@ -223,8 +223,7 @@ fn invalid_files_name_the_field() {
 /// only looks *before* the span, lands on the previous section (or none). Run with
 /// `cargo test --test config_validation -- --ignored` once config.rs is fixed.
 #[test]
-#[ignore = "src/config.rs names these fields wrongly (section lookup); reported, not ours to fix"]
-fn invalid_files_misnamed_by_config_section_lookup() {
+fn invalid_files_with_commented_headers_or_missing_keys_name_the_field() {
     let cases: Vec<(&str, String, &str)> = vec![
         (
             "unknown section",
