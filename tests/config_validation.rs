@@ -216,12 +216,9 @@ fn invalid_files_name_the_field() {
     );
 }
 
-/// Cases that `src/config.rs` names wrongly today (`field_from_toml_error`/`section_at`):
-/// a `[section]` header followed by a comment (`[traction]   # C8`) is not recognised as a
-/// header, so keys there are attributed to the last comment-free header (`[bearing]` or
-/// `[contact]`); and toml reports a missing key at the table header itself, so the lookup, which
-/// only looks *before* the span, lands on the previous section (or none). Run with
-/// `cargo test --test config_validation -- --ignored` once config.rs is fixed.
+/// Field naming where the toml error's position is awkward: a `[section]` header followed by a
+/// comment (`[traction]   # C8`), a missing key (toml reports it at the table header itself) and
+/// an unknown section (reported at its own header).
 #[test]
 fn invalid_files_with_commented_headers_or_missing_keys_name_the_field() {
     let cases: Vec<(&str, String, &str)> = vec![
