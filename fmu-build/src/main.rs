@@ -12,13 +12,13 @@
 
 use clap::Parser;
 use raceway::config::{BearingFile, DEFAULT_PRESET, PRESETS};
-use raceway::fmi::ballbearing::{BallBearing, BEARING_RESOURCE};
+use raceway::fmi::ballbearing::BEARING_RESOURCE;
 use raceway::fmi::bindings::*;
 use raceway::fmi::shell as sh;
 use raceway::fmi::shell::Variable;
 use std::ffi::{CStr, CString};
 use std::io::Write;
-use std::os::raw::c_char;
+use std::os::raw::{c_char, c_int, c_void};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -87,10 +87,93 @@ fn build_cdylib() -> PathBuf {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Reference run through the FMI shell (the same code as the shared library)
+// Reference run through the shipped shared library itself (dlopen), so that any importer
+// loading the FMU reproduces it bit for bit
 // ---------------------------------------------------------------------------------------------
 
-/// Logger for the in-process run. With the format "%s" the message is the sixth argument,
+#[link(name = "dl")]
+extern "C" {
+    fn dlopen(filename: *const c_char, flag: c_int) -> *mut c_void;
+    fn dlsym(handle: *mut c_void, symbol: *const c_char) -> *mut c_void;
+    fn dlerror() -> *const c_char;
+}
+const RTLD_NOW: c_int = 2;
+const RTLD_LOCAL: c_int = 0;
+
+type VrArr = *const Fmi2ValueReference;
+
+/// The FMI functions the reference run needs, resolved from the shared library.
+struct Api {
+    instantiate: unsafe extern "C" fn(
+        Fmi2String,
+        Fmi2Type,
+        Fmi2String,
+        Fmi2String,
+        *const Fmi2CallbackFunctions,
+        Fmi2Boolean,
+        Fmi2Boolean,
+    ) -> Fmi2Component,
+    free_instance: unsafe extern "C" fn(Fmi2Component),
+    setup_experiment:
+        unsafe extern "C" fn(Fmi2Component, Fmi2Boolean, f64, f64, Fmi2Boolean, f64) -> Fmi2Status,
+    enter_init: unsafe extern "C" fn(Fmi2Component) -> Fmi2Status,
+    exit_init: unsafe extern "C" fn(Fmi2Component) -> Fmi2Status,
+    terminate: unsafe extern "C" fn(Fmi2Component) -> Fmi2Status,
+    set_real: unsafe extern "C" fn(Fmi2Component, VrArr, usize, *const f64) -> Fmi2Status,
+    get_real: unsafe extern "C" fn(Fmi2Component, VrArr, usize, *mut f64) -> Fmi2Status,
+    get_integer: unsafe extern "C" fn(Fmi2Component, VrArr, usize, *mut Fmi2Integer) -> Fmi2Status,
+    do_step: unsafe extern "C" fn(Fmi2Component, f64, f64, Fmi2Boolean) -> Fmi2Status,
+}
+
+impl Api {
+    /// Loads `path` (kept loaded for the life of the process).
+    #[allow(clippy::missing_transmute_annotations)] // the field types are the annotations
+    fn load(path: &Path) -> Result<Self, String> {
+        let cpath = CString::new(path.as_os_str().to_string_lossy().as_bytes())
+            .map_err(|_| "path contains NUL".to_string())?;
+        // SAFETY: plain dlopen/dlsym; each symbol is transmuted to its FMI 2.0 signature.
+        unsafe {
+            let h = dlopen(cpath.as_ptr(), RTLD_NOW | RTLD_LOCAL);
+            if h.is_null() {
+                let e = dlerror();
+                let msg = if e.is_null() {
+                    "unknown error".into()
+                } else {
+                    CStr::from_ptr(e).to_string_lossy().into_owned()
+                };
+                return Err(format!("dlopen {}: {msg}", path.display()));
+            }
+            let sym = |name: &str| -> Result<*mut c_void, String> {
+                let c = CString::new(name).expect("no NUL");
+                let p = dlsym(h, c.as_ptr());
+                if p.is_null() {
+                    Err(format!("{} does not export {name}", path.display()))
+                } else {
+                    Ok(p)
+                }
+            };
+            macro_rules! f {
+                ($name:literal) => {
+                    std::mem::transmute::<*mut c_void, _>(sym($name)?)
+                };
+            }
+            Ok(Api {
+                instantiate: f!("fmi2Instantiate"),
+                free_instance: f!("fmi2FreeInstance"),
+                setup_experiment: f!("fmi2SetupExperiment"),
+                enter_init: f!("fmi2EnterInitializationMode"),
+                exit_init: f!("fmi2ExitInitializationMode"),
+                terminate: f!("fmi2Terminate"),
+                set_real: f!("fmi2SetReal"),
+                get_real: f!("fmi2GetReal"),
+                get_integer: f!("fmi2GetInteger"),
+                do_step: f!("fmi2DoStep"),
+            })
+        }
+    }
+}
+
+/// Logger for the reference run. With the format "%s" the message is the sixth argument,
 /// which the C ABIs of linux64 (x86-64, aarch64) pass like a fixed argument.
 unsafe extern "C" fn print_logger(
     _env: Fmi2ComponentEnvironment,
@@ -127,17 +210,48 @@ fn input_rows(start: [f64; 4]) -> Vec<(f64, [f64; 4])> {
     ]
 }
 
-/// The input at a communication point as fmpy applies it (right-hand value at a discontinuity;
-/// times within a relative 1e-9 count as equal).
-fn input_at(rows: &[(f64, [f64; 4])], t: f64) -> [f64; 4] {
-    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-    let mut v = rows[0].1;
-    for (rt, rv) in rows {
-        if *rt < t || close(*rt, t) {
-            v = *rv;
-        }
+/// `math.isclose` with its defaults (relative 1e-9).
+fn isclose(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
+/// The input at a communication point exactly as fmpy's `Input.interpolate` computes it
+/// (continuous inputs, right-hand value at a duplicated time row when `after_event`), so that
+/// `fmpy.simulate_fmu` with the shipped `_in.csv` reproduces `_ref.csv` bit for bit.
+fn input_at(rows: &[(f64, [f64; 4])], time: f64, after_event: bool) -> [f64; 4] {
+    let n = rows.len();
+    if n < 2 {
+        return rows[0].1;
     }
-    v
+    let mut i0 = rows.partition_point(|(t, _)| *t < time);
+    if i0 == 0 {
+        return rows[0].1;
+    }
+    if i0 == n {
+        return rows[n - 1].1;
+    }
+    if isclose(time, rows[i0].0) && i0 < n - 1 && isclose(rows[i0].0, rows[i0 + 1].0) {
+        if after_event {
+            while i0 < n - 1 && isclose(rows[i0].0, rows[i0 + 1].0) {
+                i0 += 1;
+            }
+        }
+        return rows[i0].1;
+    }
+    let (t0, v0) = rows[i0 - 1];
+    let (t1, v1) = rows[i0];
+    let w0 = (t1 - time) / (t1 - t0);
+    let w1 = 1.0 - w0;
+    std::array::from_fn(|k| w0 * v0[k] + w1 * v1[k])
+}
+
+/// fmpy's next input event after `time` (duplicated time rows), or +inf.
+fn next_event(rows: &[(f64, [f64; 4])], time: f64) -> f64 {
+    rows.windows(2)
+        .filter(|w| w[0].0 == w[1].0)
+        .map(|w| w[0].0)
+        .find(|&t| t > time && !isclose(t, time))
+        .unwrap_or(f64::INFINITY)
 }
 
 struct Reference {
@@ -147,6 +261,7 @@ struct Reference {
 }
 
 fn reference_run(
+    lib: &Path,
     bearing: &BearingFile,
     bearing_text: &str,
     vars: &[Variable],
@@ -159,6 +274,16 @@ fn reference_run(
     let mut header = vec!["time".to_string()];
     header.extend(outputs.iter().map(|v| v.name.clone()));
     let mut rows = Vec::new();
+    let api = match Api::load(lib) {
+        Ok(a) => a,
+        Err(e) => {
+            return Reference {
+                header,
+                rows,
+                note: Some(e),
+            }
+        }
+    };
     let guid = CString::new(raceway::fmi::guid(bearing)).expect("no NUL");
     // Resources: a temporary folder with the bearing, like the unzipped FMU.
     let dir = std::env::temp_dir().join(format!("fmu-build-ref-{}", std::process::id()));
@@ -199,7 +324,7 @@ fn reference_run(
         .map(|v| v.vr)
         .collect();
     let note = unsafe {
-        let c = sh::instantiate::<BallBearing>(
+        let c = (api.instantiate)(
             c"reference".as_ptr(),
             FMI2_CO_SIMULATION,
             guid.as_ptr(),
@@ -214,10 +339,8 @@ fn reference_run(
         let sample = |c: Fmi2Component, t: f64| -> Result<Vec<String>, String> {
             let mut r = vec![0.0; real_out.len()];
             let mut i = vec![0; int_out.len()];
-            if sh::get_real::<BallBearing>(c, real_out.as_ptr(), r.len(), r.as_mut_ptr())
-                != Fmi2Status::Ok
-                || sh::get_integer::<BallBearing>(c, int_out.as_ptr(), i.len(), i.as_mut_ptr())
-                    != Fmi2Status::Ok
+            if (api.get_real)(c, real_out.as_ptr(), r.len(), r.as_mut_ptr()) != Fmi2Status::Ok
+                || (api.get_integer)(c, int_out.as_ptr(), i.len(), i.as_mut_ptr()) != Fmi2Status::Ok
             {
                 return Err(format!("reading the outputs at t = {t} failed"));
             }
@@ -240,45 +363,54 @@ fn reference_run(
                 }
             };
             ok(
-                sh::setup_experiment::<BallBearing>(c, 1, RELTOL, START, 1, STOP),
+                (api.setup_experiment)(c, 1, RELTOL, START, 1, STOP),
                 "fmi2SetupExperiment",
             )?;
+            ok((api.enter_init)(c), "fmi2EnterInitializationMode")?;
+            let u = input_at(inputs, START, false);
             ok(
-                sh::enter_initialization_mode::<BallBearing>(c),
-                "fmi2EnterInitializationMode",
-            )?;
-            let u = input_at(inputs, START);
-            ok(
-                sh::set_real::<BallBearing>(c, input_vrs.as_ptr(), 4, u.as_ptr()),
+                (api.set_real)(c, input_vrs.as_ptr(), 4, u.as_ptr()),
                 "fmi2SetReal",
             )?;
-            ok(
-                sh::exit_initialization_mode::<BallBearing>(c),
-                "fmi2ExitInitializationMode",
-            )?;
+            ok((api.exit_init)(c), "fmi2ExitInitializationMode")?;
             rows.push(sample(c, START)?);
-            let n = ((STOP - START) / STEP).round() as usize;
-            let mut t = START;
-            for k in 0..n {
-                // fmpy's communication points: start + (k+1)·interval, not an accumulated sum
-                let next = START + (k + 1) as f64 * STEP;
-                let u = input_at(inputs, t);
+            // fmpy's co-simulation loop (simulateCS): regular points start + (n+1)·interval,
+            // input events in between, the last point clipped to the stop time.
+            let mut time = START;
+            let mut n_steps = 0u64;
+            loop {
+                if time > STOP || isclose(time, STOP) {
+                    break;
+                }
+                let next_regular = START + (n_steps + 1) as f64 * STEP;
+                let mut next = next_regular;
+                let ev = next_event(inputs, time);
+                if next > ev && !isclose(next, ev) {
+                    next = ev;
+                }
+                if next > STOP && !isclose(next, STOP) {
+                    next = STOP;
+                }
+                let u = input_at(inputs, time, true);
                 ok(
-                    sh::set_real::<BallBearing>(c, input_vrs.as_ptr(), 4, u.as_ptr()),
+                    (api.set_real)(c, input_vrs.as_ptr(), 4, u.as_ptr()),
                     "fmi2SetReal",
                 )?;
                 ok(
-                    sh::do_step::<BallBearing>(c, t, next - t, 1),
-                    &format!("fmi2DoStep at t = {t}"),
+                    (api.do_step)(c, time, next - time, 1),
+                    &format!("fmi2DoStep at t = {time}"),
                 )?;
-                t = next;
-                rows.push(sample(c, t)?);
+                time = next;
+                rows.push(sample(c, time)?);
+                if isclose(time, next_regular) {
+                    n_steps += 1;
+                }
             }
-            ok(sh::terminate::<BallBearing>(c), "fmi2Terminate")?;
+            ok((api.terminate)(c), "fmi2Terminate")?;
             Ok(())
         };
         let r = run(&mut rows);
-        sh::free_instance::<BallBearing>(c);
+        (api.free_instance)(c);
         r.err()
     };
     let _ = std::fs::remove_dir_all(&dir);
@@ -302,6 +434,28 @@ fn quoted(names: &[String]) -> String {
 }
 
 // ---------------------------------------------------------------------------------------------
+
+/// Copies the library to `<target>/fmu/stage/BallBearing.so`, without debug info when
+/// `strip` is available (the release profile keeps line tables for backtraces).
+fn stage_library(lib: &Path) -> PathBuf {
+    let dir = target_dir().join("fmu").join("stage");
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
+    let out = dir.join("BallBearing.so");
+    let _ = std::fs::remove_file(&out);
+    let stripped = Command::new("strip")
+        .arg("--strip-debug")
+        .arg("-o")
+        .arg(&out)
+        .arg(lib)
+        .status()
+        .map(|s| s.success())
+        .unwrap_or(false);
+    if !stripped {
+        eprintln!("fmu-build: note: `strip` unavailable or failed; shipping the library with its debug info");
+        std::fs::copy(lib, &out).unwrap_or_else(|e| fail(format!("{}: {e}", out.display())));
+    }
+    out
+}
 
 fn main() {
     let args = Args::parse();
@@ -335,7 +489,8 @@ fn main() {
     };
 
     let lib = args.lib.clone().unwrap_or_else(build_cdylib);
-    let so = std::fs::read(&lib).unwrap_or_else(|e| fail(format!("{}: {e}", lib.display())));
+    let staged = stage_library(&lib);
+    let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
 
     let xml = raceway::fmi::model_description_xml(&bearing);
     let vars: Vec<Variable> = raceway::fmi::variables::table(&bearing)
@@ -369,7 +524,7 @@ fn main() {
         }
     } else {
         eprintln!("fmu-build: reference run ({START} .. {STOP} s, step {STEP} s)");
-        reference_run(&bearing, &bearing_text, &vars, &inputs)
+        reference_run(&staged, &bearing, &bearing_text, &vars, &inputs)
     };
     let mut ref_csv = if reference.header.is_empty() {
         String::from("\"time\"\n")
