@@ -80,6 +80,10 @@ pub struct LumpedModel {
     /// Static ring displacement relative to the outer ring from L1 (for the initial state).
     ring_offset: [f64; 3],
     zones: Vec<Zone>,
+    /// Compliance K^(−2/3) of the race without the spall.
+    c_other: f64,
+    /// (sin, cos) of each ball's offset 2πj/z from ball 0.
+    ball_offsets: Vec<(f64, f64)>,
 }
 
 impl LumpedModel {
@@ -123,6 +127,13 @@ impl LumpedModel {
             l1_inputs: *inputs,
             ring_offset: [0.0; 3],
             zones: vec![Zone::Outside; bearing.z],
+            c_other: match scene.defect.as_ref().map(|d| d.ring) {
+                Some(Race::Inner) => bearing.k_outer.powf(-2.0 / 3.0),
+                _ => bearing.k_inner.powf(-2.0 / 3.0),
+            },
+            ball_offsets: (0..bearing.z)
+                .map(|j| (TAU * j as f64 / bearing.z as f64).sin_cos())
+                .collect(),
         };
         m.theta_start = m.choose_theta_start();
         m.solve_l1(bearing, inputs)?;
@@ -185,7 +196,7 @@ impl LumpedModel {
     }
 
     /// Azimuth of ball j and its rate, at cage angle θ_c and cage rate ω_c.
-    #[inline]
+    #[inline(always)]
     fn ball_angle(&self, j: usize, cage: f64, cage_rate: f64) -> (f64, f64) {
         let base = self.theta_start + TAU * j as f64 / self.z as f64 + cage;
         if self.jitter_sigma == 0.0 {
@@ -256,9 +267,17 @@ impl LumpedModel {
         let vy = y[VY] - y[VYP];
         let vz = y[VZ] - y[VZP];
         let cage_rate = self.cage_rate();
+        // Without jitter the balls are equally spaced: one sin_cos for the cage, then a rotation
+        // by each ball's fixed offset.
+        let (s0, c0) = (self.theta_start + y[CAGE]).sin_cos();
         for j in 0..self.z {
             let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
-            let (s, c) = theta.sin_cos();
+            let (s, c) = if self.jitter_sigma == 0.0 {
+                let (sj, cj) = self.ball_offsets[j];
+                (s0 * cj + c0 * sj, c0 * cj - s0 * sj)
+            } else {
+                theta.sin_cos()
+            };
             // e_r(θ) = (0, −sin θ, cos θ); de_r/dθ = e_θ = (0, −cos θ, −sin θ).
             let (ery, erz) = (-s, c);
             let ax = self.bd * self.sin_a0 + dx;
@@ -288,11 +307,9 @@ impl LumpedModel {
                     if let Some(c) = d.contact_at(y_b) {
                         delta -= c.g;
                         delta_rate -= c.dg_dy * y_rate;
-                        let k_other = match d.ring() {
-                            Race::Inner => self.k_outer,
-                            Race::Outer => self.k_inner,
-                        };
-                        k = (c.k_edge.powf(-2.0 / 3.0) + k_other.powf(-2.0 / 3.0)).powf(-1.5);
+                        // Series constant with the defective race's blended compliance.
+                        let c_sum = c.k_edge.powf(-2.0 / 3.0) + self.c_other;
+                        k = 1.0 / (c_sum * c_sum.sqrt());
                     }
                 }
             }
