@@ -131,10 +131,14 @@ pub fn run(args: Args) -> Result<(), String> {
         "sample_rate": scene.output.sample_rate,
         "skip": scene.output.skip,
         "shaft_hz": fs,
+        // What the model implies: cage-based FTF/BPFO/BPFI from the cage speed the model
+        // uses; BSF and 2·BSF are kinematic at α0 (the lumped level has no ball spin).
         "fault_frequencies": {
             "ftf": ftf,
             "bpfo": z * ftf,
             "bpfi": z * (fs - ftf),
+            "bsf": kin.bsf,
+            "two_bsf": kin.two_bsf,
         },
         "kinematic_frequencies": kin,
         "solver": {
