@@ -395,8 +395,20 @@ fn speed_forces(g: &Geometry, omega: f64, a: [f64; 2], x: [f64; 2]) -> ([f64; 2]
     let alpha_o = x[0].atan2(x[1]);
     let alpha_i = (a[0] - x[0]).atan2(a[1] - x[1]);
     let rc = outer_race_control(b, alpha_i, alpha_o);
-    let wc = rc.cage_ratio * omega;
-    let wr = rc.spin_ratio * omega;
+    // Far from equilibrium (absurd angles) the race-control formulas can blow up (g + h → 0);
+    // keep them bounded there: physically 0 ≤ ω_c/Ω ≤ 1.
+    let cage_ratio = if rc.cage_ratio.is_finite() {
+        rc.cage_ratio.clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    let spin_ratio = if rc.spin_ratio.is_finite() {
+        rc.spin_ratio.clamp(-b.dm / b.d, b.dm / b.d)
+    } else {
+        0.0
+    };
+    let wc = cage_ratio * omega;
+    let wr = spin_ratio * omega;
     let fc = b.ball_mass * (g.r_go + x[1]) * wc * wc;
     let fg = 2.0 * b.ball_inertia * wc * wr * (-rc.beta).sin() / b.d;
     let (so, co) = alpha_o.sin_cos();
@@ -509,71 +521,171 @@ fn solve_ball(
         // Exact: no centrifugal or gyroscopic force, the contacts are collinear.
         return Ok(eval_ball(g, omega, theta, a, xz));
     }
-    let mut x = match x0 {
-        Some(x) if x[0].is_finite() && x[1].is_finite() && norm2(x) > g.ro => x,
-        _ => {
-            // make sure the outer contact is closed so the Jacobian is regular
-            let wc = 0.5 * omega.abs();
-            let fc = g.b.ball_mass * 0.5 * g.b.dm * wc * wc;
-            let d_c = (fc / g.b.k_outer).powf(2.0 / 3.0);
-            let n = norm2(xz);
-            let r = n.max(g.ro + d_c);
-            [xz[0] / n * r, xz[1] / n * r]
+    // A ball whose inner contact is open rests on the outer groove bottom (α_o = 0, where
+    // β = 0 and the gyroscopic friction vanishes) under its centrifugal force alone.
+    let xu = unloaded_ball(g, omega, a);
+    if norm2([a[0] - xu[0], a[1] - xu[1]]) - g.ri <= 0.0 {
+        let ev = eval_ball(g, omega, theta, a, xu);
+        if norm2(ev.residual) <= TOL_FORCE {
+            return Ok(ev);
         }
-    };
-    let step_cap = 0.1 * g.ro;
+    }
+    // Loaded ball: Newton from the warm start, else from the zero-speed solution.
+    // The start has the outer contact pressed at least by the centrifugal force, so the
+    // Jacobian is regular (an open outer contact leaves only the weak speed-force terms).
+    let d_c = xu[1] - g.ro;
+    let mut best: Option<BallEval> = None;
+    let starts = [
+        x0.filter(|x| x[0].is_finite() && x[1].is_finite() && norm2(*x) > 0.5 * g.ro),
+        Some(xz),
+        pinched_start(g, a, d_c),
+    ];
+    for start in starts.into_iter().flatten() {
+        let n = norm2(start);
+        let r = n.max(g.ro + d_c);
+        let x = [start[0] / n * r, start[1] / n * r];
+        let ev = newton_ball(g, omega, j, a, x);
+        let rn = norm2(ev.residual);
+        if rn <= BALL_TOL_FORCE {
+            return Ok(ev);
+        }
+        if best.map_or(true, |b| rn < norm2(b.residual)) {
+            best = Some(ev);
+        }
+    }
+    match best {
+        Some(ev) if norm2(ev.residual) <= TOL_FORCE => Ok(ev),
+        Some(ev) => Err(QuasiStaticError::NotConverged {
+            stage: "per-ball",
+            iterations: MAX_BALL_ITER,
+            residual: norm2(ev.residual),
+        }),
+        None => Err(QuasiStaticError::NotConverged {
+            stage: "per-ball",
+            iterations: 0,
+            residual: f64::NAN,
+        }),
+    }
+}
+
+/// A start with both contacts engaged by about the centrifugal deflection: the intersection of
+/// the circles |X| = r_o + d and |A − X| = r_i + d nearest the outer groove bottom. It serves
+/// balls that the centrifugal force pushes into an inner contact open at zero speed.
+fn pinched_start(g: &Geometry, a: [f64; 2], d: f64) -> Option<[f64; 2]> {
+    let (r1, r2) = (g.ro + d, g.ri + d);
+    let dist = norm2(a);
+    if !(dist > (r1 - r2).abs() && dist < r1 + r2) {
+        return None;
+    }
+    let e = [a[0] / dist, a[1] / dist];
+    let n = [-e[1], e[0]];
+    let along = (r1 * r1 - r2 * r2 + dist * dist) / (2.0 * dist);
+    let h = (r1 * r1 - along * along).max(0.0).sqrt();
+    let p1 = [along * e[0] + h * n[0], along * e[1] + h * n[1]];
+    let p2 = [along * e[0] - h * n[0], along * e[1] - h * n[1]];
+    let ang = |p: [f64; 2]| p[0].atan2(p[1]).abs();
+    Some(if ang(p1) <= ang(p2) { p1 } else { p2 })
+}
+
+/// Centre of a ball held by its outer contact only: α_o = 0, `K_o δ_o^{3/2} = F_c`.
+fn unloaded_ball(g: &Geometry, omega: f64, a: [f64; 2]) -> [f64; 2] {
+    let mut x = [0.0, g.ro];
+    for _ in 0..30 {
+        let (f, _) = speed_forces(g, omega, a, x);
+        let d = (f[1].max(0.0) / g.b.k_outer).powf(2.0 / 3.0);
+        let xn = [0.0, g.ro + d];
+        let done = (xn[1] - x[1]).abs() <= 1e-17;
+        x = xn;
+        if done {
+            break;
+        }
+    }
+    x
+}
+
+/// Damped Newton on one ball from `x`; returns the best evaluation reached.
+fn newton_ball(g: &Geometry, omega: f64, j: usize, a: [f64; 2], mut x: [f64; 2]) -> BallEval {
+    let theta = g.theta[j];
     let mut ev = eval_ball(g, omega, theta, a, x);
     let mut rn = norm2(ev.residual);
     for _ in 0..MAX_BALL_ITER {
         if rn <= BALL_TOL_FORCE {
-            return Ok(ev);
+            break;
         }
+        // Two Newton directions: in polar coordinates (ρ, φ) about the outer groove centre,
+        // which follows the curved valley of a ball held by its outer contact alone, and in
+        // Cartesian X. Each with a backtracking line search on |R|.
+        let rho = norm2(x);
+        let phi = x[0].atan2(x[1]);
+        let e_o = [x[0] / rho, x[1] / rho];
+        let dphi = [e_o[1] * rho, -e_o[0] * rho]; // ∂X/∂φ
         let m = ev.jac;
-        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-        let scale = m[0][0].abs().max(m[1][1].abs()).max(1e-300);
-        let mut p = if det.abs() > 1e-14 * scale * scale {
+        let mp = [
             [
-                -(m[1][1] * ev.residual[0] - m[0][1] * ev.residual[1]) / det,
-                -(-m[1][0] * ev.residual[0] + m[0][0] * ev.residual[1]) / det,
-            ]
-        } else {
-            // both contacts open: move outward with the net force
-            let r = ev.residual;
-            let n = norm2(r).max(1e-300);
-            [r[0] / n * 1e-7, r[1] / n * 1e-7]
-        };
-        let pn = norm2(p);
-        if pn > step_cap {
-            p = [p[0] * step_cap / pn, p[1] * step_cap / pn];
-        }
-        let mut lambda = 1.0;
-        let mut accepted = false;
-        for _ in 0..40 {
-            let xt = [x[0] + lambda * p[0], x[1] + lambda * p[1]];
-            let et = eval_ball(g, omega, theta, a, xt);
-            let rt = norm2(et.residual);
-            if rt.is_finite() && rt < rn {
-                x = xt;
-                ev = et;
-                rn = rt;
-                accepted = true;
+                m[0][0] * e_o[0] + m[0][1] * e_o[1],
+                m[0][0] * dphi[0] + m[0][1] * dphi[1],
+            ],
+            [
+                m[1][0] * e_o[0] + m[1][1] * e_o[1],
+                m[1][0] * dphi[0] + m[1][1] * dphi[1],
+            ],
+        ];
+        let mut moved = false;
+        for polar in [true, false] {
+            let p = match solve2(if polar { mp } else { m }, ev.residual) {
+                Some(p) => p,
+                None => continue,
+            };
+            // cap the step: 10 % of the groove offset, 0.2 rad
+            let cap = if polar {
+                (0.1 * g.ro / p[0].abs().max(1e-300))
+                    .min(0.2 / p[1].abs().max(1e-300))
+                    .min(1.0)
+            } else {
+                (0.1 * g.ro / norm2(p).max(1e-300)).min(1.0)
+            };
+            let mut lambda = cap;
+            for _ in 0..40 {
+                let xt = if polar {
+                    let (r, f) = (rho + lambda * p[0], phi + lambda * p[1]);
+                    [r * f.sin(), r * f.cos()]
+                } else {
+                    [x[0] + lambda * p[0], x[1] + lambda * p[1]]
+                };
+                let et = eval_ball(g, omega, theta, a, xt);
+                let rt = norm2(et.residual);
+                if rt.is_finite() && rt < rn {
+                    x = xt;
+                    ev = et;
+                    rn = rt;
+                    moved = true;
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            if moved {
                 break;
             }
-            lambda *= 0.5;
         }
-        if !accepted {
+        if !moved {
             break;
         }
     }
-    if rn <= TOL_FORCE {
-        Ok(ev)
-    } else {
-        Err(QuasiStaticError::NotConverged {
-            stage: "per-ball",
-            iterations: MAX_BALL_ITER,
-            residual: rn,
-        })
+    ev
+}
+
+/// Newton step of a 2×2 system: solves `m p = −r`; None when singular.
+fn solve2(m: [[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    let scale = (m[0][0].abs() + m[0][1].abs()) * (m[1][0].abs() + m[1][1].abs());
+    if !(det.abs() > 1e-15 * scale) {
+        return None;
     }
+    let p = [
+        -(m[1][1] * r[0] - m[0][1] * r[1]) / det,
+        -(-m[1][0] * r[0] + m[0][0] * r[1]) / det,
+    ];
+    (p[0].is_finite() && p[1].is_finite()).then_some(p)
 }
 
 /// All balls at ring displacement `u`; `xs` is the warm start and is updated.
@@ -811,6 +923,23 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
         u0[2] = case.fz / fr * d;
     }
     let (mut u, it_convex) = convex_start(&g, f_ext, u0, active, limit)?;
+    // The deflection limit, checked on the zero-speed solution first (a crushing load can
+    // leave the per-ball problems at speed without a meaningful solution).
+    let share = 1.0 / (1.0 + (b.k_outer / b.k_inner).powf(2.0 / 3.0));
+    let share = share.max(1.0 - share);
+    let s_max = (0..b.z)
+        .map(|j| norm2(g.a(j, &u)) - g.ri - g.ro)
+        .fold(0.0_f64, f64::max);
+    let dlim = MAX_DEFLECTION_OVER_D * b.d;
+    if s_max * share > dlim {
+        return Err(QuasiStaticError::BeyondGeometry(format!(
+            "the load needs a contact deflection of {:.1} µm (at zero speed), above the limit \
+             {:.1} µm ({}% of D)",
+            s_max * share * 1e6,
+            dlim * 1e6,
+            MAX_DEFLECTION_OVER_D * 100.0
+        )));
+    }
 
     // Full problem.
     let z = b.z;
@@ -861,7 +990,11 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
                 u[1] + lambda * p[1],
                 u[2] + lambda * p[2],
             ];
-            let et = eval_ring(&g, omega, &ut, &xs)?;
+            // a trial point where some ball has no solution is simply rejected
+            let Ok(et) = eval_ring(&g, omega, &ut, &xs) else {
+                lambda *= 0.5;
+                continue;
+            };
             let rt = resid(&et.force);
             let rtn = inf_norm3(&rt);
             if rtn < rn || (rtn <= TOL_FORCE && rn <= TOL_FORCE) {
