@@ -126,8 +126,10 @@ def main():
     ax[2].plot(f_env, env, lw=0.8)
     for k in range(1, 6):
         ax[2].axvline(k * kin["BPFO"], color="r", ls=":", lw=0.8)
+        ax[2].axvline(k * bpfo_model, color="g", ls="--", lw=0.6)
     ax[2].set(xlim=(0, 6000), xlabel="frequency [Hz]", ylabel="amplitude [m/s²]",
-              title=f"Envelope spectrum (2–12 kHz band); peak {peak:.1f} Hz, kinematic BPFO {kin['BPFO']:.1f} Hz (red)")
+              title=f"Envelope spectrum (2–12 kHz band): peak {peak:.1f} Hz; "
+                    f"model BPFO {bpfo_model:.1f} Hz (green), kinematic {kin['BPFO']:.1f} Hz (red)")
     fig.tight_layout()
     out = pathlib.Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
