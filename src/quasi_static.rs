@@ -549,7 +549,7 @@ fn solve_ball(
         if rn <= BALL_TOL_FORCE {
             return Ok(ev);
         }
-        if best.map_or(true, |b| rn < norm2(b.residual)) {
+        if best.is_none_or(|b| rn < norm2(b.residual)) {
             best = Some(ev);
         }
     }
@@ -678,7 +678,7 @@ fn newton_ball(g: &Geometry, omega: f64, j: usize, a: [f64; 2], mut x: [f64; 2])
 fn solve2(m: [[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
     let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
     let scale = (m[0][0].abs() + m[0][1].abs()) * (m[1][0].abs() + m[1][1].abs());
-    if !(det.abs() > 1e-15 * scale) {
+    if det.is_nan() || det.abs() <= 1e-15 * scale {
         return None;
     }
     let p = [
