@@ -3,6 +3,7 @@
 use raceway::config::DEFAULT_PRESET;
 use raceway::geometry::Bearing;
 use raceway::kinematics::fault_frequencies;
+use std::fmt::Write as _;
 
 /// Arguments of `raceway frequencies`.
 #[derive(clap::Args)]
@@ -23,6 +24,7 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> Result<(), String> {
+    let mut out = String::new();
     if !args.speed_rpm.is_finite() {
         return Err(format!(
             "--speed-rpm {}: not a finite number",
@@ -43,7 +45,8 @@ pub fn run(args: Args) -> Result<(), String> {
     let f = fault_frequencies(&b, fs, alpha_deg.to_radians());
     if args.json {
         let text = serde_json::to_string_pretty(&f).map_err(|e| e.to_string())?;
-        println!("{text}");
+        let _ = writeln!(out, "{text}");
+        emit(&out);
         return Ok(());
     }
     let name = if b.file.name.is_empty() {
@@ -51,17 +54,19 @@ pub fn run(args: Args) -> Result<(), String> {
     } else {
         b.file.name.as_str()
     };
-    println!(
+    let _ = writeln!(
+        out,
         "Bearing {name}: z = {}, D = {:.3} mm, dm = {:.3} mm, contact angle {alpha_deg:.2}°",
         b.z,
         b.d * 1e3,
         b.dm * 1e3
     );
-    println!(
+    let _ = writeln!(
+        out,
         "Shaft {} rpm (fs = {:.3} Hz), outer ring fixed, pure rolling",
         args.speed_rpm, fs
     );
-    println!();
+    let _ = writeln!(out);
     let ratio = |x: f64| if fs != 0.0 { x / fs } else { 0.0 };
     let rows = [
         ("FTF", f.ftf, "cage"),
@@ -70,9 +75,16 @@ pub fn run(args: Args) -> Result<(), String> {
         ("BSF", f.bsf, "ball spin"),
         ("2BSF", f.two_bsf, "ball defect"),
     ];
-    println!("  {:<5} {:>12}   {:>9}", "", "Hz", "× fs");
+    let _ = writeln!(out, "  {:<5} {:>12}   {:>9}", "", "Hz", "× fs");
     for (label, v, what) in rows {
-        println!("  {label:<5} {v:>12.3}   {:>9.5}   {what}", ratio(v));
+        let _ = writeln!(out, "  {label:<5} {v:>12.3}   {:>9.5}   {what}", ratio(v));
     }
+    emit(&out);
     Ok(())
+}
+
+/// Writes the output in one go; a closed pipe (e.g. `| head`) is not an error.
+fn emit(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }

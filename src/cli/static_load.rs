@@ -6,6 +6,7 @@ use raceway::geometry::Bearing;
 use raceway::quasi_static::{is_loaded, solve, LoadCase};
 use serde_json::json;
 use std::f64::consts::TAU;
+use std::fmt::Write as _;
 
 /// Arguments of `raceway static`.
 #[derive(clap::Args)]
@@ -29,6 +30,7 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> Result<(), String> {
+    let mut out = String::new();
     for (name, v) in [
         ("--fa", args.fa),
         ("--fr", args.fr),
@@ -70,7 +72,7 @@ pub fn run(args: Args) -> Result<(), String> {
                 })
             })
             .collect();
-        let out = json!({
+        let doc = json!({
             "bearing": name,
             "speed_rpm": args.speed_rpm,
             "fa": args.fa,
@@ -87,12 +89,14 @@ pub fn run(args: Args) -> Result<(), String> {
             "residual": q.residual,
             "balls": balls,
         });
-        let text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
-        println!("{text}");
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
+        let _ = writeln!(out, "{text}");
+        emit(&out);
         return Ok(());
     }
 
-    println!(
+    let _ = writeln!(
+        out,
         "Bearing {name}: z = {}, α0 = {:.2}°; Fa = {} N (+x), Fr = {} N (−z), shaft {} rpm",
         b.z,
         b.alpha0.to_degrees(),
@@ -100,27 +104,34 @@ pub fn run(args: Args) -> Result<(), String> {
         args.fr,
         args.speed_rpm
     );
-    println!(
+    let _ = writeln!(
+        out,
         "Solved in {} Newton iterations, force residual {:.1e} N",
         q.iterations, q.residual
     );
-    println!();
-    println!("Inner-ring displacement relative to the outer ring:");
-    println!(
+    let _ = writeln!(out);
+    let _ = writeln!(out, "Inner-ring displacement relative to the outer ring:");
+    let _ = writeln!(
+        out,
         "  δa = {:9.4} µm   δr = {:9.4} µm   (δy = {:.4} µm, δz = {:.4} µm)",
         um(q.delta_axial),
         um(q.delta_radial()),
         um(q.delta_y),
         um(q.delta_z)
     );
-    println!();
-    println!("Balls (θ from +z toward −y; load zone of Fr at θ = 180°):");
-    println!(
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "Balls (θ from +z toward −y; load zone of Fr at θ = 180°):"
+    );
+    let _ = writeln!(
+        out,
         "  {:>3} {:>7} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}",
         "j", "θ [°]", "Q_i [N]", "Q_o [N]", "α_i [°]", "α_o [°]", "F_c [N]", "F_g [N]", "FTF [Hz]"
     );
     for (j, e) in q.balls.iter().enumerate() {
-        println!(
+        let _ = writeln!(
+            out,
             "  {:>3} {:>7.2} {:>9.2} {:>9.2} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}{}",
             j,
             e.theta.to_degrees(),
@@ -138,24 +149,34 @@ pub fn run(args: Args) -> Result<(), String> {
             }
         );
     }
-    println!();
-    println!("Stiffness ∂F/∂δ [N/m] (rows F_x, F_y, F_z; columns δx, δy, δz):");
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "Stiffness ∂F/∂δ [N/m] (rows F_x, F_y, F_z; columns δx, δy, δz):"
+    );
     for row in &q.stiffness {
-        println!("  {:>12.4e} {:>12.4e} {:>12.4e}", row[0], row[1], row[2]);
+        let _ = writeln!(
+            out,
+            "  {:>12.4e} {:>12.4e} {:>12.4e}",
+            row[0], row[1], row[2]
+        );
     }
-    println!();
+    let _ = writeln!(out);
     if args.speed_rpm == 0.0 {
-        println!("Shaft at rest: no cage speed.");
+        let _ = writeln!(out, "Shaft at rest: no cage speed.");
     } else {
-        println!(
+        let _ = writeln!(
+            out,
             "Outer-race control, mean over loaded balls: cage {:.3} rad/s, spin {:.1} rad/s",
             q.cage_speed, q.spin_speed
         );
-        println!(
+        let _ = writeln!(
+            out,
             "  FTF {:.3} Hz   BPFO {:.2} Hz   BPFI {:.2} Hz   BSF {:.2} Hz   2BSF {:.2} Hz",
             freq.ftf, freq.bpfo, freq.bpfi, freq.bsf, freq.two_bsf
         );
     }
+    emit(&out);
     Ok(())
 }
 
@@ -167,4 +188,10 @@ fn um(x: f64) -> f64 {
     } else {
         v
     }
+}
+
+/// Writes the output in one go; a closed pipe (e.g. `| head`) is not an error.
+fn emit(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }
