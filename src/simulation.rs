@@ -7,9 +7,8 @@
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
-use crate::models::lumped::LumpedModel;
 use crate::models::Model;
-use crate::scene::{Fidelity, MethodName, Scene};
+use crate::scene::{MethodName, Scene};
 use crate::solver::{Integrator, IntegratorState, Method, Options, StepView, System};
 use std::fmt;
 
@@ -254,16 +253,7 @@ impl Simulation {
         let bearing = Bearing::new(&scene.bearing)?;
         let inputs = Inputs::from_scene(scene);
         inputs.check()?;
-        let mut model: Box<dyn Model> = match scene.fidelity {
-            Fidelity::Lumped => Box::new(LumpedModel::new(scene, &bearing, &inputs)?),
-            other => {
-                return Err(SimError::Unsupported(format!(
-                    "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
-                    other.name(),
-                    other.code()
-                )))
-            }
-        };
+        let mut model = crate::models::build(scene, &bearing, &inputs)?;
         let n = model.dim();
         let mut y0 = vec![0.0; n];
         model.initial_state(&mut y0);

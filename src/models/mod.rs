@@ -8,7 +8,25 @@
 
 pub mod lumped;
 
-use crate::simulation::Inputs;
+use crate::geometry::Bearing;
+use crate::scene::{Fidelity, Scene};
+use crate::simulation::{Inputs, SimError};
+
+/// Builds the model of the scene's fidelity level (one arm per level).
+pub fn build(
+    scene: &Scene,
+    bearing: &Bearing,
+    inputs: &Inputs,
+) -> Result<Box<dyn Model>, SimError> {
+    match scene.fidelity {
+        Fidelity::Lumped => Ok(Box::new(lumped::LumpedModel::new(scene, bearing, inputs)?)),
+        other => Err(SimError::Unsupported(format!(
+            "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
+            other.name(),
+            other.code()
+        ))),
+    }
+}
 
 /// One dynamic model of the ladder.
 pub trait Model: Send {
