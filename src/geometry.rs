@@ -163,12 +163,14 @@ impl Bearing {
     }
 
     /// Groove curvature-centre circle of a race in the ring frame: (axial offset x_g, radius R_g)
-    /// [m] (spec §2.1; the inner circle is moved outward by the clearance along the contact line).
+    /// [m] (spec §2.1). With play s0 the inner circle moves *toward* the outer one along the
+    /// contact line, so the unloaded groove-centre distance is B·D − s0: the balls are free until
+    /// the rings have moved s0. (The spec says "outward", which would make s0 an interference.)
     pub fn groove_centre(&self, race: Race) -> (f64, f64) {
         let (s, c) = self.alpha0.sin_cos();
         match race {
             Race::Inner => {
-                let e = (self.f_inner - 0.5) * self.d + self.clearance;
+                let e = (self.f_inner - 0.5) * self.d - self.clearance;
                 (e * s, 0.5 * self.dm + e * c)
             }
             Race::Outer => {
@@ -178,9 +180,10 @@ impl Bearing {
         }
     }
 
-    /// Unloaded distance between the two groove centres, B·D + s0 [m].
+    /// Unloaded distance between the two groove centres, B·D − s0 [m]: a ball touches both
+    /// races (zero total approach) when the distance is B·D.
     pub fn groove_centre_distance(&self) -> f64 {
-        self.b_total * self.d + self.clearance
+        self.b_total * self.d - self.clearance
     }
 }
 
@@ -190,6 +193,19 @@ mod tests {
 
     fn table1() -> Bearing {
         Bearing::load("niu2014-table1").unwrap()
+    }
+
+    #[test]
+    fn clearance_is_play_not_interference() {
+        let mut f = crate::config::BearingFile::load("niu2014-table1").unwrap();
+        f.bearing.clearance = 10e-6;
+        let b = Bearing::new(&f).unwrap();
+        let (xi, ri) = b.groove_centre(Race::Inner);
+        let (xo, ro) = b.groove_centre(Race::Outer);
+        let dist = (xi - xo).hypot(ri - ro);
+        // Total approach |A| − B·D is −s0 unloaded: a gap.
+        assert!((dist - b.b_total * b.d + 10e-6).abs() < 1e-15);
+        assert!((b.groove_centre_distance() - dist).abs() < 1e-15);
     }
 
     #[test]

@@ -436,3 +436,33 @@ fn failures_are_reported_quickly_with_reasons() {
         assert!(m.contains(&format!("'{name}'")), "{m}");
     }
 }
+
+#[test]
+fn clearance_is_play_narrowing_the_load_zone() {
+    use raceway::config::BearingFile;
+    let mut f = BearingFile::load("cwru-6205-de").unwrap();
+    let tight = raceway::geometry::Bearing::new(&f).unwrap();
+    f.bearing.clearance = 10e-6;
+    let loose = raceway::geometry::Bearing::new(&f).unwrap();
+    let case = raceway::quasi_static::LoadCase::from_fa_fr_rpm(0.0, 1000.0, 0.0);
+    let qt = raceway::quasi_static::solve(&tight, &case).unwrap();
+    let ql = raceway::quasi_static::solve(&loose, &case).unwrap();
+    let loaded = |q: &raceway::quasi_static::QuasiStatic| q.loaded_balls().count();
+    let q_max = |q: &raceway::quasi_static::QuasiStatic| {
+        q.balls.iter().map(|b| b.q_inner).fold(0.0, f64::max)
+    };
+    // Play concentrates the load on fewer balls (Stribeck: narrower zone, higher peak).
+    assert!(loaded(&ql) <= loaded(&qt));
+    assert!(
+        q_max(&ql) > 1.05 * q_max(&qt),
+        "{} vs {}",
+        q_max(&ql),
+        q_max(&qt)
+    );
+    // The ring moves through the play first: a larger radial displacement.
+    assert!(ql.delta_radial() > qt.delta_radial() + 5e-6);
+    // Unloaded, no ball touches: a clear error, not an interference fit.
+    let none = raceway::quasi_static::LoadCase::from_fa_fr_rpm(0.0, 0.0, 0.0);
+    let e = raceway::quasi_static::solve(&loose, &none).unwrap_err();
+    assert!(e.to_string().to_lowercase().contains("no ball"), "{e}");
+}

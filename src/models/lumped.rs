@@ -51,8 +51,10 @@ enum Zone {
 pub struct LumpedModel {
     bearing: Bearing,
     z: usize,
-    /// B·D + s0: unloaded distance of the groove centres [m].
+    /// B·D − s0: unloaded distance of the groove centres [m].
     bd: f64,
+    /// B·D: groove-centre distance at which a ball touches both races [m].
+    bd_touch: f64,
     sin_a0: f64,
     cos_a0: f64,
     k_series: f64,
@@ -102,6 +104,7 @@ impl LumpedModel {
             bearing: bearing.clone(),
             z: bearing.z,
             bd: bearing.groove_centre_distance(),
+            bd_touch: bearing.b_total * bearing.d,
             sin_a0: bearing.alpha0.sin(),
             cos_a0: bearing.alpha0.cos(),
             k_series: bearing.k_series(),
@@ -281,7 +284,7 @@ impl LumpedModel {
             let dax = vx;
             let dar = vy * ery + vz * erz + (dy * (-c) + dz * (-s)) * theta_rate;
             let len = (ax * ax + ar * ar).sqrt();
-            let mut delta = len - self.bd;
+            let mut delta = len - self.bd_touch;
             let mut delta_rate = (ax * dax + ar * dar) / len;
             let mut k = self.k_series;
             if let (Some(d), zone) = (&self.defect, self.zones[j]) {
