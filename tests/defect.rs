@@ -408,7 +408,7 @@ fn invalid_defects_name_the_field() {
     let b = table1();
     let cases: Vec<(DefectSpec, &str)> = vec![
         (spec(Race::Outer, 0.0, 0.2 * MM), "defect.width"),
-        (spec(Race::Outer, -1.0 * MM, 0.2 * MM), "defect.width"),
+        (spec(Race::Outer, -MM, 0.2 * MM), "defect.width"),
         (spec(Race::Outer, f64::NAN, 0.2 * MM), "defect.width"),
         (spec(Race::Outer, f64::INFINITY, 0.2 * MM), "defect.width"),
         (spec(Race::Outer, 13.0 * MM, 0.2 * MM), "defect.width"), // ≥ D

@@ -48,7 +48,7 @@ impl EventSystem for Ball {
         g[0] = y[0];
     }
     fn handle_event(&mut self, _i: usize, _t: f64, y: &mut [f64]) -> EventAction {
-        y[1] = -0.9 * y[1];
+        y[1] *= -0.9;
         EventAction::Continue
     }
 }
