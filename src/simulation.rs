@@ -9,7 +9,10 @@ use crate::config::ConfigError;
 use crate::geometry::Bearing;
 use crate::models::Model;
 use crate::scene::{MethodName, Scene};
-use crate::solver::{Integrator, IntegratorState, Method, Options, StepView, System};
+use crate::solver::{
+    AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method, Options,
+    StepView, System,
+};
 use std::fmt;
 
 /// The continuous inputs (the FMU's `shaft.speed`, `load.Fx/Fy/Fz`).
@@ -223,6 +226,20 @@ impl System for ModelSystem<'_> {
     }
 }
 
+impl EventSystem for ModelSystem<'_> {
+    fn n_events(&self) -> usize {
+        self.0.n_events()
+    }
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        self.0.events(t, y, g)
+    }
+    /// The advance stops at the event; the simulation then switches the mode exactly as at a
+    /// known-time stop (after the outputs of the samples before the event are taken).
+    fn handle_event(&mut self, _index: usize, _t: f64, _y: &mut [f64]) -> EventAction {
+        EventAction::Stop
+    }
+}
+
 /// The versioned, pointer-free snapshot of a simulation.
 #[derive(serde::Serialize, serde::Deserialize)]
 struct Snapshot {
@@ -371,9 +388,17 @@ impl Simulation {
             self.samples.clear();
             self.sample_times.clear();
             let result = {
+                let with_events = self.model.n_events() > 0;
                 let mut sys = ModelSystem(self.model.as_mut());
                 match sampling.as_mut() {
-                    None => self.integrator.advance(&mut sys, target, None),
+                    None if with_events => self
+                        .integrator
+                        .advance_with_events(&mut sys, target, None)
+                        .map(|o| matches!(o, AdvanceOutcome::Stopped { .. })),
+                    None => self
+                        .integrator
+                        .advance(&mut sys, target, None)
+                        .map(|_| false),
                     Some((dt, _)) => {
                         let dt = *dt;
                         let samples = &mut self.samples;
@@ -394,7 +419,15 @@ impl Simulation {
                                 k += 1;
                             }
                         };
-                        self.integrator.advance(&mut sys, target, Some(&mut obs))
+                        if with_events {
+                            self.integrator
+                                .advance_with_events(&mut sys, target, Some(&mut obs))
+                                .map(|o| matches!(o, AdvanceOutcome::Stopped { .. }))
+                        } else {
+                            self.integrator
+                                .advance(&mut sys, target, Some(&mut obs))
+                                .map(|_| false)
+                        }
                     }
                 }
             };
@@ -406,13 +439,16 @@ impl Simulation {
                     cb(ts, &out_buf);
                 }
             }
-            if let Err(e) = result {
-                return Err(SimError::Solver {
-                    t: self.integrator.t(),
-                    message: e.to_string(),
-                });
-            }
-            if stop.is_some() {
+            let event = match result {
+                Ok(event) => event,
+                Err(e) => {
+                    return Err(SimError::Solver {
+                        t: self.integrator.t(),
+                        message: e.to_string(),
+                    })
+                }
+            };
+            if stop.is_some() || event {
                 let t = self.integrator.t();
                 self.model.update_mode(t, self.integrator.y());
                 self.integrator.discontinuity();

@@ -48,8 +48,19 @@ pub trait Model: Send {
     /// The first known discontinuity strictly after `t` and not after `t_max`, if any.
     fn next_stop(&self, t: f64, y: &[f64], t_max: f64) -> Option<f64>;
 
-    /// Re-derives the frozen discrete mode for the interval that starts at `t`.
+    /// Re-derives the frozen discrete mode for the interval that starts at `t` (called after
+    /// every stop and every located event, and after inputs change).
     fn update_mode(&mut self, t: f64, y: &[f64]);
+
+    /// Number of state-event functions (e.g. a free ball reaching a spall edge); 0 = none.
+    /// Events are located on the dense output; the discrete mode stays frozen inside a step.
+    fn n_events(&self) -> usize {
+        0
+    }
+
+    /// Event functions g_i(t, y): a sign change inside a step is an event, after which
+    /// [`Model::update_mode`] is called at the located time.
+    fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
 
     /// Fills the output vector (layout of [`crate::simulation::output_table`]).
     fn outputs(&mut self, t: f64, y: &[f64], out: &mut [f64]);
