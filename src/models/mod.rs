@@ -6,6 +6,7 @@
 //! prescribed) at which the integrator must land and the model may switch a frozen discrete
 //! mode (spec `solvers.md`, "Events").
 
+pub mod full;
 pub mod lumped;
 
 use crate::geometry::Bearing;
@@ -20,6 +21,7 @@ pub fn build(
 ) -> Result<Box<dyn Model>, SimError> {
     match scene.fidelity {
         Fidelity::Lumped => Ok(Box::new(lumped::LumpedModel::new(scene, bearing, inputs)?)),
+        Fidelity::Full => Ok(Box::new(full::FullModel::new(scene, bearing, inputs)?)),
         other => Err(SimError::Unsupported(format!(
             "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
             other.name(),

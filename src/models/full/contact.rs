@@ -1,0 +1,280 @@
+//! One ball–race contact of the full model: geometry with changing contact angle (spec §2.2),
+//! Hertz force with contact damping (C6), the spall's three effects (§4.4–4.6) and strip
+//! traction (§3.1–3.4). Everything is scalar arithmetic on fixed-size arrays (no allocation).
+
+use crate::contact::traction::TractionCurve;
+use crate::defect::Defect;
+
+/// A 3-vector in inertial components.
+pub type V3 = [f64; 3];
+
+#[inline(always)]
+pub fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline(always)]
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+pub fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline(always)]
+pub fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+#[inline(always)]
+pub fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// Maximum number of traction strips.
+pub const MAX_STRIPS: usize = 32;
+
+/// Pose and motion of a ring (spec §1.1: small tilts, non-spinning frame, spin rate separate).
+#[derive(Debug, Clone, Copy)]
+pub struct RingPose {
+    /// Centre r_r [m].
+    pub p: V3,
+    /// Centre velocity [m/s].
+    pub v: V3,
+    /// Tilt vector β = (0, β_y, β_z) [rad].
+    pub beta: V3,
+    /// Tilt rates (0, β̇_y, β̇_z) [rad/s].
+    pub beta_rate: V3,
+    /// Spin rate about the ring axis [rad/s] (0 for the outer ring).
+    pub spin: f64,
+}
+
+impl RingPose {
+    /// Ring-frame components of an inertial vector: `T_ir v = v − β × v`.
+    #[inline(always)]
+    pub fn to_ring(&self, v: V3) -> V3 {
+        sub(v, cross(self.beta, v))
+    }
+
+    /// Inertial components of a ring-frame vector: `T_ir^T v = v + β × v`.
+    #[inline(always)]
+    pub fn to_inertial(&self, v: V3) -> V3 {
+        add(v, cross(self.beta, v))
+    }
+
+    /// Total angular velocity `Ω x_r + β̇` [rad/s].
+    #[inline(always)]
+    pub fn omega(&self) -> V3 {
+        let xr = self.to_inertial([1.0, 0.0, 0.0]);
+        add(scale(xr, self.spin), self.beta_rate)
+    }
+
+    /// Ball azimuth θ_br in the ring frame (eq. 3) of a ball at `p`.
+    #[inline]
+    pub fn azimuth(&self, p: V3) -> f64 {
+        let r = self.to_ring(sub(p, self.p));
+        (-r[1]).atan2(r[2])
+    }
+}
+
+/// Per-race constants of the contact law.
+#[derive(Debug, Clone, Copy)]
+pub struct RaceConst {
+    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame [m] (§2.1).
+    pub xg: f64,
+    pub rg: f64,
+    /// (f − ½) D: distance groove centre – ball centre at first touch [m].
+    pub e: f64,
+    /// Hertz constant [N/m^1.5].
+    pub k: f64,
+    /// Semi-major axis factor a* (a = a* Q^{1/3}).
+    pub a_star: f64,
+    /// Deformed-surface radius R_s = 2fD/(2f + 1) [m] (C7).
+    pub rs: f64,
+    /// Sign s_k of the contact angle (outer +1, inner −1).
+    pub sign: f64,
+}
+
+/// Strip layout (C7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).
+#[derive(Debug, Clone, Copy)]
+pub struct Strips {
+    pub n: usize,
+    pub s: [f64; MAX_STRIPS],
+    pub w: [f64; MAX_STRIPS],
+}
+
+impl Strips {
+    /// `n` equal strips over (−a, a), clamped to 1..=MAX_STRIPS.
+    pub fn new(n: usize) -> Self {
+        let n = n.clamp(1, MAX_STRIPS);
+        let mut s = [0.0; MAX_STRIPS];
+        let mut w = [0.0; MAX_STRIPS];
+        let prim = |x: f64| 0.75 * (x - x * x * x / 3.0);
+        for k in 0..n {
+            let lo = -1.0 + 2.0 * k as f64 / n as f64;
+            let hi = lo + 2.0 / n as f64;
+            s[k] = 0.5 * (lo + hi);
+            w[k] = prim(hi) - prim(lo);
+        }
+        Self { n, s, w }
+    }
+}
+
+/// Ball kinematics (inertial).
+#[derive(Debug, Clone, Copy)]
+pub struct BallKin {
+    pub p: V3,
+    pub v: V3,
+    pub omega: V3,
+}
+
+/// A spall on this race, seen by this ball in this interval (the half is frozen).
+#[derive(Debug, Clone, Copy)]
+pub struct DefectView<'a> {
+    pub defect: &'a Defect,
+    /// −1 / +1: the half of the spall (sign of y_b) frozen for this interval.
+    pub side: f64,
+    /// Shaft angle φ [rad] (for an inner-ring spall).
+    pub phi: f64,
+    /// θ̇_bd: the ball's angular speed relative to the spall [rad/s].
+    pub theta_bd_rate: f64,
+    /// Semi-major axis factor a* of the edge contact.
+    pub a_star: f64,
+}
+
+/// Result of one contact evaluation.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ContactOut {
+    /// Normal force Q ≥ 0 [N].
+    pub q: f64,
+    /// Elastic overlap on the (possibly tilted) normal [m] (≤ 0: open).
+    pub delta: f64,
+    /// Hertz constant used [N/m^1.5].
+    pub k: f64,
+    /// Force on the ball [N].
+    pub f: V3,
+    /// Moment on the ball about its centre [N m].
+    pub m: V3,
+    /// Normal force on the ring, Q n [N] (inertial components).
+    pub qn: V3,
+    /// The same with the normal in ring-frame components: its moment arm × this is the exact
+    /// generalised force conjugate to the small tilt angles (keeps the tilt conservative).
+    pub qn_ring: V3,
+    /// Contact angle α (eq. 5) [rad] of the intact groove.
+    pub alpha: f64,
+    /// True when the spall altered this contact.
+    pub in_defect: bool,
+}
+
+/// Evaluates one ball–race contact. `damping` is c_br; `traction` None = frictionless.
+#[inline]
+pub fn evaluate(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    traction: Option<(&TractionCurve, &Strips)>,
+    defect: Option<DefectView<'_>>,
+) -> ContactOut {
+    let rbr = sub(ball.p, ring.p);
+    let rr = ring.to_ring(rbr);
+    let rho = rr[1].hypot(rr[2]);
+    let (ey, ez) = (rr[1] / rho, rr[2] / rho);
+    let bx = rr[0] - race.xg;
+    let br = rho - race.rg;
+    let l = bx.hypot(br);
+    let mut delta = l - race.e;
+    let mut out = ContactOut {
+        delta,
+        alpha: (race.sign * bx).atan2(race.sign * br),
+        k: race.k,
+        ..Default::default()
+    };
+    if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return out;
+    }
+    let (n1, n3) = (bx / l, br / l);
+    let mut n_r = [n1, n3 * ey, n3 * ez];
+    let c2_r = [0.0, -ez, ey];
+    let mut n = ring.to_inertial(n_r);
+    let mut c2 = ring.to_inertial(c2_r);
+    // Approach rate against the groove-centre point (spin does not move the groove).
+    let gc = ring.to_inertial([race.xg, race.rg * ey, race.rg * ez]);
+    let v_gc = add(ring.v, cross(ring.beta_rate, gc));
+    let mut ddelta = dot(n, sub(ball.v, v_gc));
+    let mut k = race.k;
+    let mut a_star = race.a_star;
+    let mut rs = race.rs;
+    if let Some(dv) = defect {
+        let theta_br = (-rr[1]).atan2(rr[2]);
+        let tbd = dv.defect.theta_bd(theta_br, dv.phi);
+        let mut y_b = dv.defect.along_track(tbd);
+        if y_b * dv.side <= 0.0 {
+            y_b = dv.side * 1e-15;
+        }
+        if let Some(c) = dv.defect.contact_at(y_b) {
+            let y_rate = dv.defect.along_track_rate(tbd, dv.theta_bd_rate);
+            delta = c.deflection(delta);
+            ddelta = c.deflection_rate(ddelta, y_rate);
+            k = c.k_edge;
+            let (st, ct) = c.theta_dd.sin_cos();
+            n_r = add(scale(n_r, ct), scale(c2_r, st));
+            let nq = add(scale(n, ct), scale(c2, st));
+            c2 = sub(scale(c2, ct), scale(n, st));
+            n = nq;
+            a_star = dv.a_star;
+            rs = 2.0 * ball_radius;
+            out.in_defect = true;
+            out.delta = delta;
+            out.k = k;
+            if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return out;
+            }
+        }
+    }
+    let qe = k * delta * delta.sqrt();
+    let q = (qe + damping * ddelta).max(0.0);
+    out.q = q;
+    out.f = scale(n, -q);
+    out.qn = scale(n, q);
+    out.qn_ring = scale(n_r, q);
+    if q == 0.0 {
+        return out;
+    }
+    let Some((curve, strips)) = traction else {
+        return out;
+    };
+    let c1 = cross(c2, n);
+    let a = (a_star * qe.cbrt()).min(0.9 * ball_radius.min(rs));
+    let omega_r = ring.omega();
+    let w0 = sub(sub(ball.v, ring.v), cross(omega_r, rbr));
+    let dw = sub(ball.omega, omega_r);
+    let (a1, a2) = (dot(c1, w0), dot(c2, w0));
+    let (b1, b2, s) = (dot(dw, c2), dot(dw, c1), dot(dw, n));
+    let z0 = (ball_radius * ball_radius - a * a).sqrt() - (rs * rs - a * a).sqrt();
+    let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for kk in 0..strips.n {
+        let xi = a * strips.s[kk];
+        let zeta = (rs * rs - xi * xi).sqrt() + z0;
+        let u1 = a1 + zeta * b1;
+        let u2 = a2 + xi * s - zeta * b2;
+        let g = -q * strips.w[kk] * curve.kappa_over_u(u1.hypot(u2));
+        let (g1, g2) = (g * u1, g * u2);
+        f1 += g1;
+        f2 += g2;
+        mxi2 += xi * g2;
+        mze1 += zeta * g1;
+        mze2 += zeta * g2;
+    }
+    out.f = add(out.f, add(scale(c1, f1), scale(c2, f2)));
+    // r_cp × F_k = ξ f2 n + ζ f1 c2 − ζ f2 c1 (c1 × c2 = n, n × c1 = c2, n × c2 = −c1).
+    out.m = add(scale(n, mxi2), sub(scale(c2, mze1), scale(c1, mze2)));
+    out
+}

@@ -1,0 +1,105 @@
+//! Initial state of the full model from the quasi-static solution (spec §7).
+
+use super::layout::*;
+use super::FullModel;
+use crate::defect::Defect;
+use crate::geometry::{Bearing, Race};
+use crate::quasi_static::{self, LoadCase};
+use crate::simulation::{Inputs, SimError};
+use std::f64::consts::TAU;
+
+/// A representative ball load for the spall's blend length "b": the mean load of a ball carrying
+/// the axial load or the peak load of the radial load zone (Stribeck), at least 10 N.
+pub fn reference_ball_load(bearing: &Bearing, inputs: &Inputs) -> f64 {
+    let z = bearing.z as f64;
+    let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
+    let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;
+    axial.max(radial).max(10.0)
+}
+
+/// Ball 0's start azimuth: 0 (where L1 puts it), or an offset when that puts a ball within
+/// θ_e + 0.02 rad of the spall (§7 step 4).
+pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
+    let Some(d) = defect else { return 0.0 };
+    let clear = d.half_angle() + 0.02;
+    let spacing = TAU / z as f64;
+    let theta0 = match d.ring() {
+        Race::Outer | Race::Inner => d.theta0(),
+    };
+    [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
+        .into_iter()
+        .find(|&s| {
+            (0..z).all(|j| crate::defect::wrap(s + spacing * j as f64 - theta0).abs() > clear)
+        })
+        .unwrap_or(0.5 * spacing)
+}
+
+/// Fills `m.y0` and the reference cage ratio from L1 at the model's inputs.
+pub fn initial_state(m: &mut FullModel, bearing: &Bearing) -> Result<(), SimError> {
+    let inputs = m.inputs;
+    let case = LoadCase {
+        speed: inputs.shaft_speed,
+        fa: inputs.fx,
+        fy: inputs.fy,
+        fz: inputs.fz,
+    };
+    let qs = quasi_static::solve(bearing, &case).map_err(|e| {
+        SimError::Input(format!(
+            "the quasi-static (L1) start of the full model failed at shaft.speed = {:.3} rad/s, \
+             load = ({}, {}, {}) N: {e}",
+            inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
+        ))
+    })?;
+    let lay = m.lay;
+    let y = &mut m.y0;
+    y.iter_mut().for_each(|v| *v = 0.0);
+    // Common cage speed: mean ω_c of the loaded balls (§7 step 1).
+    let loaded: Vec<_> = qs.loaded_balls().collect();
+    let omega_c = if inputs.shaft_speed > 0.0 {
+        if loaded.is_empty() {
+            qs.cage_speed
+        } else {
+            loaded.iter().map(|b| b.cage_speed).sum::<f64>() / loaded.len() as f64
+        }
+    } else {
+        0.0
+    };
+    if inputs.shaft_speed > 0.0 {
+        m.cage_ratio = omega_c / inputs.shaft_speed;
+    }
+    let p = lay.pedestal();
+    let yp0 = inputs.fy / m.k_py;
+    let zp0 = inputs.fz / m.k_pz;
+    y[p + PY] = yp0;
+    y[p + PZ] = zp0;
+    let r = lay.ring();
+    y[r + RX] = qs.delta_axial;
+    y[r + RX + 1] = yp0 + qs.delta_y;
+    y[r + RX + 2] = zp0 + qs.delta_z;
+    let (xg, rg) = bearing.groove_centre(Race::Outer);
+    for (j, ball) in qs.balls.iter().enumerate().take(m.z) {
+        let b = lay.ball(j);
+        let theta_ref = m.theta_start + TAU * j as f64 / m.z as f64;
+        let (s, c) = theta_ref.sin_cos();
+        let radial = rg + ball.x[1];
+        let (py, pz) = (yp0 - radial * s, zp0 + radial * c);
+        let theta = (-py).atan2(pz);
+        y[b + BX] = xg + ball.x[0];
+        y[b + BR] = py.hypot(pz) - m.pitch_radius;
+        y[b + BTH] = crate::defect::wrap(theta - theta_ref);
+        y[b + BW] = omega_c;
+        // ω_b = ω_c e_x + ω_R ê_s, ê_s = cos β e_x − sin β e_r(θ).
+        let (sb, cb) = ball.beta.sin_cos();
+        let (st, ct) = theta.sin_cos();
+        let er = [0.0, -st, ct];
+        let wr = if inputs.shaft_speed > 0.0 {
+            ball.spin_speed
+        } else {
+            0.0
+        };
+        y[b + BOM] = omega_c + wr * cb;
+        y[b + BOM + 1] = -wr * sb * er[1];
+        y[b + BOM + 2] = -wr * sb * er[2];
+    }
+    Ok(())
+}

@@ -1,0 +1,72 @@
+//! State layout of the full model (spec §1.2), with deflection-scale states as deviations
+//! (solvers.md): ball radius relative to the pitch radius, ball azimuth relative to a reference
+//! cage angle ψ that turns at a constant rate.
+//!
+//! Per ball j (9 states from `9 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_x, ω_y, ω_z.
+//! Then the inner ring (10): x, y, z, ẋ, ẏ, ż, β_y, β_z, β̇_y, β̇_z; the pedestal (4):
+//! y_p, z_p, ẏ_p, ż_p; and two angles: the reference cage angle ψ and the shaft angle φ
+//! (integrated from the inputs so that a speed change keeps them continuous).
+
+/// States per ball.
+pub const PER_BALL: usize = 9;
+/// Offsets inside a ball's block.
+pub const BX: usize = 0;
+pub const BR: usize = 1;
+pub const BTH: usize = 2;
+pub const BVX: usize = 3;
+pub const BVR: usize = 4;
+pub const BW: usize = 5;
+pub const BOM: usize = 6;
+
+/// Offsets inside the inner-ring block.
+pub const RX: usize = 0;
+pub const RV: usize = 3;
+pub const RBY: usize = 6;
+pub const RBZ: usize = 7;
+pub const RWY: usize = 8;
+pub const RWZ: usize = 9;
+
+/// Offsets inside the pedestal block.
+pub const PY: usize = 0;
+pub const PZ: usize = 1;
+pub const PVY: usize = 2;
+pub const PVZ: usize = 3;
+
+/// Index arithmetic for a bearing with `z` balls.
+#[derive(Debug, Clone, Copy)]
+pub struct Layout {
+    pub z: usize,
+}
+
+impl Layout {
+    /// First state of ball j.
+    #[inline(always)]
+    pub fn ball(&self, j: usize) -> usize {
+        PER_BALL * j
+    }
+    /// First state of the inner ring.
+    #[inline(always)]
+    pub fn ring(&self) -> usize {
+        PER_BALL * self.z
+    }
+    /// First state of the pedestal.
+    #[inline(always)]
+    pub fn pedestal(&self) -> usize {
+        PER_BALL * self.z + 10
+    }
+    /// Reference cage angle ψ.
+    #[inline(always)]
+    pub fn psi(&self) -> usize {
+        PER_BALL * self.z + 14
+    }
+    /// Shaft angle φ.
+    #[inline(always)]
+    pub fn phi(&self) -> usize {
+        PER_BALL * self.z + 15
+    }
+    /// Number of states.
+    #[inline(always)]
+    pub fn dim(&self) -> usize {
+        PER_BALL * self.z + 16
+    }
+}

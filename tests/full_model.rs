@@ -1,0 +1,185 @@
+//! L4 full model (spec §1–§5, §7) through its own integrator and through `Simulation`:
+//! energy conservation without traction and damping (§10 item 4), static equilibrium at zero
+//! speed against L1, and the dynamic cage speed between pure rolling and outer-race control.
+
+use raceway::geometry::Bearing;
+use raceway::models::full::{FullModel, FullOptions};
+use raceway::models::Model;
+use raceway::quasi_static::{self, LoadCase};
+use raceway::scene::{Fidelity, Operating, Scene};
+use raceway::simulation::{out, Inputs, Simulation};
+use raceway::solver::{Integrator, Method, Options, System};
+use std::f64::consts::TAU;
+
+struct Sys<'a>(&'a mut FullModel);
+
+impl System for Sys<'_> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        self.0.rhs(t, y, dydt)
+    }
+}
+
+fn healthy_scene(rpm: f64, fa: f64, fr: f64) -> Scene {
+    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let mut s = Scene::healthy(
+        file,
+        Operating {
+            speed_rpm: rpm,
+            fa,
+            fr,
+            fy: 0.0,
+        },
+    );
+    s.fidelity = Fidelity::Full;
+    s
+}
+
+/// Energy drift over `duration` s at 9900 rpm with κ = 0, c_br = 0, c_p = 0.
+fn energy_drift(duration: f64, rtol: f64) -> (f64, f64, f64) {
+    let mut scene = healthy_scene(9900.0, 4000.0, 1000.0);
+    scene.bearing.contact.c_br = 0.0;
+    scene.bearing.pedestal.c_y = 0.0;
+    scene.bearing.pedestal.c_z = 0.0;
+    let bearing = Bearing::new(&scene.bearing).unwrap();
+    let inputs = Inputs::from_scene(&scene);
+    let mut model = FullModel::with_options(
+        &scene,
+        &bearing,
+        &inputs,
+        FullOptions {
+            traction: false,
+            lock_tilt: false,
+        },
+    )
+    .unwrap();
+    let n = model.dim();
+    let mut y0 = vec![0.0; n];
+    model.initial_state(&mut y0);
+    model.update_mode(0.0, &y0);
+    let mut nominal = vec![0.0; n];
+    model.nominal(&mut nominal);
+    let atol = nominal.iter().map(|v| v * rtol).collect();
+    let mut integ = Integrator::new(Options::new(Method::Dop853, rtol, atol), 0.0, &y0).unwrap();
+    let e0 = model.energy(&y0);
+    let v0 = model.hertz_potential(&y0);
+    let mut max_dev: f64 = 0.0;
+    let steps = 20;
+    for k in 1..=steps {
+        integ
+            .advance(
+                &mut Sys(&mut model),
+                duration * k as f64 / steps as f64,
+                None,
+            )
+            .unwrap();
+        let e = model.energy(integ.y());
+        max_dev = max_dev.max((e - e0).abs());
+    }
+    (max_dev, e0, v0)
+}
+
+#[test]
+fn energy_is_conserved_without_traction_and_damping() {
+    let (dev, e0, v0) = energy_drift(10e-3, 1e-9);
+    eprintln!("energy drift {dev:.3e} J of E = {e0:.4} J (Hertz potential {v0:.4e} J)");
+    assert!(dev / e0.abs() < 1e-5, "relative drift {}", dev / e0.abs());
+    // Stricter: relative to the elastic energy that the dynamics exchange.
+    assert!(
+        dev / v0 < 1e-4,
+        "drift relative to the Hertz potential {}",
+        dev / v0
+    );
+}
+
+/// Runs the model (no traction at rest: it changes nothing there) for `duration` and returns
+/// the normal forces (inner, outer) at the end.
+fn run_static(fa: f64, fr: f64, lock_tilt: bool, duration: f64) -> (Vec<f64>, Vec<f64>, f64) {
+    let scene = healthy_scene(0.0, fa, fr);
+    let bearing = Bearing::new(&scene.bearing).unwrap();
+    let inputs = Inputs::from_scene(&scene);
+    let mut model = FullModel::with_options(
+        &scene,
+        &bearing,
+        &inputs,
+        FullOptions {
+            traction: true,
+            lock_tilt,
+        },
+    )
+    .unwrap();
+    let n = model.dim();
+    let mut y0 = vec![0.0; n];
+    model.initial_state(&mut y0);
+    model.update_mode(0.0, &y0);
+    let mut nominal = vec![0.0; n];
+    model.nominal(&mut nominal);
+    let rtol = 1e-7;
+    let atol = nominal.iter().map(|v| v * rtol).collect();
+    let mut integ = Integrator::new(Options::new(Method::Dop853, rtol, atol), 0.0, &y0).unwrap();
+    integ.advance(&mut Sys(&mut model), duration, None).unwrap();
+    let y = integ.y().to_vec();
+    let mut d = vec![0.0; n];
+    model.rhs(duration, &y, &mut d);
+    // Largest orbital acceleration |θ̈| of any ball.
+    let lay = model.layout();
+    let max_acc = (0..bearing.z)
+        .map(|j| d[lay.ball(j) + 5].abs())
+        .fold(0.0, f64::max);
+    let (qi, qo) = model.contact_forces();
+    (qi.to_vec(), qo.to_vec(), max_acc)
+}
+
+fn assert_close_to_l1(fa: f64, fr: f64, qi: &[f64], qo: &[f64]) {
+    let bearing = Bearing::load("niu2014-table1").unwrap();
+    let qs = quasi_static::solve(&bearing, &LoadCase::from_fa_fr_rpm(fa, fr, 0.0)).unwrap();
+    for (j, b) in qs.balls.iter().enumerate() {
+        assert!(
+            (qi[j] / b.q_inner - 1.0).abs() < 0.01 && (qo[j] / b.q_outer - 1.0).abs() < 0.01,
+            "Fa {fa} Fr {fr} ball {j}: Q_i {:.2} vs L1 {:.2}, Q_o {:.2} vs L1 {:.2}",
+            qi[j],
+            b.q_inner,
+            qo[j],
+            b.q_outer
+        );
+    }
+}
+
+#[test]
+fn balls_started_from_l1_stay_put_at_zero_speed() {
+    // Pure axial load: no moment, so the free ring tilt stays at zero; closed form Q = 530.86 N.
+    let (qi, qo, acc) = run_static(4000.0, 0.0, false, 2e-3);
+    assert!(
+        qi.iter()
+            .chain(&qo)
+            .all(|q| (q / 530.86 - 1.0).abs() < 0.01),
+        "{qi:?} {qo:?}"
+    );
+    assert!(acc < 1.0, "|θ̈| = {acc} rad/s²");
+    assert_close_to_l1(4000.0, 0.0, &qi, &qo);
+    // Combined load with the tilt held as in L1 (a free ring tilts under the radial load's
+    // moment imbalance and shares the load differently from a tilt-free L1).
+    let (qi, qo, acc) = run_static(4000.0, 1000.0, true, 2e-3);
+    assert!(acc < 1.0, "|θ̈| = {acc} rad/s²");
+    assert_close_to_l1(4000.0, 1000.0, &qi, &qo);
+}
+
+#[test]
+fn cage_speed_between_pure_rolling_and_outer_race_control() {
+    let scene = healthy_scene(9900.0, 4000.0, 1000.0);
+    let mut sim = Simulation::new(&scene).unwrap();
+    let (t_settle, t_end) = (5e-3, 10e-3);
+    let mut speeds = Vec::new();
+    sim.advance_sampled(t_end, 2e-5, &mut |t, o| {
+        if t > t_settle {
+            speeds.push(o[out::CAGE_SPEED]);
+        }
+    })
+    .unwrap();
+    let mean = speeds.iter().sum::<f64>() / speeds.len() as f64 / TAU;
+    eprintln!("mean cage speed {mean:.3} Hz");
+    // Pure rolling at α0 69.537 Hz, outer-race control 70.42 Hz (spec §8.1, §8.2).
+    assert!(mean > 69.54 && mean < 70.42, "cage speed {mean} Hz");
+}
