@@ -36,19 +36,7 @@ struct H {
 impl H {
     fn new() -> Self {
         let log: Box<Log> = Box::default();
-        let l: Fmi2CallbackLogger = unsafe {
-            std::mem::transmute::<
-                unsafe extern "C" fn(
-                    Fmi2ComponentEnvironment,
-                    Fmi2String,
-                    Fmi2Status,
-                    Fmi2String,
-                    Fmi2String,
-                    *const c_char,
-                ),
-                Fmi2CallbackLogger,
-            >(logger)
-        };
+        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
         let cb = Fmi2CallbackFunctions {
             logger: Some(l),
             allocate_memory: None,

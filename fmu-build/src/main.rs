@@ -292,19 +292,7 @@ fn reference_run(
         .unwrap_or_else(|e| fail(format!("{e}")));
     let uri = CString::new(format!("file://{}", dir.display())).expect("no NUL");
     // SAFETY: see print_logger.
-    let logger: Fmi2CallbackLogger = unsafe {
-        std::mem::transmute::<
-            unsafe extern "C" fn(
-                Fmi2ComponentEnvironment,
-                Fmi2String,
-                Fmi2Status,
-                Fmi2String,
-                Fmi2String,
-                *const c_char,
-            ),
-            Fmi2CallbackLogger,
-        >(print_logger)
-    };
+    let logger: Fmi2CallbackLogger = unsafe { fixed_args_logger(print_logger) };
     let cb = Fmi2CallbackFunctions {
         logger: Some(logger),
         allocate_memory: None,

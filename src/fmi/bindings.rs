@@ -72,6 +72,27 @@ pub type Fmi2CallbackLogger = unsafe extern "C" fn(
     message: Fmi2String,
     ...
 );
+/// A logger with the message as a sixth fixed argument: what a Rust-side importer (tests,
+/// fmu-build's reference run) can define, since stable Rust cannot define a C-variadic function.
+pub type FixedArgsLogger = unsafe extern "C" fn(
+    Fmi2ComponentEnvironment,
+    Fmi2String,
+    Fmi2Status,
+    Fmi2String,
+    Fmi2String,
+    *const c_char,
+);
+
+/// Passes a [`FixedArgsLogger`] where an `fmi2CallbackLogger` is expected.
+///
+/// # Safety
+/// Sound only because raceway always calls the logger with the format `"%s"` and exactly one
+/// string argument, which the x86-64 and aarch64 System V C ABIs (linux64) pass exactly like a
+/// sixth fixed argument. Not for other targets or other callers.
+pub unsafe fn fixed_args_logger(f: FixedArgsLogger) -> Fmi2CallbackLogger {
+    unsafe { std::mem::transmute::<FixedArgsLogger, Fmi2CallbackLogger>(f) }
+}
+
 pub type Fmi2CallbackAllocateMemory = unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void;
 pub type Fmi2CallbackFreeMemory = unsafe extern "C" fn(obj: *mut c_void);
 pub type Fmi2StepFinished =

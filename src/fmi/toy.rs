@@ -303,19 +303,7 @@ impl Harness {
     fn new() -> Self {
         let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
         // SAFETY: see test_logger.
-        let logger: Fmi2CallbackLogger = unsafe {
-            std::mem::transmute::<
-                unsafe extern "C" fn(
-                    Fmi2ComponentEnvironment,
-                    Fmi2String,
-                    Fmi2Status,
-                    Fmi2String,
-                    Fmi2String,
-                    *const c_char,
-                ),
-                Fmi2CallbackLogger,
-            >(test_logger)
-        };
+        let logger: Fmi2CallbackLogger = unsafe { fixed_args_logger(test_logger) };
         let cb = Box::new(Fmi2CallbackFunctions {
             logger: Some(logger),
             allocate_memory: None,
