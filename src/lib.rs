@@ -27,3 +27,4 @@ pub mod scene;
 pub mod signal;
 pub mod simulation;
 pub mod solver;
+pub mod sweep;

@@ -6,6 +6,7 @@ mod frequencies;
 mod simulate;
 mod spectrum;
 mod static_load;
+mod sweep;
 
 #[derive(Parser)]
 #[command(
@@ -28,6 +29,8 @@ enum Command {
     Simulate(simulate::Args),
     /// Spectrum, Welch PSD or envelope spectrum of a CSV column
     Spectrum(spectrum::Args),
+    /// Run a parameter sweep (grid of scenes) in parallel, resumable, into DIR/results.csv
+    Sweep(sweep::Args),
 }
 
 /// Runs the program; returns the process exit code.
@@ -38,6 +41,7 @@ pub fn run() -> i32 {
         Command::Static(a) => static_load::run(a),
         Command::Simulate(a) => simulate::run(a),
         Command::Spectrum(a) => spectrum::run(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -1,0 +1,194 @@
+//! One run: simulate the scene, add seeded measurement noise, compute the kept metrics.
+
+use super::spec::{fnv1a64, Keep, Run, Sweep};
+use crate::signal::{envelope_spectrum, peak_near, Window};
+use crate::simulation::{out, Simulation};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The fault frequencies whose envelope peaks are recorded, in column order.
+pub const FAULTS: [&str; 3] = ["ftf", "bpfo", "bpfi"];
+
+/// The metric columns of a sweep (after the parameter columns), in order.
+pub fn metric_columns(keep: &Keep) -> Vec<String> {
+    let mut c: Vec<String> = vec!["ftf_hz".into(), "bpfo_hz".into(), "bpfi_hz".into()];
+    if keep.rms {
+        c.push("rms".into());
+    }
+    if keep.kurtosis {
+        c.push("kurtosis".into());
+    }
+    if keep.crest_factor {
+        c.push("crest_factor".into());
+    }
+    if keep.max_contact_force {
+        c.extend(["max_contact_force", "max_q_inner", "max_q_outer"].map(String::from));
+    }
+    if keep.envelope_peaks {
+        for f in FAULTS {
+            for h in 1..=keep.harmonics {
+                c.push(format!("env_{f}_{h}"));
+            }
+        }
+    }
+    if keep.raw_signal {
+        c.push("signal_file".into());
+    }
+    c
+}
+
+/// Standard normal numbers from a seed: SplitMix64 and Box–Muller (no global state).
+pub struct Gaussian {
+    state: u64,
+    spare: Option<f64>,
+}
+
+impl Gaussian {
+    /// A generator seeded with `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self {
+            state: seed,
+            spare: None,
+        }
+    }
+
+    fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in (0, 1].
+    fn uniform(&mut self) -> f64 {
+        ((self.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64
+    }
+
+    /// The next standard normal number.
+    pub fn sample(&mut self) -> f64 {
+        if let Some(s) = self.spare.take() {
+            return s;
+        }
+        let r = (-2.0 * self.uniform().ln()).sqrt();
+        let (s, c) = (std::f64::consts::TAU * self.uniform()).sin_cos();
+        self.spare = Some(r * s);
+        r * c
+    }
+}
+
+/// The metric values of one successful run, in [`metric_columns`] order (as text).
+pub type MetricRow = Vec<String>;
+
+fn num(v: f64) -> String {
+    format!("{v:e}")
+}
+
+/// Simulates one run and returns its metric row, or the error message.
+/// `signal_dir` is where the raw signal goes if `keep.raw_signal` (created if missing).
+pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<MetricRow, String> {
+    let (scene, noise_rms) = sweep.scene_for(run)?;
+    let keep = &sweep.keep;
+    let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
+    let names: Vec<String> = sim.output_table().into_iter().map(|o| o.name).collect();
+    let col = names
+        .iter()
+        .position(|n| *n == keep.signal)
+        .ok_or_else(|| format!("output '{}' does not exist", keep.signal))?;
+    let z = sim.bearing().z;
+    let dt = 1.0 / scene.output.sample_rate;
+    let skip = scene.output.skip;
+    let mut times = Vec::new();
+    let mut x = Vec::new();
+    let (mut q_in, mut q_out) = (0.0_f64, 0.0_f64);
+    sim.advance_sampled(scene.output.duration, dt, &mut |t, o| {
+        if t < skip - 1e-12 {
+            return;
+        }
+        times.push(t);
+        x.push(o[col]);
+        let c = out::CONTACT_START;
+        for q in &o[c..c + z] {
+            q_in = q_in.max(*q);
+        }
+        for q in &o[c + z..c + 2 * z] {
+            q_out = q_out.max(*q);
+        }
+    })
+    .map_err(|e| e.to_string())?;
+    if x.len() < 16 {
+        return Err(format!(
+            "only {} samples after output.skip: lengthen output.duration",
+            x.len()
+        ));
+    }
+    if noise_rms > 0.0 {
+        // Seeded by the run's parameters, never by the thread that runs it.
+        let mut g = Gaussian::new(fnv1a64(format!("noise:{}", run.id).as_bytes()));
+        for v in x.iter_mut() {
+            *v += noise_rms * g.sample();
+        }
+    }
+    if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+        return Err(format!(
+            "{} is not finite at t = {} s",
+            keep.signal, times[i]
+        ));
+    }
+
+    let shaft_hz = scene.operating.speed_rpm / 60.0;
+    let ftf = sim.cage_speed() / std::f64::consts::TAU;
+    let freqs = [ftf, z as f64 * ftf, z as f64 * (shaft_hz - ftf)];
+    let mut row: MetricRow = freqs.iter().map(|f| num(*f)).collect();
+
+    let mean = x.iter().sum::<f64>() / x.len() as f64;
+    let m2 = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / x.len() as f64;
+    let m4 = x.iter().map(|v| (v - mean).powi(4)).sum::<f64>() / x.len() as f64;
+    let rms = m2.sqrt();
+    let peak = x.iter().map(|v| (v - mean).abs()).fold(0.0, f64::max);
+    if keep.rms {
+        row.push(num(rms));
+    }
+    if keep.kurtosis {
+        row.push(num(if m2 > 0.0 { m4 / (m2 * m2) } else { f64::NAN }));
+    }
+    if keep.crest_factor {
+        row.push(num(if rms > 0.0 { peak / rms } else { f64::NAN }));
+    }
+    if keep.max_contact_force {
+        row.extend([num(q_in.max(q_out)), num(q_in), num(q_out)]);
+    }
+    if keep.envelope_peaks {
+        let fs = scene.output.sample_rate;
+        let hi = keep.band[1].min(0.49 * fs);
+        let spec = envelope_spectrum(&x, fs, Some((keep.band[0], hi)), Window::Hann)
+            .map_err(|e| format!("envelope spectrum: {e}"))?;
+        for f in freqs {
+            for h in 1..=keep.harmonics {
+                let fh = h as f64 * f;
+                let a = peak_near(&spec, fh, keep.tolerance * fh).map_or(f64::NAN, |p| p.value);
+                row.push(num(a));
+            }
+        }
+    }
+    if keep.raw_signal {
+        let dir = signal_dir.ok_or("raw_signal needs an output folder")?;
+        let name = format!("run-{:05}-{}.csv", run.index, run.id);
+        write_signal(&dir.join(&name), &keep.signal, &times, &x)?;
+        row.push(PathBuf::from("signals").join(name).display().to_string());
+    }
+    Ok(row)
+}
+
+fn write_signal(path: &Path, name: &str, t: &[f64], x: &[f64]) -> Result<(), String> {
+    let err = |e: std::io::Error| format!("writing {}: {e}", path.display());
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(err)?;
+    }
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(err)?);
+    writeln!(w, "time,{name}").map_err(err)?;
+    for (t, v) in t.iter().zip(x) {
+        writeln!(w, "{t:.9},{v:e}").map_err(err)?;
+    }
+    w.flush().map_err(err)
+}

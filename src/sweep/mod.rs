@@ -1,0 +1,177 @@
+//! Parameter sweeps: a base scene, axes of values, and per-run metrics, run in parallel.
+//!
+//! A sweep file (TOML) names a base scene (`base = "../scenes/default.toml"`, relative to the
+//! sweep file, or an inline `[scene]` table in the scene-file format), optional fixed values
+//! (`[set]`), the axes (`[axes]`: lists, `{ start, stop, num }` or `{ start, stop, step }`) and
+//! what to keep per run (`[keep]`, see [`Keep`]):
+//!
+//! ```toml
+//! base = "../scenes/default.toml"
+//! [set]
+//! "output.duration" = 0.1
+//! [axes]
+//! "defect.width" = { start = 0.5e-3, stop = 2.0e-3, num = 4 }
+//! "operating.speed_rpm" = [6000, 9900]
+//! "noise.rms" = [0.0, 5.0]
+//! [keep]
+//! harmonics = 3
+//! raw_signal = false
+//! ```
+//!
+//! The grid is the Cartesian product of the axes in alphabetical key order (the last key
+//! varies fastest); a run's index is its position in that order and its id a stable hash of
+//! its parameters ([`spec::run_id`]). [`execute`] runs the grid on a rayon pool of N threads,
+//! one [`Simulation`](crate::simulation::Simulation) per run, and appends one row per finished
+//! run to `results.csv` ([`results`]), so an interrupted sweep resumes where it stopped and a
+//! failed run is recorded with its message. Every random number (measurement noise) is seeded
+//! from the run's parameters, so the rows do not depend on the number of threads; only their
+//! order in the file and the `wall_s` column do.
+
+pub mod metrics;
+pub mod results;
+pub mod spec;
+
+pub use metrics::{evaluate, metric_columns};
+pub use results::{canonical_rows, ResultsFile};
+pub use spec::{known_keys, run_id, Axis, AxisValue, Keep, Run, Sweep};
+
+use std::fmt;
+use std::path::Path;
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// A sweep-level error (bad sweep file, unusable output folder); failed runs are not errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepError(pub String);
+
+impl SweepError {
+    /// An error with a message.
+    pub fn new(m: impl Into<String>) -> Self {
+        Self(m.into())
+    }
+}
+
+impl fmt::Display for SweepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SweepError {}
+
+/// How to execute a sweep.
+#[derive(Debug, Clone, Default)]
+pub struct ExecOptions {
+    /// Worker threads (0 = one per core).
+    pub jobs: usize,
+    /// Only these run indices (e.g. one task of a distributed sweep); `None` = all.
+    pub only: Option<Vec<usize>>,
+    /// Show a progress bar with ETA on stderr (hidden when stderr is not a terminal).
+    pub progress: bool,
+}
+
+/// What [`execute`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Summary {
+    /// Runs selected from the grid.
+    pub selected: usize,
+    /// Runs skipped because results.csv already has them.
+    pub skipped: usize,
+    /// Runs executed now.
+    pub ran: usize,
+    /// Runs executed now that failed (recorded with their message).
+    pub failed: usize,
+}
+
+/// Runs the selected runs of `sweep` that `out_dir/results.csv` does not have yet, on
+/// `opts.jobs` threads, appending a row per run as it finishes.
+pub fn execute(sweep: &Sweep, out_dir: &Path, opts: &ExecOptions) -> Result<Summary, SweepError> {
+    std::fs::create_dir_all(out_dir)
+        .map_err(|e| SweepError::new(format!("cannot create {}: {e}", out_dir.display())))?;
+    let runs = sweep.runs();
+    let selected: Vec<&Run> = match &opts.only {
+        None => runs.iter().collect(),
+        Some(idx) => {
+            if let Some(bad) = idx.iter().find(|i| **i >= runs.len()) {
+                return Err(SweepError::new(format!(
+                    "run index {bad} is outside the grid (0..{})",
+                    runs.len()
+                )));
+            }
+            runs.iter().filter(|r| idx.contains(&r.index)).collect()
+        }
+    };
+    let file = ResultsFile::open(&out_dir.join("results.csv"), results::columns(sweep))?;
+    let todo: Vec<&Run> = selected
+        .iter()
+        .copied()
+        .filter(|r| !file.done().contains(&r.id))
+        .collect();
+    let mut summary = Summary {
+        selected: selected.len(),
+        skipped: selected.len() - todo.len(),
+        ..Summary::default()
+    };
+    let bar = if opts.progress {
+        let b = indicatif::ProgressBar::new(todo.len() as u64);
+        b.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
+        ) {
+            b.set_style(style);
+        }
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs)
+        .build()
+        .map_err(|e| SweepError::new(format!("cannot start {} threads: {e}", opts.jobs)))?;
+    let signal_dir = out_dir.join("signals");
+    let file = Mutex::new(file);
+    let failed = Mutex::new(0usize);
+    let write_error: Mutex<Option<SweepError>> = Mutex::new(None);
+    pool.install(|| {
+        use rayon::prelude::*;
+        todo.par_iter().with_max_len(1).for_each(|run| {
+            let started = Instant::now();
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                evaluate(sweep, run, Some(&signal_dir))
+            }))
+            .unwrap_or_else(|p| {
+                let msg = p
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| p.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown panic".into());
+                Err(format!("internal error (panic): {msg}"))
+            });
+            let wall = started.elapsed().as_secs_f64();
+            if result.is_err() {
+                if let Ok(mut f) = failed.lock() {
+                    *f += 1;
+                }
+            }
+            let row = results::row(sweep, run, &result, wall);
+            let outcome = match file.lock() {
+                Ok(mut f) => f.append(&row),
+                Err(_) => Err(SweepError::new("results writer poisoned")),
+            };
+            if let Err(e) = outcome {
+                if let Ok(mut w) = write_error.lock() {
+                    w.get_or_insert(e);
+                }
+            }
+            bar.inc(1);
+            bar.set_message(format!("last: run {} {:.2} s", run.index, wall));
+        });
+    });
+    bar.finish_and_clear();
+    if let Some(e) = write_error.into_inner().ok().flatten() {
+        return Err(e);
+    }
+    summary.ran = todo.len();
+    summary.failed = failed.into_inner().unwrap_or(0);
+    Ok(summary)
+}

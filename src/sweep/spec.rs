@@ -1,0 +1,569 @@
+//! The sweep file: base scene, axes, what to keep, and the expansion into runs.
+
+use super::SweepError;
+use crate::defect::DefectSpec;
+use crate::geometry::Race;
+use crate::scene::{Fidelity, Scene};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// One value of an axis: a number or a word (ring and fidelity names).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AxisValue {
+    /// A number (TOML integers are converted to `f64`).
+    Num(f64),
+    /// A word, e.g. `"outer"` for `defect.ring` or `"lumped"` for `fidelity`.
+    Text(String),
+}
+
+impl AxisValue {
+    /// The canonical text of the value: the shortest round-trip decimal of a number, or the
+    /// word itself. Run ids hash this text and results.csv stores it.
+    pub fn canonical(&self) -> String {
+        match self {
+            AxisValue::Num(v) => format!("{v:?}"),
+            AxisValue::Text(s) => s.clone(),
+        }
+    }
+}
+
+/// What a key accepts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum KeyKind {
+    /// A number.
+    Number,
+    /// `defect.ring`: none/outer/inner or the FMU codes 0/1/2.
+    Ring,
+    /// `fidelity`: a level name or its code 0..4.
+    Fidelity,
+}
+
+/// The keys an axis may sweep, with what they accept.
+const KEYS: &[(&str, KeyKind)] = &[
+    ("defect.ring", KeyKind::Ring),
+    ("defect.width", KeyKind::Number),
+    ("defect.depth", KeyKind::Number),
+    ("defect.theta0", KeyKind::Number),
+    ("operating.speed_rpm", KeyKind::Number),
+    ("operating.fa", KeyKind::Number),
+    ("operating.fr", KeyKind::Number),
+    ("operating.fy", KeyKind::Number),
+    ("fidelity", KeyKind::Fidelity),
+    ("lumped.seed", KeyKind::Number),
+    ("lumped.slip_jitter", KeyKind::Number),
+    ("noise.rms", KeyKind::Number),
+    ("output.duration", KeyKind::Number),
+    ("output.sample_rate", KeyKind::Number),
+    ("output.skip", KeyKind::Number),
+    ("solver.rtol", KeyKind::Number),
+];
+
+/// The keys an axis may sweep (also accepted in `[set]`).
+pub fn known_keys() -> Vec<&'static str> {
+    KEYS.iter().map(|(k, _)| *k).collect()
+}
+
+fn key_kind(key: &str) -> Result<KeyKind, SweepError> {
+    KEYS.iter()
+        .find(|(k, _)| *k == key)
+        .map(|(_, kind)| *kind)
+        .ok_or_else(|| {
+            SweepError::new(format!(
+                "unknown sweep key '{key}'; known keys: {}",
+                known_keys().join(", ")
+            ))
+        })
+}
+
+/// The defect a ring value asks for: `None` = healthy.
+fn parse_ring(key: &str, v: &AxisValue) -> Result<Option<Race>, String> {
+    match v {
+        AxisValue::Text(s) if s == "none" || s == "healthy" => Ok(None),
+        AxisValue::Text(s) if s == "outer" => Ok(Some(Race::Outer)),
+        AxisValue::Text(s) if s == "inner" => Ok(Some(Race::Inner)),
+        AxisValue::Num(c) if *c == 0.0 => Ok(None),
+        AxisValue::Num(c) if *c == 1.0 => Ok(Some(Race::Outer)),
+        AxisValue::Num(c) if *c == 2.0 => Ok(Some(Race::Inner)),
+        other => Err(format!(
+            "{key} = {}: expected none, outer, inner (or the codes 0, 1, 2)",
+            other.canonical()
+        )),
+    }
+}
+
+fn parse_fidelity(key: &str, v: &AxisValue) -> Result<Fidelity, String> {
+    let f = match v {
+        AxisValue::Text(s) => Fidelity::from_name(s),
+        AxisValue::Num(c) if c.fract() == 0.0 && c.abs() < 100.0 => Fidelity::from_code(*c as i32),
+        AxisValue::Num(_) => None,
+    };
+    f.ok_or_else(|| {
+        format!(
+            "{key} = {}: expected kinematic, quasi_static, lumped, reduced, full (or 0..4)",
+            v.canonical()
+        )
+    })
+}
+
+/// Checks that a value has the kind its key needs (a sweep-file error, not a failed run).
+fn check_kind(key: &str, v: &AxisValue) -> Result<(), SweepError> {
+    let kind = key_kind(key)?;
+    let r = match kind {
+        KeyKind::Number => match v {
+            AxisValue::Num(_) => Ok(()),
+            AxisValue::Text(s) => Err(format!("{key} = \"{s}\": expected a number")),
+        },
+        KeyKind::Ring => parse_ring(key, v).map(|_| ()),
+        KeyKind::Fidelity => parse_fidelity(key, v).map(|_| ()),
+    };
+    r.map_err(SweepError::new)
+}
+
+/// An axis of the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// The swept key, e.g. `defect.width`.
+    pub key: String,
+    /// Its values, in order.
+    pub values: Vec<AxisValue>,
+}
+
+/// Which quantities every run records (the `[keep]` table).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Keep {
+    /// Output analysed for the signal metrics (default `pedestal.a.z`).
+    #[serde(default = "default_signal")]
+    pub signal: String,
+    /// Envelope band-pass [Hz] (default 2000–12000 Hz, clamped to Nyquist).
+    #[serde(default = "default_band")]
+    pub band: [f64; 2],
+    /// Envelope-spectrum amplitudes at FTF, BPFO and BPFI and their harmonics.
+    #[serde(default = "yes")]
+    pub envelope_peaks: bool,
+    /// Number of harmonics of each fault frequency (1 = the fundamental only).
+    #[serde(default = "default_harmonics")]
+    pub harmonics: usize,
+    /// Relative search tolerance of each envelope peak (default 0.03 = ±3 %).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// RMS of the (mean-removed) signal.
+    #[serde(default = "yes")]
+    pub rms: bool,
+    /// Kurtosis E[x⁴]/E[x²]² of the mean-removed signal (3 for Gaussian noise).
+    #[serde(default = "yes")]
+    pub kurtosis: bool,
+    /// Crest factor max|x|/RMS of the mean-removed signal.
+    #[serde(default = "yes")]
+    pub crest_factor: bool,
+    /// Largest ball–race normal force after the skipped transient, both races and per race.
+    #[serde(default = "yes")]
+    pub max_contact_force: bool,
+    /// Write the analysed signal of each run to `signals/run-<index>-<id>.csv`.
+    #[serde(default)]
+    pub raw_signal: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+fn default_signal() -> String {
+    "pedestal.a.z".into()
+}
+fn default_band() -> [f64; 2] {
+    [2000.0, 12000.0]
+}
+fn default_harmonics() -> usize {
+    3
+}
+fn default_tolerance() -> f64 {
+    0.03
+}
+
+impl Default for Keep {
+    fn default() -> Self {
+        toml::from_str("").expect("all keep fields have defaults")
+    }
+}
+
+/// The sweep file as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SweepFile {
+    #[serde(default)]
+    name: String,
+    /// Path of the base scene, relative to the sweep file.
+    #[serde(default)]
+    base: Option<String>,
+    /// Inline base scene (the scene-file format).
+    #[serde(default)]
+    scene: Option<toml::Table>,
+    /// Fixed values applied to every run (same keys as the axes).
+    #[serde(default)]
+    set: BTreeMap<String, toml::Value>,
+    #[serde(default)]
+    axes: BTreeMap<String, toml::Value>,
+    #[serde(default)]
+    keep: Keep,
+}
+
+/// One run of the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// Position in the grid (axes in alphabetical key order, the last one fastest).
+    pub index: usize,
+    /// Stable id: FNV-1a 64 of the canonical `key=value;...` text of the parameters, in hex.
+    pub id: String,
+    /// The swept parameters of this run, in axis order.
+    pub params: Vec<(String, AxisValue)>,
+}
+
+/// A parsed sweep: base scene, fixed values, axes and what to keep.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    /// Name of the study (informational).
+    pub name: String,
+    /// The base scene every run starts from.
+    pub base: Scene,
+    /// Fixed values applied before the axis values.
+    pub set: Vec<(String, AxisValue)>,
+    /// The axes, sorted by key.
+    pub axes: Vec<Axis>,
+    /// What every run records.
+    pub keep: Keep,
+}
+
+/// FNV-1a, 64 bit: a tiny, fully specified hash (stable across Rust versions and machines).
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+fn value_of(key: &str, v: &toml::Value) -> Result<AxisValue, SweepError> {
+    match v {
+        toml::Value::Float(f) => Ok(AxisValue::Num(*f)),
+        toml::Value::Integer(i) => Ok(AxisValue::Num(*i as f64)),
+        toml::Value::String(s) => Ok(AxisValue::Text(s.clone())),
+        other => Err(SweepError::new(format!(
+            "{key}: {other} is neither a number nor a word"
+        ))),
+    }
+}
+
+fn num_field(key: &str, t: &toml::Table, field: &str) -> Result<Option<f64>, SweepError> {
+    match t.get(field) {
+        None => Ok(None),
+        Some(toml::Value::Float(f)) if f.is_finite() => Ok(Some(*f)),
+        Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+        Some(other) => Err(SweepError::new(format!(
+            "axes.{key}.{field} = {other}: expected a finite number"
+        ))),
+    }
+}
+
+/// Values of an axis: a list, or a range `{ start, stop, num }` (inclusive, evenly spaced) or
+/// `{ start, stop, step }` (start + k·step up to stop, inclusive within 1e-9 step).
+fn axis_values(key: &str, v: &toml::Value) -> Result<Vec<AxisValue>, SweepError> {
+    let values = match v {
+        toml::Value::Array(items) => items
+            .iter()
+            .map(|x| value_of(key, x))
+            .collect::<Result<Vec<_>, _>>()?,
+        toml::Value::Table(t) => {
+            for k in t.keys() {
+                if !["start", "stop", "num", "step"].contains(&k.as_str()) {
+                    return Err(SweepError::new(format!(
+                        "axes.{key}: unknown range field '{k}' (use start, stop and num or step)"
+                    )));
+                }
+            }
+            let start = num_field(key, t, "start")?;
+            let stop = num_field(key, t, "stop")?;
+            let (Some(start), Some(stop)) = (start, stop) else {
+                return Err(SweepError::new(format!(
+                    "axes.{key}: a range needs start and stop"
+                )));
+            };
+            match (num_field(key, t, "num")?, num_field(key, t, "step")?) {
+                (Some(n), None) => {
+                    if !(n >= 1.0 && n.fract() == 0.0 && n <= 1e6) {
+                        return Err(SweepError::new(format!(
+                            "axes.{key}.num = {n}: expected an integer ≥ 1"
+                        )));
+                    }
+                    let n = n as usize;
+                    if n == 1 {
+                        vec![AxisValue::Num(start)]
+                    } else {
+                        (0..n)
+                            .map(|k| {
+                                let s = k as f64 / (n - 1) as f64;
+                                AxisValue::Num(if k == n - 1 {
+                                    stop
+                                } else {
+                                    start + (stop - start) * s
+                                })
+                            })
+                            .collect()
+                    }
+                }
+                (None, Some(step)) => {
+                    if !(step != 0.0 && (stop - start) / step >= 0.0) {
+                        return Err(SweepError::new(format!(
+                            "axes.{key}.step = {step}: must be non-zero and lead from start to stop"
+                        )));
+                    }
+                    let count = ((stop - start) / step + 1e-9).floor();
+                    if count > 1e6 {
+                        return Err(SweepError::new(format!(
+                            "axes.{key}: more than a million values"
+                        )));
+                    }
+                    (0..=count as usize)
+                        .map(|k| AxisValue::Num(start + k as f64 * step))
+                        .collect()
+                }
+                _ => {
+                    return Err(SweepError::new(format!(
+                        "axes.{key}: give exactly one of num and step"
+                    )))
+                }
+            }
+        }
+        other => vec![value_of(key, other)?],
+    };
+    if values.is_empty() {
+        return Err(SweepError::new(format!("axes.{key}: no values")));
+    }
+    for (i, a) in values.iter().enumerate() {
+        check_kind(key, a)?;
+        if let AxisValue::Num(x) = a {
+            if !x.is_finite() {
+                return Err(SweepError::new(format!("axes.{key}: {x} is not finite")));
+            }
+        }
+        if values[..i].iter().any(|b| b.canonical() == a.canonical()) {
+            return Err(SweepError::new(format!(
+                "axes.{key}: value {} appears twice",
+                a.canonical()
+            )));
+        }
+    }
+    Ok(values)
+}
+
+impl Sweep {
+    /// Reads a sweep file; `base` and scene-relative bearing paths are relative to its folder.
+    pub fn load(path: &Path) -> Result<Self, SweepError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SweepError::new(format!("cannot read {}: {e}", path.display())))?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Self::from_toml_str(&text, &path.display().to_string(), &dir)
+    }
+
+    /// Parses a sweep from TOML text; `dir` resolves relative paths.
+    pub fn from_toml_str(text: &str, origin: &str, dir: &Path) -> Result<Self, SweepError> {
+        let file: SweepFile = toml::from_str(text)
+            .map_err(|e| SweepError::new(format!("{origin}: {}", e.to_string().trim_end())))?;
+        let base = match (&file.base, &file.scene) {
+            (Some(_), Some(_)) => {
+                return Err(SweepError::new(format!(
+                    "{origin}: give either base = \"scene.toml\" or an inline [scene], not both"
+                )))
+            }
+            (None, None) => {
+                return Err(SweepError::new(format!(
+                    "{origin}: no base scene: add base = \"path/to/scene.toml\" or a [scene] table"
+                )))
+            }
+            (Some(p), None) => {
+                let p: PathBuf = dir.join(p);
+                Scene::load(&p).map_err(|e| SweepError::new(format!("base scene: {e}")))?
+            }
+            (None, Some(t)) => {
+                let text = toml::to_string(t).map_err(|e| SweepError::new(e.to_string()))?;
+                Scene::from_toml_str(&text, &format!("{origin} [scene]"), Some(dir))
+                    .map_err(|e| SweepError::new(format!("[scene]: {e}")))?
+            }
+        };
+        let mut set = Vec::new();
+        for (k, v) in &file.set {
+            let v = value_of(k, v)?;
+            check_kind(k, &v)?;
+            set.push((k.clone(), v));
+        }
+        let mut axes = Vec::new();
+        for (k, v) in &file.axes {
+            key_kind(k)?;
+            axes.push(Axis {
+                key: k.clone(),
+                values: axis_values(k, v)?,
+            });
+        }
+        let keep = file.keep;
+        if !(keep.band[0] >= 0.0 && keep.band[1] > keep.band[0]) {
+            return Err(SweepError::new(format!(
+                "keep.band = {:?}: expected [lo, hi] with 0 ≤ lo < hi",
+                keep.band
+            )));
+        }
+        if !(keep.tolerance > 0.0 && keep.tolerance < 0.5) {
+            return Err(SweepError::new("keep.tolerance must lie in (0, 0.5)"));
+        }
+        if keep.harmonics > 20 {
+            return Err(SweepError::new("keep.harmonics must be ≤ 20"));
+        }
+        let z = crate::geometry::Bearing::new(&base.bearing)
+            .map(|b| b.z)
+            .map_err(|e| SweepError::new(format!("base scene bearing: {e}")))?;
+        let names: Vec<String> = crate::simulation::output_table(z)
+            .into_iter()
+            .map(|o| o.name)
+            .collect();
+        if !names.contains(&keep.signal) {
+            return Err(SweepError::new(format!(
+                "keep.signal = '{}' is not an output; outputs: {}",
+                keep.signal,
+                names.join(", ")
+            )));
+        }
+        let sweep = Sweep {
+            name: file.name,
+            base,
+            set,
+            axes,
+            keep,
+        };
+        // A defect key without any defect would be silently ignored: refuse it.
+        let has_defect = sweep.base.defect.is_some()
+            || sweep
+                .set
+                .iter()
+                .any(|(k, v)| k == "defect.ring" && parse_ring(k, v).ok().flatten().is_some())
+            || sweep.axes.iter().any(|a| a.key == "defect.ring");
+        if !has_defect {
+            let swept = sweep
+                .axes
+                .iter()
+                .map(|a| a.key.as_str())
+                .chain(sweep.set.iter().map(|(k, _)| k.as_str()))
+                .find(|k| k.starts_with("defect."));
+            if let Some(k) = swept {
+                return Err(SweepError::new(format!(
+                    "{k} is swept but the base scene has no defect: add a [defect] to the scene \
+                     or a defect.ring axis"
+                )));
+            }
+        }
+        Ok(sweep)
+    }
+
+    /// Number of runs of the grid (the product of the axis lengths; 1 without axes).
+    pub fn len(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product()
+    }
+
+    /// True if the grid is empty (never: a grid without axes has one run).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The runs of the grid, in index order.
+    pub fn runs(&self) -> Vec<Run> {
+        let n = self.len();
+        (0..n)
+            .map(|index| {
+                let mut rem = index;
+                let mut params = vec![(String::new(), AxisValue::Num(0.0)); self.axes.len()];
+                for (i, a) in self.axes.iter().enumerate().rev() {
+                    let k = rem % a.values.len();
+                    rem /= a.values.len();
+                    params[i] = (a.key.clone(), a.values[k].clone());
+                }
+                let id = run_id(&params);
+                Run { index, id, params }
+            })
+            .collect()
+    }
+
+    /// The scene of a run and its measurement-noise RMS, or why the values are impossible.
+    pub fn scene_for(&self, run: &Run) -> Result<(Scene, f64), String> {
+        let mut scene = self.base.clone();
+        let mut noise = 0.0;
+        // The defect is assembled from the base (or the defaults of the default scene) and
+        // created or removed by defect.ring.
+        let template = self.base.defect.clone().unwrap_or_else(|| DefectSpec {
+            ring: Race::Outer,
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: std::f64::consts::PI,
+        });
+        let mut defect = template;
+        let mut present = self.base.defect.is_some();
+        for (key, v) in self.set.iter().chain(run.params.iter()) {
+            let num = || match v {
+                AxisValue::Num(x) => Ok(*x),
+                AxisValue::Text(s) => Err(format!("{key} = \"{s}\": expected a number")),
+            };
+            match key.as_str() {
+                "defect.ring" => match parse_ring(key, v)? {
+                    Some(r) => {
+                        defect.ring = r;
+                        present = true;
+                    }
+                    None => present = false,
+                },
+                "defect.width" => defect.width = num()?,
+                "defect.depth" => defect.depth = num()?,
+                "defect.theta0" => defect.theta0 = num()?,
+                "operating.speed_rpm" => scene.operating.speed_rpm = num()?,
+                "operating.fa" => scene.operating.fa = num()?,
+                "operating.fr" => scene.operating.fr = num()?,
+                "operating.fy" => scene.operating.fy = num()?,
+                "fidelity" => scene.fidelity = parse_fidelity(key, v)?,
+                "lumped.seed" => {
+                    let s = num()?;
+                    if !(s >= 0.0 && s.fract() == 0.0 && s < 9.0e15) {
+                        return Err(format!("lumped.seed = {s}: expected an integer ≥ 0"));
+                    }
+                    scene.lumped.seed = s as u64;
+                }
+                "lumped.slip_jitter" => scene.lumped.slip_jitter = num()?,
+                "noise.rms" => {
+                    noise = num()?;
+                    if !(noise >= 0.0 && noise.is_finite()) {
+                        return Err(format!("noise.rms = {noise}: must be ≥ 0"));
+                    }
+                }
+                "output.duration" => scene.output.duration = num()?,
+                "output.sample_rate" => scene.output.sample_rate = num()?,
+                "output.skip" => scene.output.skip = num()?,
+                "solver.rtol" => scene.solver.rtol = num()?,
+                other => return Err(format!("unknown sweep key '{other}'")),
+            }
+        }
+        scene.defect = present.then_some(defect);
+        scene.validate().map_err(|e| e.to_string())?;
+        if scene.output.skip >= scene.output.duration {
+            return Err(format!(
+                "output.skip = {} s leaves nothing of output.duration = {} s to analyse",
+                scene.output.skip, scene.output.duration
+            ));
+        }
+        Ok((scene, noise))
+    }
+}
+
+/// The run id of a parameter list: FNV-1a 64 of `key=value;...` in hex (16 digits).
+pub fn run_id(params: &[(String, AxisValue)]) -> String {
+    let text: String = params
+        .iter()
+        .map(|(k, v)| format!("{k}={};", v.canonical()))
+        .collect();
+    format!("{:016x}", fnv1a64(text.as_bytes()))
+}

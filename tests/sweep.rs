@@ -1,0 +1,240 @@
+//! Parameter sweeps: grid expansion, determinism across thread counts, resume after a kill,
+//! failed runs recorded with their message, sweep-file errors.
+
+use raceway::sweep::{self, canonical_rows, ExecOptions, Summary, Sweep};
+use std::path::{Path, PathBuf};
+
+fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/sweeps")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("raceway-sweep-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn parse(text: &str) -> Result<Sweep, sweep::SweepError> {
+    Sweep::from_toml_str(text, "test", &scenes_dir())
+}
+
+/// 8 short lumped runs with measurement noise (seeded per run).
+const SMALL: &str = r#"
+base = "../scenes/default.toml"
+[set]
+"output.duration" = 0.05
+"output.skip" = 0.01
+[axes]
+"defect.width" = [0.8e-3, 1.6e-3]
+"operating.speed_rpm" = [6000, 9900]
+"noise.rms" = [0.0, 20.0]
+[keep]
+harmonics = 2
+"#;
+
+fn run(sw: &Sweep, dir: &Path, jobs: usize) -> Summary {
+    let opts = ExecOptions {
+        jobs,
+        only: None,
+        progress: false,
+    };
+    sweep::execute(sw, dir, &opts).expect("sweep runs")
+}
+
+#[test]
+fn grid_expansion_order_ranges_and_ids() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[axes]
+"operating.speed_rpm" = { start = 6000, stop = 9000, step = 1500 }
+"defect.width" = { start = 1e-3, stop = 2e-3, num = 3 }
+"defect.ring" = ["outer", "inner"]
+"#,
+    )
+    .unwrap();
+    assert_eq!(sw.len(), 3 * 3 * 2);
+    let runs = sw.runs();
+    // Alphabetical key order, last key fastest.
+    let keys: Vec<&str> = runs[0].params.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(keys, ["defect.ring", "defect.width", "operating.speed_rpm"]);
+    let canon =
+        |i: usize| -> Vec<String> { runs[i].params.iter().map(|(_, v)| v.canonical()).collect() };
+    assert_eq!(canon(0), ["outer", "0.001", "6000.0"]);
+    assert_eq!(canon(1), ["outer", "0.001", "7500.0"]);
+    assert_eq!(canon(3), ["outer", "0.0015", "6000.0"]);
+    assert_eq!(canon(17), ["inner", "0.002", "9000.0"]);
+    // Ids: FNV-1a 64 of the canonical text (fixed reference values), all distinct.
+    assert_eq!(sweep::spec::fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+    assert_eq!(sweep::spec::fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+    assert_eq!(
+        runs[0].id,
+        format!(
+            "{:016x}",
+            sweep::spec::fnv1a64(
+                b"defect.ring=outer;defect.width=0.001;operating.speed_rpm=6000.0;"
+            )
+        )
+    );
+    let mut ids: Vec<&str> = runs.iter().map(|r| r.id.as_str()).collect();
+    ids.sort();
+    ids.dedup();
+    assert_eq!(ids.len(), runs.len());
+    // The scene of a run carries its values.
+    let (scene, noise) = sw.scene_for(&runs[17]).unwrap();
+    assert_eq!(scene.operating.speed_rpm, 9000.0);
+    let d = scene.defect.unwrap();
+    assert_eq!(d.width, 2e-3);
+    assert_eq!(d.ring, raceway::geometry::Race::Inner);
+    assert_eq!(noise, 0.0);
+}
+
+#[test]
+fn sweep_file_errors_are_clear() {
+    let err = |t: &str| parse(t).unwrap_err().to_string();
+    let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"defect.widht\" = [1e-3]\n");
+    assert!(e.contains("unknown sweep key 'defect.widht'"), "{e}");
+    assert!(e.contains("defect.width"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"fidelity\" = [\"medium\"]\n");
+    assert!(e.contains("fidelity = medium"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"defect.ring\" = [\"left\"]\n");
+    assert!(e.contains("defect.ring = left"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"defect.width\" = [\"big\"]\n");
+    assert!(e.contains("expected a number"), "{e}");
+    let e = err(
+        "base = \"../scenes/default.toml\"\n[axes]\n\"operating.fa\" = { start = 1, stop = 2 }\n",
+    );
+    assert!(e.contains("exactly one of num and step"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"operating.fa\" = [1, 1.0]\n");
+    assert!(e.contains("appears twice"), "{e}");
+    let e = err("base = \"no-such-scene.toml\"\n");
+    assert!(e.contains("base scene"), "{e}");
+    let e = err("[axes]\n\"operating.fa\" = [1]\n");
+    assert!(e.contains("no base scene"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[keep]\nsignal = \"nope\"\n");
+    assert!(e.contains("keep.signal = 'nope'"), "{e}");
+    let e = err("base = \"../scenes/default.toml\"\n[keep]\nrsm = true\n");
+    assert!(e.contains("rsm"), "{e}");
+}
+
+#[test]
+fn jobs_2_and_jobs_1_give_identical_rows() {
+    let sw = parse(SMALL).unwrap();
+    let (d1, d2) = (tmp("jobs1"), tmp("jobs2"));
+    let s1 = run(&sw, &d1, 1);
+    let s2 = run(&sw, &d2, 2);
+    assert_eq!((s1.ran, s1.failed), (8, 0));
+    assert_eq!((s2.ran, s2.failed), (8, 0));
+    let (h1, r1) = canonical_rows(&d1.join("results.csv")).unwrap();
+    let (h2, r2) = canonical_rows(&d2.join("results.csv")).unwrap();
+    assert_eq!(h1, h2);
+    assert_eq!(r1.len(), 8);
+    assert_eq!(r1, r2, "rows differ between --jobs 1 and --jobs 2");
+    // Noise is seeded per run: it changes the signal metrics, not the contact forces.
+    let col = |name: &str| h1.iter().position(|h| h == name).unwrap();
+    let (rms, q, noise) = (col("rms"), col("max_contact_force"), col("noise.rms"));
+    assert_eq!(r1[0][noise], "0.0");
+    // Rows 0 and 2 differ only in noise.rms (axes in key order: width, noise, speed).
+    assert_eq!(r1[2][noise], "20.0");
+    assert_ne!(r1[0][rms], r1[2][rms]);
+    assert_eq!(r1[0][q], r1[2][q]);
+    for r in &r1 {
+        assert_eq!(r[col("status")], "ok", "{r:?}");
+        let bpfo: f64 = r[col("env_bpfo_1")].parse().unwrap();
+        assert!(bpfo > 0.0, "{r:?}");
+    }
+    let _ = std::fs::remove_dir_all(&d1);
+    let _ = std::fs::remove_dir_all(&d2);
+}
+
+#[test]
+fn resume_runs_only_the_missing_runs() {
+    let sw = parse(SMALL).unwrap();
+    let d = tmp("resume");
+    let full = run(&sw, &d, 2);
+    assert_eq!(full.ran, 8);
+    let path = d.join("results.csv");
+    let (_, reference) = canonical_rows(&path).unwrap();
+
+    // Simulate a kill: keep the header and 3 complete rows, plus half of the 4th row.
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut cut = lines[..4].join("\n");
+    cut.push('\n');
+    cut.push_str(&lines[4][..lines[4].len() / 2]);
+    std::fs::write(&path, cut).unwrap();
+
+    let resumed = run(&sw, &d, 2);
+    assert_eq!(resumed.selected, 8);
+    assert_eq!(resumed.skipped, 3, "the 3 complete rows are kept");
+    assert_eq!(
+        resumed.ran, 5,
+        "only the 5 missing runs (one cut short) run again"
+    );
+    let (_, after) = canonical_rows(&path).unwrap();
+    assert_eq!(after, reference);
+
+    // Nothing left: a third call runs nothing.
+    let again = run(&sw, &d, 1);
+    assert_eq!((again.skipped, again.ran), (8, 0));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn impossible_run_is_recorded_as_failed_and_the_others_finish() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[set]
+"output.duration" = 0.04
+"output.skip" = 0.01
+[axes]
+"defect.width" = [1.0e-3, 20.0e-3, -1.0e-3]
+[keep]
+raw_signal = true
+"#,
+    )
+    .unwrap();
+    let d = tmp("failed");
+    let s = run(&sw, &d, 2);
+    assert_eq!((s.ran, s.failed), (3, 2));
+    let (h, rows) = canonical_rows(&d.join("results.csv")).unwrap();
+    let col = |name: &str| h.iter().position(|x| x == name).unwrap();
+    assert_eq!(rows[0][col("status")], "ok");
+    assert!(rows[0][col("error")].is_empty());
+    let signal = d.join(&rows[0][col("signal_file")]);
+    let text = std::fs::read_to_string(&signal).unwrap();
+    assert!(text.starts_with("time,pedestal.a.z\n"), "{}", &text[..40]);
+    assert!(text.lines().count() > 1000);
+    for r in &rows[1..] {
+        assert_eq!(r[col("status")], "failed", "{r:?}");
+        assert!(r[col("error")].contains("defect.width"), "{r:?}");
+        assert!(r[col("rms")].is_empty());
+    }
+    // Failed runs are recorded, so a re-run does not retry them.
+    let again = run(&sw, &d, 2);
+    assert_eq!((again.skipped, again.ran), (3, 0));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_results_file_of_another_sweep_is_refused() {
+    let d = tmp("other");
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("results.csv"), "run_index,run_id,x\n0,abc,1\n").unwrap();
+    let sw = parse(SMALL).unwrap();
+    let e = sweep::execute(&sw, &d, &ExecOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("different sweep"), "{e}");
+    let e = sweep::execute(
+        &sw,
+        &tmp("only"),
+        &ExecOptions {
+            jobs: 1,
+            only: Some(vec![8]),
+            progress: false,
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("outside the grid"), "{e}");
+    let _ = std::fs::remove_dir_all(&d);
+}
