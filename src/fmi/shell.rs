@@ -1663,17 +1663,13 @@ pub unsafe fn deserialize_fmu_state<M: FmuModel>(
 /// # Safety
 /// FMI 2.0 pointer rules.
 pub unsafe fn get_directional_derivative<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
-    const F: &str = "fmi2GetDirectionalDerivative";
     unsafe {
-        with_instance::<M>(c, F, |me| {
-            if let Err(s) = me.check_state(F, mask::DIRECTIONAL) {
-                return s;
-            }
-            me.error(
-                F,
-                "not provided by this FMU (providesDirectionalDerivative=\"false\")",
-            )
-        })
+        unsupported::<M>(
+            c,
+            "fmi2GetDirectionalDerivative",
+            mask::DIRECTIONAL,
+            "not provided by this FMU (providesDirectionalDerivative=\"false\")",
+        )
     }
 }
 
@@ -1682,17 +1678,13 @@ pub unsafe fn get_directional_derivative<M: FmuModel>(c: Fmi2Component) -> Fmi2S
 /// # Safety
 /// FMI 2.0 pointer rules.
 pub unsafe fn set_real_input_derivatives<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
-    const F: &str = "fmi2SetRealInputDerivatives";
     unsafe {
-        with_instance::<M>(c, F, |me| {
-            if let Err(s) = me.check_state(F, mask::SET_INPUT_DERIVATIVES) {
-                return s;
-            }
-            me.error(
-                F,
-                "not supported: inputs are held constant over a step (canInterpolateInputs=\"false\")",
-            )
-        })
+        unsupported::<M>(
+            c,
+            "fmi2SetRealInputDerivatives",
+            mask::SET_INPUT_DERIVATIVES,
+            "not supported: inputs are held constant over a step (canInterpolateInputs=\"false\")",
+        )
     }
 }
 
@@ -1701,14 +1693,13 @@ pub unsafe fn set_real_input_derivatives<M: FmuModel>(c: Fmi2Component) -> Fmi2S
 /// # Safety
 /// FMI 2.0 pointer rules.
 pub unsafe fn get_real_output_derivatives<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
-    const F: &str = "fmi2GetRealOutputDerivatives";
     unsafe {
-        with_instance::<M>(c, F, |me| {
-            if let Err(s) = me.check_state(F, mask::GET_OUTPUT_DERIVATIVES) {
-                return s;
-            }
-            me.error(F, "not supported (maxOutputDerivativeOrder=\"0\")")
-        })
+        unsupported::<M>(
+            c,
+            "fmi2GetRealOutputDerivatives",
+            mask::GET_OUTPUT_DERIVATIVES,
+            "not supported (maxOutputDerivativeOrder=\"0\")",
+        )
     }
 }
 
@@ -1797,13 +1788,33 @@ pub unsafe fn do_step<M: FmuModel>(
 /// # Safety
 /// FMI 2.0 pointer rules.
 pub unsafe fn cancel_step<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
-    const F: &str = "fmi2CancelStep";
     unsafe {
-        with_instance::<M>(c, F, |me| {
-            if let Err(s) = me.check_state(F, mask::CANCEL_STEP) {
+        unsupported::<M>(
+            c,
+            "fmi2CancelStep",
+            mask::CANCEL_STEP,
+            "not supported (canRunAsynchronuously=\"false\")",
+        )
+    }
+}
+
+/// Body of the optional functions this FMU does not provide: state check, then fmi2Error with
+/// a message saying why.
+///
+/// # Safety
+/// FMI 2.0 pointer rules.
+unsafe fn unsupported<M: FmuModel>(
+    c: Fmi2Component,
+    function: &'static str,
+    allowed: u8,
+    why: &'static str,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, function, |me| {
+            if let Err(s) = me.check_state(function, allowed) {
                 return s;
             }
-            me.error(F, "not supported (canRunAsynchronuously=\"false\")")
+            me.error(function, why)
         })
     }
 }
