@@ -2,6 +2,7 @@
 
 use clap::{Parser, Subcommand};
 
+mod bench;
 mod frequencies;
 mod simulate;
 mod spectrum;
@@ -31,6 +32,8 @@ enum Command {
     Spectrum(spectrum::Args),
     /// Run a parameter sweep (grid of scenes) in parallel, resumable, into DIR/results.csv
     Sweep(sweep::Args),
+    /// Speed against accuracy of every level and method (CSV for docs/performance.md)
+    Bench(bench::Args),
 }
 
 /// Runs the program; returns the process exit code.
@@ -42,6 +45,7 @@ pub fn run() -> i32 {
         Command::Simulate(a) => simulate::run(a),
         Command::Spectrum(a) => spectrum::run(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Bench(a) => bench::run_cli(a),
     };
     match result {
         Ok(()) => 0,

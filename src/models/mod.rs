@@ -7,7 +7,9 @@
 //! mode (spec `solvers.md`, "Events").
 
 pub mod full;
+pub mod kinematic;
 pub mod lumped;
+pub mod quasi_static_level;
 
 use crate::geometry::Bearing;
 use crate::scene::{Fidelity, Scene};
@@ -20,6 +22,12 @@ pub fn build(
     inputs: &Inputs,
 ) -> Result<Box<dyn Model>, SimError> {
     match scene.fidelity {
+        Fidelity::Kinematic => Ok(Box::new(kinematic::KinematicModel::new(
+            scene, bearing, inputs,
+        )?)),
+        Fidelity::QuasiStatic => Ok(Box::new(quasi_static_level::QuasiStaticModel::new(
+            scene, bearing, inputs,
+        )?)),
         Fidelity::Lumped => Ok(Box::new(lumped::LumpedModel::new(scene, bearing, inputs)?)),
         Fidelity::Full => Ok(Box::new(full::FullModel::new(scene, bearing, inputs)?)),
         other => Err(SimError::Unsupported(format!(

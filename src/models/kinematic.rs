@@ -1,0 +1,487 @@
+//! L0s: the kinematic signal generator (spec §6, "L0s").
+//!
+//! States: the cage angle θ_c and the shaft angle φ (constant rates between input changes, so
+//! every explicit Runge–Kutta method integrates them exactly and takes few steps). The cage speed
+//! is L1's loaded one (re-solved when the inputs move by more than 2 %).
+//!
+//! Fault events. The fault phase ψ counts ball passes over the spall: ψ = z(θ_start + θ_c − θ0)/2π
+//! for an outer-race spall and ψ = z(θ0 + φ − θ_start − θ_c)/2π for an inner-race spall (both
+//! increase), so the impulse train has the BPFO or BPFI of the L1 cage speed. Pass n enters the
+//! spall at ψ = n + ε_n − h and leaves it at ψ = n + ε_n + h, where h = θ_e z/2π is the spall's
+//! half-angle in ball spacings and ε_n the seeded slip jitter (σ = `lumped.slip_jitter` ball
+//! spacings, i.e. 0.5–2 % for 0.005–0.02; deterministic in `lumped.seed` and n, clipped to ±0.45).
+//! The entries and exits are known-time stops; each is recorded when the integrator lands on it.
+//!
+//! Impulse shape and resonance (the documented choice). Each pass is a rectangular dip of the
+//! contact force on the pedestal: the ball loses ΔQ = Q(θ)·[1 − (1 − g/δ)^1.5] of its load
+//! (δ = (Q/K_n)^(2/3) its static approach, g the spall's largest drop) at the entry and regains it
+//! at the exit. The load Q(θ) at the spall's current azimuth θ (measured from the load direction)
+//! follows the load zone q(θ) = q_max[1 − (1 − cos θ)/(2ε)]^1.5 with q_max and ε from L1: constant
+//! for an outer-race spall, modulated at the shaft rate for an inner-race spall. Each step of
+//! force drives the linear 2-DOF system of the lumped level in z: the inner ring (with half the
+//! balls) on L1's radial bearing stiffness K_zz against the pedestal (with the outer ring and
+//! the other half of the balls) on k_p, c_p, with the contact damping c_br of the loaded balls.
+//! Its two modes are the pedestal mode (fel, ≈ 0.6 kHz) and the ring-on-bearing mode (feh,
+//! ≈ 5 kHz); the pedestal acceleration is the closed-form modal step response, so `pedestal.a.z`
+//! is in m/s² like at the other levels. The responses of all past steps are kept per mode as one
+//! complex amplitude (O(1) work per output); after an input change that re-solves L1, earlier
+//! responses ring out with the new modes. A healthy scene has no events.
+//!
+//! Static outputs (see [`super::quasi_static_level`]): everything except `pedestal.a.z`,
+//! `pedestal.v.z`, `pedestal.z` (static deflection + modal response) and the contact force of the
+//! ball inside the spall (reduced by ΔQ) is L1's static value.
+
+use super::quasi_static_level::{static_outputs, L1Table};
+use super::Model;
+use crate::defect::Defect;
+use crate::geometry::{Bearing, Race};
+use crate::scene::Scene;
+use crate::simulation::{out, Inputs, SimError};
+use std::f64::consts::{PI, TAU};
+
+const CAGE: usize = 0;
+const SHAFT: usize = 1;
+
+/// Landing tolerance on the fault phase [ball passes].
+const PHASE_TOL: f64 = 1e-9;
+
+/// One mode of the 2-DOF ring/pedestal system.
+#[derive(Debug, Clone, Copy)]
+struct Mode {
+    /// Undamped circular frequency [rad/s].
+    omega: f64,
+    /// Decay rate ζω [1/s].
+    sigma: f64,
+    /// Damped circular frequency [rad/s].
+    omega_d: f64,
+    /// Pedestal-z response per newton of force pair (−F on the ring, +F on the pedestal):
+    /// φ_p · φᵀ(−1, 1), with φ mass-normalised [1/kg].
+    gain: f64,
+}
+
+/// The kinematic model.
+pub struct KinematicModel {
+    bearing: Bearing,
+    table: L1Table,
+    inputs: Inputs,
+    defect: Option<Defect>,
+    theta_start: f64,
+    /// Series Hertz constant of a ball [N/m^1.5].
+    k_series: f64,
+    jitter: f64,
+    seed: u64,
+    modes: [Mode; 2],
+    /// Next pass whose entry / exit is still to come.
+    next_entry: i64,
+    next_exit: i64,
+    /// Per mode, the superposed step responses as one complex amplitude: C = Σ_k g_k e^{λ(t_ref − t_k)}
+    /// (re, im) at t_ref, and the static sum S = Σ_k g_k (g_k = modal gain × step force).
+    acc: [(f64, f64, f64); 2],
+    /// Time of the last force step [s].
+    t_ref: f64,
+    /// Load lost by the ball of the current pass (set at the entry, undone at the exit).
+    dip: f64,
+}
+
+impl KinematicModel {
+    /// Builds the generator for a scene (L1 at the scene's inputs).
+    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+        let table = L1Table::solve(bearing, inputs)?;
+        let defect = match &scene.defect {
+            Some(spec) => {
+                let q_ref = table.q_max.max(10.0);
+                Some(Defect::new(spec, bearing, q_ref)?)
+            }
+            None => None,
+        };
+        let mut m = Self {
+            bearing: bearing.clone(),
+            modes: [Mode {
+                omega: 0.0,
+                sigma: 0.0,
+                omega_d: 0.0,
+                gain: 0.0,
+            }; 2],
+            table,
+            inputs: *inputs,
+            defect,
+            theta_start: 0.0,
+            k_series: bearing.k_series(),
+            jitter: scene.lumped.slip_jitter.abs(),
+            seed: scene.lumped.seed,
+            next_entry: 0,
+            next_exit: 0,
+            acc: [(0.0, 0.0, 0.0); 2],
+            t_ref: 0.0,
+            dip: 0.0,
+        };
+        m.theta_start = m.choose_theta_start();
+        m.modes = m.compute_modes();
+        let psi0 = m.phase(&[0.0, 0.0]);
+        let start = psi0.floor() as i64 - 2;
+        m.next_entry = start;
+        while m.entry_threshold(m.next_entry) <= psi0 {
+            m.next_entry += 1;
+        }
+        // A pass already inside the spall at the start is skipped (its entry was not seen).
+        m.next_exit = m.next_entry;
+        Ok(m)
+    }
+
+    /// Ball 0's start azimuth, as at the lumped level (no ball within θ_e + 0.02 rad of the spall).
+    fn choose_theta_start(&self) -> f64 {
+        let Some(d) = &self.defect else { return 0.0 };
+        let clear = d.half_angle() + 0.02;
+        let z = self.bearing.z;
+        let spacing = TAU / z as f64;
+        [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
+            .into_iter()
+            .find(|&s| (0..z).all(|j| wrap(s + spacing * j as f64 - d.theta0()).abs() > clear))
+            .unwrap_or(0.5 * spacing)
+    }
+
+    /// Modes of the ring (m1) on K_zz against the pedestal (m2) on k_p (z direction).
+    fn compute_modes(&self) -> [Mode; 2] {
+        let file = &self.bearing.file;
+        let half_balls = 0.5 * self.bearing.z as f64 * self.bearing.ball_mass;
+        let m1 = file.inner_ring.mass + half_balls;
+        let m2 = file.pedestal.mass + half_balls;
+        let kb = self.table.k_zz.abs().max(1.0);
+        let kp = file.pedestal.k_z;
+        // Contact damping of the loaded balls projected on z.
+        let z = self.bearing.z;
+        let cb: f64 = (0..z)
+            .map(|j| {
+                let th = TAU * j as f64 / z as f64;
+                let (qi, _) = self.table.loads_at(th);
+                if qi > 0.0 {
+                    let c = self.table.alpha.cos() * th.cos();
+                    file.contact.c_br * c * c
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        let cp = file.pedestal.c_z;
+        let (k11, k12, k22) = (kb, -kb, kb + kp);
+        let (c11, c12, c22) = (cb, -cb, cb + cp);
+        // det(K − λM) = 0: m1 m2 λ² − (k11 m2 + k22 m1) λ + (k11 k22 − k12²) = 0.
+        let a = m1 * m2;
+        let b = -(k11 * m2 + k22 * m1);
+        let c = k11 * k22 - k12 * k12;
+        let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
+        let mut modes = [Mode {
+            omega: 0.0,
+            sigma: 0.0,
+            omega_d: 0.0,
+            gain: 0.0,
+        }; 2];
+        for (i, lam) in [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)]
+            .into_iter()
+            .enumerate()
+        {
+            // Row 1: (k11 − λ m1) φ1 + k12 φ2 = 0.
+            let (p1, p2) = (1.0, -(k11 - lam * m1) / k12);
+            let norm = (m1 * p1 * p1 + m2 * p2 * p2).sqrt();
+            let (p1, p2) = (p1 / norm, p2 / norm);
+            let omega = lam.max(0.0).sqrt();
+            let modal_c = c11 * p1 * p1 + 2.0 * c12 * p1 * p2 + c22 * p2 * p2;
+            let zeta = if omega > 0.0 {
+                (modal_c / (2.0 * omega)).clamp(0.0, 0.99)
+            } else {
+                0.0
+            };
+            modes[i] = Mode {
+                omega,
+                sigma: zeta * omega,
+                omega_d: omega * (1.0 - zeta * zeta).sqrt(),
+                gain: p2 * (p2 - p1),
+            };
+        }
+        modes
+    }
+
+    /// Fault phase ψ [ball passes] from the state.
+    fn phase(&self, y: &[f64]) -> f64 {
+        let Some(d) = &self.defect else { return 0.0 };
+        let z = self.bearing.z as f64;
+        match d.ring() {
+            Race::Outer => z * (self.theta_start + y[CAGE] - d.theta0()) / TAU,
+            Race::Inner => z * (d.theta0() + y[SHAFT] - self.theta_start - y[CAGE]) / TAU,
+        }
+    }
+
+    /// dψ/dt [passes/s].
+    fn phase_rate(&self) -> f64 {
+        let Some(d) = &self.defect else { return 0.0 };
+        let z = self.bearing.z as f64;
+        match d.ring() {
+            Race::Outer => z * self.table.cage_speed / TAU,
+            Race::Inner => z * (self.inputs.shaft_speed - self.table.cage_speed) / TAU,
+        }
+    }
+
+    /// Half-width of the spall in ball spacings.
+    fn half_width(&self) -> f64 {
+        self.defect
+            .as_ref()
+            .map_or(0.0, |d| d.half_angle() * self.bearing.z as f64 / TAU)
+    }
+
+    /// Slip jitter of pass n [ball spacings].
+    fn jitter_of(&self, n: i64) -> f64 {
+        if self.jitter == 0.0 {
+            return 0.0;
+        }
+        let mut s = self
+            .seed
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add((n as u64).wrapping_mul(0x94D0_49BB_1331_11EB));
+        let u1 = ((splitmix64(&mut s) >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
+        let u2 = ((splitmix64(&mut s) >> 11) as f64) / (1u64 << 53) as f64;
+        (self.jitter * (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos()).clamp(-0.45, 0.45)
+    }
+
+    fn entry_threshold(&self, n: i64) -> f64 {
+        n as f64 + self.jitter_of(n) - self.half_width()
+    }
+
+    fn exit_threshold(&self, n: i64) -> f64 {
+        n as f64 + self.jitter_of(n) + self.half_width()
+    }
+
+    /// Azimuth of the spall [rad].
+    fn defect_azimuth(&self, d: &Defect, y: &[f64]) -> f64 {
+        match d.ring() {
+            Race::Outer => d.theta0(),
+            Race::Inner => d.theta0() + y[SHAFT],
+        }
+    }
+
+    /// Azimuth of the load-zone centre: where e_r(θ) = (−sin θ, cos θ) points along (Fy, Fz).
+    fn load_azimuth(&self) -> f64 {
+        (-self.inputs.fy).atan2(self.inputs.fz)
+    }
+
+    /// Load-zone ball load q(θ) = q_max[1 − (1 − cos θ)/(2ε)]^1.5 at azimuth θ from the centre.
+    pub fn load_zone(q_max: f64, epsilon: f64, theta: f64) -> f64 {
+        if !epsilon.is_finite() {
+            return q_max;
+        }
+        let base = 1.0 - (1.0 - theta.cos()) / (2.0 * epsilon);
+        if base <= 0.0 {
+            0.0
+        } else {
+            q_max * base * base.sqrt()
+        }
+    }
+
+    /// Load lost by a ball over the spall at spall azimuth θ [N] (≥ 0).
+    fn load_loss(&self, d: &Defect, theta: f64) -> f64 {
+        let q = Self::load_zone(
+            self.table.q_max,
+            self.table.epsilon,
+            theta - self.load_azimuth(),
+        );
+        if q <= 0.0 || self.k_series <= 0.0 {
+            return 0.0;
+        }
+        let delta = (q / self.k_series).powf(2.0 / 3.0);
+        let rest = (1.0 - d.max_drop() / delta).max(0.0);
+        q * (1.0 - rest * rest.sqrt())
+    }
+
+    /// Adds a step of force f [N] on the pedestal (−f on the ring) at time t.
+    fn push_event(&mut self, t: f64, f: f64) {
+        let dt = t - self.t_ref;
+        for (m, acc) in self.modes.iter().zip(self.acc.iter_mut()) {
+            let e = (-m.sigma * dt).exp();
+            let (sn, cs) = (m.omega_d * dt).sin_cos();
+            let (re, im) = (acc.0 * e, acc.1 * e);
+            acc.0 = re * cs - im * sn + m.gain * f;
+            acc.1 = re * sn + im * cs;
+            acc.2 += m.gain * f;
+        }
+        self.t_ref = t;
+    }
+
+    /// Pedestal-z (displacement, velocity, acceleration) of the superposed modal step responses
+    /// at t. With λ = −σ + iω_d and C(t) = C_ref e^{λ(t − t_ref)}: a = Re[C(1 + iσ/ω_d)],
+    /// v = Re[−iC]/ω_d, x = (S − Re[C(1 − iσ/ω_d)])/ω².
+    fn response(&self, t: f64) -> (f64, f64, f64) {
+        let dt = t - self.t_ref;
+        let (mut x, mut v, mut a) = (0.0, 0.0, 0.0);
+        for (m, acc) in self.modes.iter().zip(self.acc.iter()) {
+            if m.omega_d <= 0.0 || (acc.0 == 0.0 && acc.1 == 0.0 && acc.2 == 0.0) {
+                continue;
+            }
+            let e = (-m.sigma * dt).exp();
+            let (sn, cs) = (m.omega_d * dt).sin_cos();
+            let (re, im) = (e * (acc.0 * cs - acc.1 * sn), e * (acc.0 * sn + acc.1 * cs));
+            let r = m.sigma / m.omega_d;
+            a += re - r * im;
+            v += im / m.omega_d;
+            x += (acc.2 - (re + r * im)) / (m.omega * m.omega);
+        }
+        (x, v, a)
+    }
+}
+
+fn splitmix64(s: &mut u64) -> u64 {
+    *s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut x = *s;
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+fn wrap(a: f64) -> f64 {
+    let r = a.rem_euclid(TAU);
+    if r > PI {
+        r - TAU
+    } else {
+        r
+    }
+}
+
+impl Model for KinematicModel {
+    fn dim(&self) -> usize {
+        2
+    }
+
+    fn nominal(&self, out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 1.0);
+    }
+
+    fn initial_state(&self, y: &mut [f64]) {
+        y.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+        self.inputs = *inputs;
+        if self.table.moved(inputs) {
+            if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
+                self.table = t;
+                self.modes = self.compute_modes();
+            }
+        }
+    }
+
+    fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
+        dydt[CAGE] = self.table.cage_speed;
+        dydt[SHAFT] = self.inputs.shaft_speed;
+    }
+
+    fn next_stop(&self, t: f64, y: &[f64], t_max: f64) -> Option<f64> {
+        self.defect.as_ref()?;
+        let rate = self.phase_rate();
+        if rate <= 0.0 {
+            return None;
+        }
+        let psi = self.phase(y);
+        let target = self
+            .entry_threshold(self.next_entry)
+            .min(self.exit_threshold(self.next_exit));
+        let ts = t + ((target - psi) / rate).max(0.0);
+        (ts > t && ts <= t_max).then_some(ts)
+    }
+
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
+        let Some(d) = self.defect.clone() else { return };
+        let psi = self.phase(y) + PHASE_TOL;
+        let theta = self.defect_azimuth(&d, y);
+        let e_rz = self.table.alpha.cos() * theta.cos();
+        loop {
+            let entry = self.entry_threshold(self.next_entry);
+            let exit = self.exit_threshold(self.next_exit);
+            if self.next_exit < self.next_entry && exit <= psi && exit <= entry {
+                // The ball regains its load: the pedestal is pushed again.
+                self.push_event(t, self.dip * e_rz);
+                self.next_exit += 1;
+            } else if entry <= psi {
+                // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
+                self.dip = self.load_loss(&d, theta);
+                self.push_event(t, -self.dip * e_rz);
+                self.next_entry += 1;
+            } else {
+                break;
+            }
+        }
+    }
+
+    fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+        static_outputs(
+            &self.table,
+            &self.bearing,
+            &self.inputs,
+            self.theta_start,
+            y[CAGE],
+            o,
+        );
+        let (x, v, a) = self.response(t);
+        o[out::PEDESTAL_Z] += x;
+        o[out::PEDESTAL_V_Z] = v;
+        o[out::PEDESTAL_A_Z] = a;
+        if let Some(d) = &self.defect {
+            if self.next_exit < self.next_entry {
+                // The ball over the spall carries ΔQ less.
+                let z = self.bearing.z;
+                let spacing = TAU / z as f64;
+                let theta_d = self.defect_azimuth(d, y);
+                let rel = wrap(theta_d - self.theta_start - y[CAGE]);
+                let j = ((rel / spacing).round() as i64).rem_euclid(z as i64) as usize;
+                o[out::CONTACT_START + j] = (o[out::CONTACT_START + j] - self.dip).max(0.0);
+                o[out::CONTACT_START + z + j] = (o[out::CONTACT_START + z + j] - self.dip).max(0.0);
+            }
+        }
+    }
+
+    fn discrete_state(&self) -> Vec<f64> {
+        let i = &self.table.inputs;
+        let mut s = vec![
+            i.shaft_speed,
+            i.fx,
+            i.fy,
+            i.fz,
+            self.next_entry as f64,
+            self.next_exit as f64,
+            self.dip,
+            self.t_ref,
+        ];
+        for acc in &self.acc {
+            s.extend_from_slice(&[acc.0, acc.1, acc.2]);
+        }
+        s
+    }
+
+    fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
+        if s.len() != 14 || s.iter().any(|v| !v.is_finite()) {
+            return Err(format!(
+                "kinematic model state has 14 finite values, got {}",
+                s.len()
+            ));
+        }
+        let inputs = Inputs {
+            shaft_speed: s[0],
+            fx: s[1],
+            fy: s[2],
+            fz: s[3],
+        };
+        if inputs != self.table.inputs {
+            self.table = L1Table::solve(&self.bearing, &inputs).map_err(|e| e.to_string())?;
+            self.modes = self.compute_modes();
+        }
+        self.next_entry = s[4] as i64;
+        self.next_exit = s[5] as i64;
+        self.dip = s[6];
+        self.t_ref = s[7];
+        for (k, acc) in self.acc.iter_mut().enumerate() {
+            *acc = (s[8 + 3 * k], s[9 + 3 * k], s[10 + 3 * k]);
+        }
+        Ok(())
+    }
+
+    fn cage_speed(&self) -> f64 {
+        self.table.cage_speed
+    }
+}

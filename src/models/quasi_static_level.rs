@@ -1,0 +1,249 @@
+//! L1 as a level of the ladder (spec §6 L1): the outputs are the quasi-static (Jones–Harris)
+//! solution at the current inputs.
+//!
+//! The model integrates only the cage angle θ_c and the shaft angle φ (two states with constant
+//! rates between input changes, so every explicit Runge–Kutta method integrates them exactly).
+//! The balls sit at θ_j = θ_start + 2πj/z + θ_c and rotate with the cage; each ball's contact
+//! forces are the L1 load distribution at its azimuth (linear interpolation over azimuth between
+//! L1's z equally spaced balls), so a ball's Q moves through the load zone as the cage turns.
+//! L1 is re-solved when an input changes by more than 2 % (speed or load); if it cannot solve at
+//! the new inputs the last solution is kept.
+//!
+//! Static outputs (constant between input changes): the pedestal sits at its static deflection
+//! F/k_p with zero velocity and acceleration, the inner ring at pedestal + L1 displacement, the
+//! bearing force on the shaft is minus the external load, the friction torque is 0 (no traction
+//! at L1) and the cage speed is L1's mean ω_c.
+
+use super::Model;
+use crate::geometry::Bearing;
+use crate::quasi_static::{self, LoadCase, QuasiStatic};
+use crate::scene::Scene;
+use crate::simulation::{out, Inputs, SimError};
+use std::f64::consts::TAU;
+
+const CAGE: usize = 0;
+const SHAFT: usize = 1;
+
+/// The L1 solution reduced to what the cheap levels need, as a function of azimuth.
+#[derive(Debug, Clone)]
+pub struct L1Table {
+    /// Inner and outer contact force of L1's ball j at azimuth 2πj/z [N].
+    q_inner: Vec<f64>,
+    q_outer: Vec<f64>,
+    /// Mean loaded cage speed [rad/s] (the kinematic outer-race-control one at zero speed).
+    pub cage_speed: f64,
+    /// Inner-ring displacement relative to the outer ring (δ_a, δ_y, δ_z) [m].
+    pub offset: [f64; 3],
+    /// Radial stiffness ∂F_z/∂δ_z of the ball set [N/m].
+    pub k_zz: f64,
+    /// Load-zone parameter ε = ½(1 + δ_a tan α / δ_r) (∞ without radial displacement).
+    pub epsilon: f64,
+    /// Largest inner contact force [N].
+    pub q_max: f64,
+    /// Mean inner contact angle of the loaded balls [rad].
+    pub alpha: f64,
+    /// Inputs the table was solved for.
+    pub inputs: Inputs,
+}
+
+impl L1Table {
+    /// Solves L1 at `inputs`.
+    pub fn solve(bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+        let case = LoadCase {
+            speed: inputs.shaft_speed,
+            fa: inputs.fx,
+            fy: inputs.fy,
+            fz: inputs.fz,
+        };
+        let qs = quasi_static::solve(bearing, &case).map_err(|e| {
+            SimError::Input(format!(
+                "the quasi-static (L1) solve failed at shaft.speed = {:.3} rad/s, load = ({}, {}, {}) N: {e}",
+                inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
+            ))
+        })?;
+        Ok(Self::from_solution(bearing, &qs, inputs))
+    }
+
+    fn from_solution(bearing: &Bearing, qs: &QuasiStatic, inputs: &Inputs) -> Self {
+        let loaded: Vec<_> = qs.loaded_balls().collect();
+        let alpha = if loaded.is_empty() {
+            bearing.alpha0
+        } else {
+            loaded.iter().map(|b| b.alpha_inner).sum::<f64>() / loaded.len() as f64
+        };
+        let cage_speed = if inputs.shaft_speed > 0.0 {
+            qs.cage_speed
+        } else {
+            0.0
+        };
+        let dr = qs.delta_radial();
+        let epsilon = if dr > 0.0 {
+            0.5 * (1.0 + qs.delta_axial.abs() * alpha.tan() / dr)
+        } else {
+            f64::INFINITY
+        };
+        Self {
+            q_inner: qs.balls.iter().map(|b| b.q_inner).collect(),
+            q_outer: qs.balls.iter().map(|b| b.q_outer).collect(),
+            cage_speed,
+            offset: [qs.delta_axial, qs.delta_y, qs.delta_z],
+            k_zz: qs.stiffness[2][2],
+            epsilon,
+            q_max: qs.balls.iter().map(|b| b.q_inner).fold(0.0, f64::max),
+            alpha,
+            inputs: *inputs,
+        }
+    }
+
+    /// (Q_inner, Q_outer) at azimuth θ, interpolated linearly between L1's balls.
+    pub fn loads_at(&self, theta: f64) -> (f64, f64) {
+        let z = self.q_inner.len();
+        if z == 0 {
+            return (0.0, 0.0);
+        }
+        let u = theta.rem_euclid(TAU) / TAU * z as f64;
+        let j = (u.floor() as usize).min(z - 1);
+        let s = u - j as f64;
+        let k = (j + 1) % z;
+        (
+            (1.0 - s) * self.q_inner[j] + s * self.q_inner[k],
+            (1.0 - s) * self.q_outer[j] + s * self.q_outer[k],
+        )
+    }
+
+    /// True when `new` differs from the solved inputs by more than 2 % in speed or load.
+    pub fn moved(&self, new: &Inputs) -> bool {
+        let old = &self.inputs;
+        let load = |x: f64, y: f64, z: f64| (x * x + y * y + z * z).sqrt();
+        (new.shaft_speed - old.shaft_speed).abs() > 0.02 * old.shaft_speed.abs().max(1.0)
+            || load(new.fx - old.fx, new.fy - old.fy, new.fz - old.fz)
+                > 0.02 * load(old.fx, old.fy, old.fz).max(1.0)
+    }
+}
+
+/// Fills the static outputs shared by the kinematic and quasi-static levels: pedestal at its
+/// static deflection (zero rates), ring at pedestal + L1 offset, bearing force = −load,
+/// friction torque 0, cage speed, and per-ball contact forces at the balls' azimuths
+/// `θ_start + 2πj/z + cage`.
+pub(crate) fn static_outputs(
+    table: &L1Table,
+    bearing: &Bearing,
+    inputs: &Inputs,
+    theta_start: f64,
+    cage: f64,
+    o: &mut [f64],
+) {
+    let p = &bearing.file.pedestal;
+    let yp = inputs.fy / p.k_y;
+    let zp = inputs.fz / p.k_z;
+    o[out::PEDESTAL_A_Y] = 0.0;
+    o[out::PEDESTAL_A_Z] = 0.0;
+    o[out::PEDESTAL_Y] = yp;
+    o[out::PEDESTAL_Z] = zp;
+    o[out::PEDESTAL_V_Y] = 0.0;
+    o[out::PEDESTAL_V_Z] = 0.0;
+    o[out::RING_X] = table.offset[0];
+    o[out::RING_Y] = yp + table.offset[1];
+    o[out::RING_Z] = zp + table.offset[2];
+    o[out::BEARING_F_X] = -inputs.fx;
+    o[out::BEARING_F_Y] = -inputs.fy;
+    o[out::BEARING_F_Z] = -inputs.fz;
+    o[out::FRICTION_TORQUE] = 0.0;
+    o[out::CAGE_SPEED] = table.cage_speed;
+    let z = bearing.z;
+    for j in 0..z {
+        let theta = theta_start + TAU * j as f64 / z as f64 + cage;
+        let (qi, qo) = table.loads_at(theta);
+        o[out::CONTACT_START + j] = qi;
+        o[out::CONTACT_START + z + j] = qo;
+    }
+}
+
+/// The quasi-static level.
+pub struct QuasiStaticModel {
+    bearing: Bearing,
+    table: L1Table,
+    inputs: Inputs,
+}
+
+impl QuasiStaticModel {
+    /// Solves L1 at the scene's inputs.
+    pub fn new(_scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+        Ok(Self {
+            bearing: bearing.clone(),
+            table: L1Table::solve(bearing, inputs)?,
+            inputs: *inputs,
+        })
+    }
+
+    /// The L1 solution currently in use.
+    pub fn table(&self) -> &L1Table {
+        &self.table
+    }
+}
+
+impl Model for QuasiStaticModel {
+    fn dim(&self) -> usize {
+        2
+    }
+
+    fn nominal(&self, out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 1.0);
+    }
+
+    fn initial_state(&self, y: &mut [f64]) {
+        y.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+        self.inputs = *inputs;
+        if self.table.moved(inputs) {
+            if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
+                self.table = t;
+            }
+        }
+    }
+
+    fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
+        dydt[CAGE] = self.table.cage_speed;
+        dydt[SHAFT] = self.inputs.shaft_speed;
+    }
+
+    fn next_stop(&self, _t: f64, _y: &[f64], _t_max: f64) -> Option<f64> {
+        None
+    }
+
+    fn update_mode(&mut self, _t: f64, _y: &[f64]) {}
+
+    fn outputs(&mut self, _t: f64, y: &[f64], o: &mut [f64]) {
+        static_outputs(&self.table, &self.bearing, &self.inputs, 0.0, y[CAGE], o);
+    }
+
+    fn discrete_state(&self) -> Vec<f64> {
+        let i = &self.table.inputs;
+        vec![i.shaft_speed, i.fx, i.fy, i.fz]
+    }
+
+    fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
+        if s.len() != 4 {
+            return Err(format!(
+                "quasi-static model state has 4 values, got {}",
+                s.len()
+            ));
+        }
+        let inputs = Inputs {
+            shaft_speed: s[0],
+            fx: s[1],
+            fy: s[2],
+            fz: s[3],
+        };
+        if inputs != self.table.inputs {
+            self.table = L1Table::solve(&self.bearing, &inputs).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    fn cage_speed(&self) -> f64 {
+        self.table.cage_speed
+    }
+}
