@@ -148,6 +148,13 @@ pub struct DefectView<'a> {
     pub a_star: f64,
 }
 
+impl ContactOut {
+    /// Contact angle α (eq. 5) of the intact groove [rad] for a race of sign `s_k`.
+    pub fn alpha(&self, sign: f64) -> f64 {
+        (sign * self.bx).atan2(sign * self.br)
+    }
+}
+
 /// Result of one contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ContactOut {
@@ -166,8 +173,9 @@ pub struct ContactOut {
     /// The same with the normal in ring-frame components: its moment arm × this is the exact
     /// generalised force conjugate to the small tilt angles (keeps the tilt conservative).
     pub qn_ring: V3,
-    /// Contact angle α (eq. 5) [rad] of the intact groove.
-    pub alpha: f64,
+    /// Ball centre relative to the groove centre in the ring's (axial, radial) plane [m].
+    pub bx: f64,
+    pub br: f64,
     /// True when the spall altered this contact.
     pub in_defect: bool,
 }
@@ -185,15 +193,16 @@ pub fn evaluate(
 ) -> ContactOut {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
-    let rho = rr[1].hypot(rr[2]);
+    let rho = (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
     let (ey, ez) = (rr[1] / rho, rr[2] / rho);
     let bx = rr[0] - race.xg;
     let br = rho - race.rg;
-    let l = bx.hypot(br);
+    let l = (bx * bx + br * br).sqrt();
     let mut delta = l - race.e;
     let mut out = ContactOut {
         delta,
-        alpha: (race.sign * bx).atan2(race.sign * br),
+        bx,
+        br,
         k: race.k,
         ..Default::default()
     };
@@ -265,7 +274,7 @@ pub fn evaluate(
         let zeta = (rs * rs - xi * xi).sqrt() + z0;
         let u1 = a1 + zeta * b1;
         let u2 = a2 + xi * s - zeta * b2;
-        let g = -q * strips.w[kk] * curve.kappa_over_u(u1.hypot(u2));
+        let g = -q * strips.w[kk] * curve.kappa_over_u((u1 * u1 + u2 * u2).sqrt());
         let (g1, g2) = (g * u1, g * u2);
         f1 += g1;
         f2 += g2;
