@@ -8,7 +8,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 VENV="${RACEWAY_VENV:-$ROOT/.venv}"
 PY="${PYTHON:-python3}"
-PACKAGES=(fmpy numpy scipy matplotlib pytest libcosimpy)
+PACKAGES=(fmpy numpy scipy matplotlib pytest libcosimpy "dask[distributed]")
 
 say() { printf 'setup-python: %s\n' "$*"; }
 

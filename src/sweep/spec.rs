@@ -497,7 +497,7 @@ impl Sweep {
         let mut noise = 0.0;
         // The defect is assembled from the base (or the defaults of the default scene) and
         // created or removed by defect.ring.
-        let template = self.base.defect.clone().unwrap_or_else(|| DefectSpec {
+        let template = self.base.defect.clone().unwrap_or(DefectSpec {
             ring: Race::Outer,
             width: 1.0e-3,
             depth: 0.2e-3,
