@@ -322,3 +322,84 @@ fn speed_change_between_advances_moves_the_cage() {
     let w1 = sim.cage_speed();
     assert!((w1 / w0 - 0.5).abs() < 0.01, "{w0} -> {w1}");
 }
+
+#[test]
+fn slip_jitter_is_seeded_reproducible_and_smears_the_fault_harmonics() {
+    let base = scene("default.toml");
+    let fs = 51200.0;
+    let bpfo = 14.0 * model_cage_hz(&base);
+    let envelope = |sc: &Scene| {
+        let (_, rows) = run(sc, 0.42, fs, 0.02);
+        let a = column(&rows, out::PEDESTAL_A_Z);
+        let env = signal::envelope_spectrum(&a, fs, Some((2000.0, 12000.0)), Window::Hann).unwrap();
+        (a, env)
+    };
+    let (_, env0) = envelope(&base);
+    let mut sc = base.clone();
+    sc.lumped.slip_jitter = 0.02;
+    sc.lumped.seed = 3;
+    let (a1, env1) = envelope(&sc);
+    let (a2, _) = envelope(&sc);
+    assert_eq!(a1, a2, "same seed, same signal");
+    sc.lumped.seed = 4;
+    let (a3, _) = envelope(&sc);
+    assert_ne!(a1, a3, "another seed, another signal");
+    // The fundamental stays at BPFO (the jitter has zero mean).
+    let f1 = signal::peak_near(&env1, bpfo, 0.02 * bpfo).unwrap();
+    assert!(f1.rel_error(bpfo).abs() < 0.002, "{}", f1.freq);
+    // Timing jitter of relative standard deviation σ_t multiplies the k-th line of an impulse
+    // train by exp(−(2πkσ_t)²/2). Ball offsets interpolated linearly between per-revolution
+    // nodes of deviation σ have σ_t² = (2/3)σ² on average, so the 5th harmonic keeps at most
+    // that fraction (jitter also varies the impact severity, which lowers it further).
+    let k = 5.0;
+    let bound = (-(std::f64::consts::TAU * k * 0.02).powi(2) * (2.0 / 3.0) / 2.0).exp();
+    let h0 = signal::peak_near(&env0, k * bpfo, 0.01 * bpfo).unwrap();
+    let h1 = signal::peak_near(&env1, k * bpfo, 0.01 * bpfo).unwrap();
+    let ratio = h1.value / h0.value;
+    assert!(
+        ratio < bound && ratio > 0.2,
+        "5th harmonic kept {ratio:.3}, bound {bound:.3}"
+    );
+}
+
+#[test]
+fn sensor_resonator_adds_its_mode_to_the_pedestal_response() {
+    // Impact test with the "sensor" resonator of spec §6 L2 (16 kHz, ζ 0.05, 0.05 kg). Far
+    // above feh the inner ring decouples, so the resonator rides on the pedestal (+ half the
+    // balls, 0.829 kg): f = 16 kHz·√(1 + 0.05/0.829) = 16.48 kHz, a little lower where the ring
+    // still takes part.
+    let mut sc = scene("impact-test-fa4000.toml");
+    sc.lumped.resonator = Some(raceway::scene::Resonator {
+        frequency: 16000.0,
+        damping_ratio: 0.05,
+        mass: 0.05,
+    });
+    let fs = sc.output.sample_rate;
+    let t0 = sc.pulse.as_ref().unwrap().t0;
+    let response = |sc: &Scene| {
+        let mut quiet = sc.clone();
+        quiet.pulse = None;
+        let (_, with) = run(sc, t0 + 0.03, fs, t0);
+        let (_, without) = run(&quiet, t0 + 0.03, fs, t0);
+        let mut d: Vec<f64> = with
+            .iter()
+            .zip(&without)
+            .map(|(a, b)| a[out::PEDESTAL_A_Z] - b[out::PEDESTAL_A_Z])
+            .collect();
+        d.resize(fs as usize, 0.0);
+        signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap()
+    };
+    let s = response(&sc);
+    let p = signal::dominant_peak(&s, 12000.0, 25000.0).unwrap();
+    let predicted = 16000.0 * (1.0 + 0.05 / 0.829_f64).sqrt();
+    assert!(
+        (p.freq / predicted - 1.0).abs() < 0.02,
+        "resonator peak at {}",
+        p.freq
+    );
+    // Without the resonator there is no such mode: the band holds far less.
+    sc.lumped.resonator = None;
+    let bare = response(&sc);
+    let p0 = signal::dominant_peak(&bare, 12000.0, 25000.0).unwrap();
+    assert!(p.value > 5.0 * p0.value, "{} vs {}", p.value, p0.value);
+}
