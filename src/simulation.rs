@@ -212,6 +212,9 @@ pub struct Simulation {
     /// Scratch for interpolated states between stops (CLI sampling).
     samples: Vec<f64>,
     sample_times: Vec<f64>,
+    /// One interpolated state and one output vector (no allocation per advance).
+    y_scratch: Vec<f64>,
+    out_scratch: Vec<f64>,
 }
 
 /// Lets the integrator drive a model (the integrator knows nothing about bearings).
@@ -277,6 +280,7 @@ impl Simulation {
         model.update_mode(0.0, &y0);
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
+        let n_out = output_table(bearing.z).len();
         Ok(Self {
             scene: scene.clone(),
             bearing,
@@ -285,15 +289,25 @@ impl Simulation {
             inputs,
             samples: Vec::new(),
             sample_times: Vec::new(),
+            y_scratch: vec![0.0; n],
+            out_scratch: vec![0.0; n_out],
         })
     }
 
-    fn options(scene: &Scene, model: &dyn Model) -> Options {
+    /// Absolute tolerances: rtol × each state's nominal value (spec `solvers.md`).
+    fn atol(model: &dyn Model, rtol: f64) -> Vec<f64> {
         let mut nominal = vec![0.0; model.dim()];
         model.nominal(&mut nominal);
+        nominal.iter().map(|v| v * rtol).collect()
+    }
+
+    fn options(scene: &Scene, model: &dyn Model) -> Options {
         let rtol = scene.solver.rtol;
-        let atol = nominal.iter().map(|v| v * rtol).collect();
-        let mut o = Options::new(method_of(scene.solver.method), rtol, atol);
+        let mut o = Options::new(
+            method_of(scene.solver.method),
+            rtol,
+            Self::atol(model, rtol),
+        );
         o.max_steps = scene.solver.max_steps;
         o
     }
@@ -338,12 +352,14 @@ impl Simulation {
                 format!("{rtol} must lie in (0, 0.1)"),
             )));
         }
+        // Keep the integrator (its step size, FSAL stage and work counters); change the tolerances.
+        let atol = Self::atol(self.model.as_ref(), rtol);
+        let bad = |e: crate::solver::SolverError| {
+            SimError::Config(ConfigError::new("solver.rtol", e.to_string()))
+        };
+        self.integrator.set_rtol(rtol).map_err(bad)?;
+        self.integrator.set_atol(&atol).map_err(bad)?;
         self.scene.solver.rtol = rtol;
-        let t = self.integrator.t();
-        let y = self.integrator.y().to_vec();
-        self.integrator =
-            Integrator::new(Self::options(&self.scene, self.model.as_ref()), t, &y)
-                .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
         Ok(())
     }
 
@@ -379,8 +395,6 @@ impl Simulation {
             )));
         }
         let n = self.model.dim();
-        let n_out = output_table(self.bearing.z).len();
-        let mut out_buf = vec![0.0; n_out];
         while self.integrator.t() < t_end {
             let t = self.integrator.t();
             let stop = self.model.next_stop(t, self.integrator.y(), t_end);
@@ -403,7 +417,7 @@ impl Simulation {
                         let dt = *dt;
                         let samples = &mut self.samples;
                         let times = &mut self.sample_times;
-                        let mut buf = vec![0.0; n];
+                        let buf = &mut self.y_scratch;
                         let mut obs = |v: &StepView| {
                             let mut k = (v.t_start() / dt).floor() as i64 + 1;
                             loop {
@@ -412,8 +426,8 @@ impl Simulation {
                                     break;
                                 }
                                 if ts > v.t_start() {
-                                    v.interpolate(ts.min(v.t_end()), &mut buf);
-                                    samples.extend_from_slice(&buf);
+                                    v.interpolate(ts.min(v.t_end()), buf);
+                                    samples.extend_from_slice(buf);
                                     times.push(ts);
                                 }
                                 k += 1;
@@ -435,8 +449,8 @@ impl Simulation {
             if let Some((_, cb)) = sampling.as_mut() {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
-                    self.model.outputs(ts, y, &mut out_buf);
-                    cb(ts, &out_buf);
+                    self.model.outputs(ts, y, &mut self.out_scratch);
+                    cb(ts, &self.out_scratch);
                 }
             }
             let event = match result {
@@ -465,9 +479,7 @@ impl Simulation {
     /// Fills `out` (length `output_table().len()`) with the outputs at the current time.
     pub fn outputs(&mut self, out: &mut [f64]) {
         let t = self.integrator.t();
-        // The model's outputs evaluate its right-hand side at (t, y): copy y out of the integrator.
-        let y = self.integrator.y().to_vec();
-        self.model.outputs(t, &y, out);
+        self.model.outputs(t, self.integrator.y(), out);
     }
 
     /// The cage speed the model uses [rad/s].

@@ -403,3 +403,18 @@ fn sensor_resonator_adds_its_mode_to_the_pedestal_response() {
     let p0 = signal::dominant_peak(&bare, 12000.0, 25000.0).unwrap();
     assert!(p.value > 5.0 * p0.value, "{} vs {}", p.value, p0.value);
 }
+
+#[test]
+fn changing_the_tolerance_mid_run_keeps_time_and_work_counters() {
+    let mut sim = Simulation::new(&scene("default.toml")).unwrap();
+    sim.advance(0.01).unwrap();
+    let before = sim.stats();
+    sim.set_rtol(1e-8).unwrap();
+    assert_eq!(sim.time(), 0.01);
+    assert_eq!(sim.stats(), before);
+    sim.advance(0.02).unwrap();
+    let tight = sim.stats().steps - before.steps;
+    // A tighter tolerance takes more steps than the same interval at 1e-6 did.
+    assert!(tight > before.steps / 2, "{tight} vs {}", before.steps);
+    assert!(sim.set_rtol(f64::NAN).is_err() && sim.set_rtol(0.5).is_err());
+}
