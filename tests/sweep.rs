@@ -90,6 +90,30 @@ base = "../scenes/default.toml"
 }
 
 #[test]
+fn seed_run_gives_each_run_its_own_deterministic_seed() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[set]
+"lumped.seed" = "run"
+"lumped.slip_jitter" = 0.01
+[axes]
+"operating.fr" = [500.0, 1500.0]
+"#,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let seed = |i: usize| sw.scene_for(&runs[i]).unwrap().0.lumped.seed;
+    assert_ne!(seed(0), seed(1));
+    assert_eq!(seed(0), seed(0));
+    assert_eq!(sw.scene_for(&runs[1]).unwrap().0.lumped.slip_jitter, 0.01);
+    let e = parse("base = \"../scenes/default.toml\"\n[set]\n\"lumped.seed\" = \"random\"\n")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("lumped.seed"), "{e}");
+}
+
+#[test]
 fn sweep_file_errors_are_clear() {
     let err = |t: &str| parse(t).unwrap_err().to_string();
     let e = err("base = \"../scenes/default.toml\"\n[axes]\n\"defect.widht\" = [1e-3]\n");

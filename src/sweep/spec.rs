@@ -37,6 +37,8 @@ enum KeyKind {
     Ring,
     /// `fidelity`: a level name or its code 0..4.
     Fidelity,
+    /// `lumped.seed`: an integer ≥ 0, or `"run"` (derived from the run id).
+    Seed,
 }
 
 /// The keys an axis may sweep, with what they accept.
@@ -50,7 +52,7 @@ const KEYS: &[(&str, KeyKind)] = &[
     ("operating.fr", KeyKind::Number),
     ("operating.fy", KeyKind::Number),
     ("fidelity", KeyKind::Fidelity),
-    ("lumped.seed", KeyKind::Number),
+    ("lumped.seed", KeyKind::Seed),
     ("lumped.slip_jitter", KeyKind::Number),
     ("noise.rms", KeyKind::Number),
     ("output.duration", KeyKind::Number),
@@ -116,6 +118,13 @@ fn check_kind(key: &str, v: &AxisValue) -> Result<(), SweepError> {
         },
         KeyKind::Ring => parse_ring(key, v).map(|_| ()),
         KeyKind::Fidelity => parse_fidelity(key, v).map(|_| ()),
+        KeyKind::Seed => match v {
+            AxisValue::Num(_) => Ok(()),
+            AxisValue::Text(s) if s == "run" => Ok(()),
+            AxisValue::Text(s) => Err(format!(
+                "{key} = \"{s}\": expected an integer or \"run\" (a seed derived from the run id)"
+            )),
+        },
     };
     r.map_err(SweepError::new)
 }
@@ -526,6 +535,10 @@ impl Sweep {
                 "operating.fr" => scene.operating.fr = num()?,
                 "operating.fy" => scene.operating.fy = num()?,
                 "fidelity" => scene.fidelity = parse_fidelity(key, v)?,
+                "lumped.seed" if *v == AxisValue::Text("run".into()) => {
+                    // Derived from the run's parameters: distinct per run, independent of threads.
+                    scene.lumped.seed = fnv1a64(format!("seed:{}", run.id).as_bytes()) >> 11;
+                }
                 "lumped.seed" => {
                     let s = num()?;
                     if !(s >= 0.0 && s.fract() == 0.0 && s < 9.0e15) {

@@ -1,0 +1,109 @@
+"""Regenerate the paper-study plots of docs/sweeps.md (Niu et al. 2014, Sec. 3.2-3.4).
+
+Usage:
+    python examples/paper_studies.py [--raceway target/release/raceway] [--jobs 2]
+                                     [--out out/sweeps] [--img docs/img] [--no-run]
+
+Runs `raceway sweep` on examples/sweeps/sec3.2-speed.toml, sec3.3-width.toml and
+sec3.4-position.toml (resumable: finished runs are kept in OUT/<study>/results.csv), then plots
+the impact force (the largest outer-race contact force after the skipped transient) against the
+swept parameter for each fidelity level, saves IMG/sweep-<study>.png and prints the numbers as
+Markdown tables (pasted into docs/sweeps.md).
+"""
+
+import argparse
+import csv
+import os
+import subprocess
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+STUDIES = [
+    # (study, x column, x label, x scale)
+    ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0),
+    ("sec3.3-width", "defect.width", "spall width [mm]", 1e3),
+    ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)", 1.0),
+]
+
+
+def default_raceway():
+    target = Path(os.environ.get("CARGO_TARGET_DIR") or REPO / "target")
+    if not target.is_absolute():
+        target = REPO / target
+    return target / "release" / "raceway"
+
+
+def read(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return sorted(rows, key=lambda r: int(r["run_index"]))
+
+
+def series(rows, xcol, scale):
+    """{fidelity: [(x, max_q_outer, max_q_inner, status)]} sorted by x."""
+    out = {}
+    for r in rows:
+        fid = r.get("fidelity", "base")
+        ok = r["status"] == "ok"
+        q_o = float(r["max_q_outer"]) if ok else float("nan")
+        q_i = float(r["max_q_inner"]) if ok else float("nan")
+        out.setdefault(fid, []).append((float(r[xcol]) * scale, q_o, q_i, r["status"]))
+    for v in out.values():
+        v.sort()
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--raceway", default=None)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--out", default=str(REPO / "out" / "sweeps"))
+    ap.add_argument("--img", default=str(REPO / "docs" / "img"))
+    ap.add_argument("--no-run", action="store_true", help="only plot existing results")
+    a = ap.parse_args()
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    raceway = str(a.raceway or default_raceway())
+    Path(a.img).mkdir(parents=True, exist_ok=True)
+    for study, xcol, xlabel, scale in STUDIES:
+        out = Path(a.out) / study
+        if not a.no_run:
+            subprocess.run(
+                [raceway, "sweep", str(REPO / "examples" / "sweeps" / f"{study}.toml"),
+                 "--out", str(out), "--jobs", str(a.jobs)],
+                check=True,
+            )
+        data = series(read(out / "results.csv"), xcol, scale)
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for fid, pts in data.items():
+            xs = [p[0] for p in pts]
+            ax.plot(xs, [p[1] for p in pts], "o-", label=f"{fid}: outer race")
+            ax.plot(xs, [p[2] for p in pts], "s--", alpha=0.6, label=f"{fid}: inner race")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("largest contact force after transient [N]")
+        ax.set_title(f"{study}: impact force (max ball-race contact force)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        png = Path(a.img) / f"sweep-{study}.png"
+        fig.savefig(png, dpi=110)
+        plt.close(fig)
+        print(f"\n### {study}  ({png.relative_to(REPO) if png.is_relative_to(REPO) else png})\n")
+        fids = list(data)
+        print("| " + xlabel + " | " + " | ".join(
+            f"{f} Q_out / Q_in [N]" for f in fids) + " |")
+        print("|---" * (len(fids) + 1) + "|")
+        xs = sorted({p[0] for pts in data.values() for p in pts})
+        for x in xs:
+            cells = []
+            for f in fids:
+                p = next((p for p in data[f] if p[0] == x), None)
+                cells.append("—" if p is None or p[3] != "ok" else f"{p[1]:.0f} / {p[2]:.0f}")
+            print(f"| {x:g} | " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()
