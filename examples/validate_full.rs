@@ -1,6 +1,6 @@
 //! Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 outer-race spall.
 //!
-//! `cargo run --release --example validate_full -- [duration_s] [out.md]`
+//! `cargo run --release --example validate_full -- [duration_s] [out.md] [c_br]`
 //!
 //! Runs `examples/scenes/sec3.5-outer.toml` at `fidelity = full`, detects one impact per ball
 //! pass (the outer-force maximum after the ball's outer contact opened at the spall entry),
@@ -27,6 +27,10 @@ fn main() {
         }
     };
     scene.fidelity = Fidelity::Full;
+    // Optional third argument: override the contact damping c_br [N s/m] (diagnostics).
+    if let Some(c) = args.get(3).and_then(|s| s.parse::<f64>().ok()) {
+        scene.bearing.contact.c_br = c;
+    }
     let z = 14;
     let fs = 200_000.0;
     let skip = 0.02;
