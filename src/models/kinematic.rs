@@ -10,7 +10,8 @@
 //! spall at ψ = n + ε_n − h and leaves it at ψ = n + ε_n + h, where h = θ_e z/2π is the spall's
 //! half-angle in ball spacings and ε_n the seeded slip jitter (σ = `lumped.slip_jitter` ball
 //! spacings, i.e. 0.5–2 % for 0.005–0.02; deterministic in `lumped.seed` and n, clipped to ±0.45).
-//! The entries and exits are known-time stops; each is recorded when the integrator lands on it.
+//! The entries and exits are registered at their exact times (ψ is linear in t between input
+//! changes) when the outputs or an input change reach them, so they need no integrator stops.
 //!
 //! Impulse shape and resonance (the documented choice). Each pass is a rectangular dip of the
 //! contact force on the pedestal: the ball loses ΔQ = Q(θ)·[1 − (1 − g/δ)^1.5] of its load
@@ -41,9 +42,6 @@ use std::f64::consts::{PI, TAU};
 
 const CAGE: usize = 0;
 const SHAFT: usize = 1;
-
-/// Landing tolerance on the fault phase [ball passes].
-const PHASE_TOL: f64 = 1e-9;
 
 /// One mode of the 2-DOF ring/pedestal system.
 #[derive(Debug, Clone, Copy)]
@@ -291,6 +289,47 @@ impl KinematicModel {
         q * (1.0 - rest * rest.sqrt())
     }
 
+    /// Registers every spall entry and exit the fault phase has passed by (t, y), each at its exact
+    /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order.
+    fn catch_up(&mut self, t: f64, y: &[f64]) {
+        let Some(d) = &self.defect else { return };
+        let rate = self.phase_rate();
+        if rate <= 0.0 {
+            return;
+        }
+        let psi = self.phase(y);
+        let ring_inner = d.ring() == Race::Inner;
+        let (theta0, cos_a) = (d.theta0(), self.table.alpha.cos());
+        loop {
+            let entry = self.entry_threshold(self.next_entry);
+            let exit = self.exit_threshold(self.next_exit);
+            let is_exit = self.next_exit < self.next_entry && exit <= entry;
+            let thr = if is_exit { exit } else { entry };
+            if thr > psi {
+                break;
+            }
+            let back = (psi - thr) / rate;
+            let tk = t - back;
+            let theta = if ring_inner {
+                theta0 + y[SHAFT] - self.inputs.shaft_speed * back
+            } else {
+                theta0
+            };
+            let e_rz = cos_a * theta.cos();
+            if is_exit {
+                // The ball regains its load: the pedestal is pushed again.
+                self.push_event(tk, self.dip * e_rz);
+                self.next_exit += 1;
+            } else {
+                // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
+                let Some(d) = &self.defect else { return };
+                self.dip = self.load_loss(d, theta);
+                self.push_event(tk, -self.dip * e_rz);
+                self.next_entry += 1;
+            }
+        }
+    }
+
     /// Adds a step of force f [N] on the pedestal (−f on the ring) at time t.
     fn push_event(&mut self, t: f64, f: f64) {
         let dt = t - self.t_ref;
@@ -357,7 +396,9 @@ impl Model for KinematicModel {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) {
+        // Steps reached under the old speed are registered with the old rates first.
+        self.catch_up(t, y);
         self.inputs = *inputs;
         if self.table.moved(inputs) {
             if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
@@ -372,44 +413,18 @@ impl Model for KinematicModel {
         dydt[SHAFT] = self.inputs.shaft_speed;
     }
 
-    fn next_stop(&self, t: f64, y: &[f64], t_max: f64) -> Option<f64> {
-        self.defect.as_ref()?;
-        let rate = self.phase_rate();
-        if rate <= 0.0 {
-            return None;
-        }
-        let psi = self.phase(y);
-        let target = self
-            .entry_threshold(self.next_entry)
-            .min(self.exit_threshold(self.next_exit));
-        let ts = t + ((target - psi) / rate).max(0.0);
-        (ts > t && ts <= t_max).then_some(ts)
+    /// No stops: the force steps are registered at their exact times when the outputs (or an
+    /// input change) reach them, so the integrator can take steps as long as it likes.
+    fn next_stop(&self, _t: f64, _y: &[f64], _t_max: f64) -> Option<f64> {
+        None
     }
 
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        let Some(d) = self.defect.clone() else { return };
-        let psi = self.phase(y) + PHASE_TOL;
-        let theta = self.defect_azimuth(&d, y);
-        let e_rz = self.table.alpha.cos() * theta.cos();
-        loop {
-            let entry = self.entry_threshold(self.next_entry);
-            let exit = self.exit_threshold(self.next_exit);
-            if self.next_exit < self.next_entry && exit <= psi && exit <= entry {
-                // The ball regains its load: the pedestal is pushed again.
-                self.push_event(t, self.dip * e_rz);
-                self.next_exit += 1;
-            } else if entry <= psi {
-                // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
-                self.dip = self.load_loss(&d, theta);
-                self.push_event(t, -self.dip * e_rz);
-                self.next_entry += 1;
-            } else {
-                break;
-            }
-        }
+        self.catch_up(t, y);
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+        self.catch_up(t, y);
         static_outputs(
             &self.table,
             &self.bearing,

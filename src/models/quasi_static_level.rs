@@ -151,11 +151,19 @@ pub(crate) fn static_outputs(
     o[out::FRICTION_TORQUE] = 0.0;
     o[out::CAGE_SPEED] = table.cage_speed;
     let z = bearing.z;
+    if table.q_inner.len() != z || z == 0 {
+        return;
+    }
+    // The balls are equally spaced like L1's: ball j sits j table entries after ball 0, with the
+    // same interpolation weight (one rem_euclid for all balls).
+    let u = (theta_start + cage).rem_euclid(TAU) / TAU * z as f64;
+    let j0 = (u.floor() as usize).min(z - 1);
+    let s = u - j0 as f64;
     for j in 0..z {
-        let theta = theta_start + TAU * j as f64 / z as f64 + cage;
-        let (qi, qo) = table.loads_at(theta);
-        o[out::CONTACT_START + j] = qi;
-        o[out::CONTACT_START + z + j] = qo;
+        let a = (j0 + j) % z;
+        let b = (a + 1) % z;
+        o[out::CONTACT_START + j] = (1.0 - s) * table.q_inner[a] + s * table.q_inner[b];
+        o[out::CONTACT_START + z + j] = (1.0 - s) * table.q_outer[a] + s * table.q_outer[b];
     }
 }
 

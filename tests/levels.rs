@@ -1,0 +1,116 @@
+//! The cheap levels of the ladder through `Simulation`: kinematic (L0s) and quasi_static (L1),
+//! checked against L1's own solve, the fault-frequency formulas and the load-zone closed form.
+
+use raceway::geometry::{Bearing, Race};
+use raceway::models::kinematic::KinematicModel;
+use raceway::quasi_static::{self, LoadCase};
+use raceway::scene::{Fidelity, Scene};
+use raceway::signal::{self, Window};
+use raceway::simulation::{out, Simulation};
+use std::f64::consts::{PI, TAU};
+
+fn scene(level: Fidelity, ring: Option<Race>) -> Scene {
+    let mut s = Scene::default_scene();
+    s.fidelity = level;
+    match ring {
+        None => s.defect = None,
+        Some(r) => {
+            let d = s.defect.as_mut().unwrap();
+            d.ring = r;
+            if r == Race::Inner {
+                d.theta0 = 0.0;
+            }
+        }
+    }
+    s
+}
+
+fn accel(s: &Scene, t_end: f64, fs: f64) -> Vec<f64> {
+    let mut sim = Simulation::new(s).unwrap();
+    let mut a = Vec::new();
+    sim.advance_sampled(t_end, 1.0 / fs, &mut |t, o| {
+        if t >= 0.01 {
+            a.push(o[out::PEDESTAL_A_Z]);
+        }
+    })
+    .unwrap();
+    a
+}
+
+/// L1 cage speed of the default operating point [rad/s].
+fn l1_cage() -> (f64, f64) {
+    let s = Scene::default_scene();
+    let b = Bearing::new(&s.bearing).unwrap();
+    let qs = quasi_static::solve(&b, &LoadCase::from_fa_fr_rpm(4000.0, 1000.0, 9900.0)).unwrap();
+    (qs.cage_speed, 9900.0 * TAU / 60.0)
+}
+
+/// Envelope peaks of the kinematic level at the L1 fault frequency: BPFO = z ω_c/2π (outer),
+/// BPFI = z(Ω − ω_c)/2π (inner), within 0.5 % and 10 dB over the floor; healthy: silent.
+#[test]
+fn kinematic_impulse_train_sits_at_the_l1_fault_frequencies() {
+    let fs = 51_200.0;
+    let (wc, omega) = l1_cage();
+    for (ring, f) in [
+        (Race::Outer, 14.0 * wc / TAU),
+        (Race::Inner, 14.0 * (omega - wc) / TAU),
+    ] {
+        let a = accel(&scene(Fidelity::Kinematic, Some(ring)), 0.25, fs);
+        let env = signal::envelope_spectrum(&a, fs, Some((1000.0, 20000.0)), Window::Hann).unwrap();
+        let p = signal::peak_near(&env, f, 0.05 * f).expect("peak");
+        assert!(p.rel_error(f).abs() < 0.005, "{ring:?}: {} vs {f}", p.freq);
+        assert!(
+            p.is_significant(3.0),
+            "{ring:?}: prominence {}",
+            p.prominence
+        );
+    }
+    let a = accel(&scene(Fidelity::Kinematic, None), 0.05, fs);
+    assert!(a.iter().all(|v| *v == 0.0));
+}
+
+/// q(θ) = q_max[1 − (1 − cos θ)/(2ε)]^1.5: q(0) = q_max; ε = 1 → q(π/2) = q_max/√8, q(π) = 0;
+/// ε = ∞ (pure axial) → q_max everywhere; beyond the load zone 0.
+#[test]
+fn load_zone_closed_form() {
+    assert_eq!(KinematicModel::load_zone(700.0, 0.5, 0.0), 700.0);
+    let v = KinematicModel::load_zone(700.0, 1.0, PI / 2.0);
+    assert!((v - 700.0 / 8f64.sqrt()).abs() < 1e-9, "{v}");
+    assert_eq!(KinematicModel::load_zone(700.0, 1.0, PI), 0.0);
+    assert_eq!(KinematicModel::load_zone(700.0, 0.5, 2.0), 0.0);
+    assert_eq!(KinematicModel::load_zone(700.0, f64::INFINITY, 2.0), 700.0);
+}
+
+/// The quasi-static level at t = 0 reproduces L1's per-ball loads (balls at 2πj/z), the pedestal
+/// sits at −Fr/k_p, accelerations are 0 and the cage speed is L1's; half a ball spacing later
+/// the set of loads has moved with the cage (ball j between L1's j and j+1).
+#[test]
+fn quasi_static_level_outputs_are_the_l1_solution() {
+    let s = scene(Fidelity::QuasiStatic, Some(Race::Outer));
+    let b = Bearing::new(&s.bearing).unwrap();
+    let qs = quasi_static::solve(&b, &LoadCase::from_fa_fr_rpm(4000.0, 1000.0, 9900.0)).unwrap();
+    let mut sim = Simulation::new(&s).unwrap();
+    let mut o = vec![0.0; sim.output_table().len()];
+    sim.outputs(&mut o);
+    for (j, ball) in qs.balls.iter().enumerate() {
+        assert!((o[out::CONTACT_START + j] - ball.q_inner).abs() < 1e-9 * ball.q_inner.max(1.0));
+        assert!(
+            (o[out::CONTACT_START + 14 + j] - ball.q_outer).abs() < 1e-9 * ball.q_outer.max(1.0)
+        );
+    }
+    let zp = -1000.0 / s.bearing.pedestal.k_z;
+    assert!((o[out::PEDESTAL_Z] - zp).abs() < 1e-15);
+    assert_eq!(o[out::PEDESTAL_A_Z], 0.0);
+    assert!((o[out::CAGE_SPEED] - qs.cage_speed).abs() < 1e-12 * qs.cage_speed);
+    // Half a spacing later.
+    sim.advance(PI / 14.0 / qs.cage_speed).unwrap();
+    sim.outputs(&mut o);
+    for j in 0..14 {
+        let (lo, hi) = (qs.balls[j].q_inner, qs.balls[(j + 1) % 14].q_inner);
+        let q = o[out::CONTACT_START + j];
+        assert!(
+            q >= lo.min(hi) - 1e-6 && q <= lo.max(hi) + 1e-6,
+            "{j}: {q} not between {lo} and {hi}"
+        );
+    }
+}
