@@ -95,3 +95,51 @@ fn outer_spall_entry_flight_and_trailing_edge_impact() {
     assert!(peak > 2.0 * running, "impact force {peak:.1} N");
     assert!(t[k_imp] > t[k_entry] + 20e-6, "impact right at entry");
 }
+
+/// First ball whose force on `q` falls below 5 % of `running`: (ball, sample index).
+fn first_drop(q: &[Vec<f64>], running: f64) -> Option<(usize, usize)> {
+    (0..q.len())
+        .filter_map(|j| {
+            (20..q[j].len())
+                .find(|&k| q[j][k] < 0.05 * running)
+                .map(|k| (j, k))
+        })
+        .min_by_key(|&(_, k)| k)
+}
+
+#[test]
+fn inner_spall_turns_with_the_shaft_and_is_hit() {
+    // The spall at θ_d0 = 0 on the inner ring turns at Ω = 1047 rad/s while the balls orbit at
+    // ≈ 449 rad/s: it meets a ball (which moves backwards relative to it) within
+    // 2π/14/598 ≈ 0.75 ms. Running inner load 368.3 N (spec §8.2).
+    let scene = sec31_scene(Race::Inner, 0.0);
+    let dt = 0.5e-6;
+    let (t, qi, qo) = run(&scene, 1.0e-3, dt);
+    let running = 368.3;
+    let (j, k_entry) = first_drop(&qi, running).expect("a ball meets the inner spall");
+    assert!(
+        t[k_entry] < 0.8e-3,
+        "first inner-spall entry at {} s",
+        t[k_entry]
+    );
+    let k_end = (k_entry + (150e-6 / dt) as usize).min(t.len());
+    let peak = (k_entry..k_end).map(|k| qi[j][k]).fold(0.0, f64::max);
+    eprintln!(
+        "inner spall: ball {j} enters at {:.1} µs, inner impact {peak:.0} N",
+        t[k_entry] * 1e6
+    );
+    assert!(peak > 2.0 * running, "inner impact {peak:.1} N");
+    // The outer contact of that ball stays closed or recovers: it is not the spalled race.
+    assert!(qo[j][k_entry] > 0.0);
+}
+
+#[test]
+fn point_mode_spall_also_opens_the_contact() {
+    let mut scene = sec31_scene(Race::Outer, 0.0);
+    scene.bearing.defect.mode = raceway::config::DefectMode::Point;
+    let (_, _, qo) = run(&scene, 0.7e-3, 0.5e-6);
+    assert!(
+        first_drop(&qo, 417.6).is_some(),
+        "no contact loss in point mode"
+    );
+}
