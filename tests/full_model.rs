@@ -183,3 +183,25 @@ fn cage_speed_between_pure_rolling_and_outer_race_control() {
     // Pure rolling at α0 69.537 Hz, outer-race control 70.42 Hz (spec §8.1, §8.2).
     assert!(mean > 69.54 && mean < 70.42, "cage speed {mean} Hz");
 }
+
+#[test]
+fn cage_follows_a_speed_step() {
+    let scene = healthy_scene(9900.0, 4000.0, 1000.0);
+    let mut sim = Simulation::new(&scene).unwrap();
+    sim.advance(2e-3).unwrap();
+    let mut inputs = sim.inputs();
+    inputs.shaft_speed *= 1.1;
+    sim.set_inputs(inputs).unwrap();
+    let mut speeds = Vec::new();
+    sim.advance_sampled(8e-3, 2e-5, &mut |t, o| {
+        if t > 6e-3 {
+            speeds.push(o[out::CAGE_SPEED]);
+        }
+    })
+    .unwrap();
+    let mean = speeds.iter().sum::<f64>() / speeds.len() as f64 / TAU;
+    // 10 % faster shaft: the cage follows to between 1.1 × pure rolling and 1.1 × outer-race
+    // control of the original speed (the contact angles barely change).
+    eprintln!("cage after the step {mean:.3} Hz");
+    assert!(mean > 1.1 * 69.54 && mean < 1.1 * 70.42 * 1.005, "{mean}");
+}
