@@ -39,4 +39,6 @@ printf 'runs: %d, failed: %d\n' "$runs" "$(grep -c ',failed,' "$OUT/j1/results.c
 printf 'best of %d: --jobs 1 %.2f s, --jobs 2 %.2f s, speed-up %.2fx; rows %s\n' \
   "$REPS" "$b1" "$b2" "$(echo "$b1 / $b2" | bc -l)" "$same"
 printf 'conditions: %s, %s cores, load average %s\n' "$(uname -m)" "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)"
+# CPU pressure: the share of time runnable tasks waited for a core (others' work included).
+[ -r /proc/pressure/cpu ] && printf 'cpu pressure: %s\n' "$(head -1 /proc/pressure/cpu)"
 [ "$same" = identical ]
