@@ -93,6 +93,8 @@ pub struct RaceConst {
     pub e: f64,
     /// Hertz constant [N/m^1.5].
     pub k: f64,
+    /// K^{1/3} (so that a = a* K^{1/3} δ^{1/2} needs no cube root per evaluation).
+    pub k_cbrt: f64,
     /// Semi-major axis factor a* (a = a* Q^{1/3}).
     pub a_star: f64,
     /// Deformed-surface radius R_s = 2fD/(2f + 1) [m] (C7).
@@ -219,6 +221,7 @@ pub fn evaluate(
     let v_gc = add(ring.v, cross(ring.beta_rate, gc));
     let mut ddelta = dot(n, sub(ball.v, v_gc));
     let mut k = race.k;
+    let mut k_cbrt = race.k_cbrt;
     let mut a_star = race.a_star;
     let mut rs = race.rs;
     if let Some(dv) = defect {
@@ -233,6 +236,7 @@ pub fn evaluate(
             delta = c.deflection(delta);
             ddelta = c.deflection_rate(ddelta, y_rate);
             k = c.k_edge;
+            k_cbrt = k.cbrt();
             let (st, ct) = c.theta_dd.sin_cos();
             n_r = add(scale(n_r, ct), scale(c2_r, st));
             let nq = add(scale(n, ct), scale(c2, st));
@@ -248,7 +252,8 @@ pub fn evaluate(
             }
         }
     }
-    let qe = k * delta * delta.sqrt();
+    let sd = delta.sqrt();
+    let qe = k * delta * sd;
     let q = (qe + damping * ddelta).max(0.0);
     out.q = q;
     out.f = scale(n, -q);
@@ -261,7 +266,8 @@ pub fn evaluate(
         return out;
     };
     let c1 = cross(c2, n);
-    let a = (a_star * qe.cbrt()).min(0.9 * ball_radius.min(rs));
+    // a = a* Q_e^{1/3} = a* K^{1/3} δ^{1/2}.
+    let a = (a_star * k_cbrt * sd).min(0.9 * ball_radius.min(rs));
     let omega_r = ring.omega();
     let w0 = sub(sub(ball.v, ring.v), cross(omega_r, rbr));
     let dw = sub(ball.omega, omega_r);

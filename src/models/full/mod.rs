@@ -106,6 +106,7 @@ fn race_const(b: &Bearing, race: Race) -> RaceConst {
         }
         .max(1e-9),
         k: b.k(race),
+        k_cbrt: b.k(race).cbrt(),
         a_star: b.hertz(race).semi_axis_factors().0,
         rs: 2.0 * f * b.d / (2.0 * f + 1.0),
         sign: match race {
