@@ -16,7 +16,8 @@
 //! E3 RMS difference of the Welch PSDs in dB over 0.1–20 kHz. E2 is not defined for the healthy
 //! bearing (no lines) and the run-up (the fault frequency sweeps). The cheap levels (kinematic, quasi-static) integrate only two
 //! angles exactly, so they get one row per scene with their errors against the reference of the
-//! highest dynamic level (status `vs_<level>`): the level-against-level comparison.
+//! highest dynamic level (status `vs_<level>`), and so does each lower dynamic level's
+//! reference: the level-against-level comparison.
 //!
 //! Work: steps, rejected steps, RHS evaluations, and the median wall time of 3 runs (release,
 //! one thread). A run that fails (step-size underflow, step budget, wall-time limit) is a row
@@ -358,6 +359,8 @@ pub fn run_cli(args: Args) -> Result<(), String> {
     for scene_name in &scenes {
         // Reference of the highest dynamic level available (for the cheap levels' rows).
         let mut top: Option<(String, Vec<f64>)> = None;
+        // References of the dynamic levels: (level, signal, work, wall, fault frequency).
+        let mut refs: Vec<(String, Vec<f64>, WorkStats, f64, f64)> = Vec::new();
         let mut cheap: Vec<Fidelity> = Vec::new();
         for &level in &levels {
             let scene = scene_of(scene_name, level)?;
@@ -503,7 +506,30 @@ pub fn run_cli(args: Args) -> Result<(), String> {
                     }
                 }
             }
+            refs.push((
+                level.name().to_string(),
+                reference.signal.clone(),
+                reference.stats,
+                reference.wall,
+                reference.fault_hz,
+            ));
             top = Some((level.name().to_string(), reference.signal));
+        }
+        // The lower dynamic levels' references against the highest one (level against level).
+        if let Some((top_name, top_sig)) = &top {
+            for (name, sig, stats, wall, fault_hz) in refs.iter().filter(|r| &r.0 != top_name) {
+                row(
+                    &mut w,
+                    scene_name,
+                    name,
+                    "dop853",
+                    1e-12,
+                    Some(*stats),
+                    *wall,
+                    errors(sig, top_sig, has_lines(scene_name).then_some(*fault_hz)),
+                    &format!("vs_{top_name}"),
+                )?;
+            }
         }
         // The cheap levels against the highest dynamic level's reference.
         for level in cheap {
