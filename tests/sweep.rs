@@ -166,6 +166,10 @@ fn jobs_2_and_jobs_1_give_identical_rows() {
         assert_eq!(r[col("status")], "ok", "{r:?}");
         let bpfo: f64 = r[col("env_bpfo_1")].parse().unwrap();
         assert!(bpfo > 0.0, "{r:?}");
+        // The typical per-pass impact lies between the healthy-ish load and the run maximum.
+        let impact: f64 = r[col("impact_q_median")].parse().unwrap();
+        let q_out: f64 = r[col("max_q_outer")].parse().unwrap();
+        assert!(impact > 100.0 && impact <= q_out, "{impact} vs {q_out}");
     }
     let _ = std::fs::remove_dir_all(&d1);
     let _ = std::fs::remove_dir_all(&d2);

@@ -166,7 +166,8 @@ pub struct Keep {
     /// Crest factor max|x|/RMS of the mean-removed signal.
     #[serde(default = "yes")]
     pub crest_factor: bool,
-    /// Largest ball–race normal force after the skipped transient, both races and per race.
+    /// Largest ball–race normal force after the skipped transient, both races and per race, and
+    /// `impact_q_median`: the median over ball passes of the largest force on the defective race.
     #[serde(default = "yes")]
     pub max_contact_force: bool,
     /// Write the analysed signal of each run to `signals/run-<index>-<id>.csv`.
