@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Long validation runs of the L4 full model (not part of CI). Writes the measured table of
-# paper Sec. 3.5 (outer-race spall) to docs/validation-full-sec3.5.md; docs/validation.md quotes it.
+# Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 with the outer- and
+# the inner-race spall. Writes the measured tables to docs/validation-full-sec3.5.md and
+# docs/validation-full-sec3.5-inner.md; docs/validation.md quotes them.
 # Usage: scripts/validate_full.sh [simulated seconds, default 0.14]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,4 +9,6 @@ duration="${1:-0.14}"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target}"
 cargo build --release --example validate_full
 mkdir -p docs
-"$CARGO_TARGET_DIR/release/examples/validate_full" "$duration" docs/validation-full-sec3.5.md
+bin="$CARGO_TARGET_DIR/release/examples/validate_full"
+"$bin" "$duration" docs/validation-full-sec3.5.md 20 outer
+"$bin" "$duration" docs/validation-full-sec3.5-inner.md 20 inner
