@@ -78,7 +78,7 @@ def main():
                 check=True,
             )
         data = series(read(out / "results.csv"), xcol, scale)
-        fig, ax = plt.subplots(figsize=(7, 4))
+        fig, ax = plt.subplots(figsize=(10, 4.2))
         for fid, pts in data.items():
             xs = [p[0] for p in pts]
             line, = ax.plot(xs, [p[1] for p in pts], "o-", lw=2,
@@ -92,7 +92,7 @@ def main():
         ax.set_yscale("log")
         ax.set_title(f"{study}: impact force")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         fig.tight_layout()
         png = Path(a.img) / f"sweep-{study}.png"
         fig.savefig(png, dpi=110)
