@@ -26,7 +26,8 @@
 //! ≈ 5 kHz); the pedestal acceleration is the closed-form modal step response, so `pedestal.a.z`
 //! is in m/s² like at the other levels. The responses of all past steps are kept per mode as one
 //! complex amplitude (O(1) work per output); after an input change that re-solves L1, earlier
-//! responses ring out with the new modes. A healthy scene has no events.
+//! responses ring out with the new modes. The optional `[lumped] resonator` is not modelled at
+//! this level. A healthy scene has no events.
 //!
 //! Static outputs (see [`super::quasi_static_level`]): everything except `pedestal.a.z`,
 //! `pedestal.v.z`, `pedestal.z` (static deflection + modal response) and the contact force of the
