@@ -1,6 +1,6 @@
 //! Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 outer-race spall.
 //!
-//! `cargo run --release --example validate_full -- [duration_s] [out.md] [c_br]`
+//! `cargo run --release --example validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [lock_tilt]`
 //!
 //! Runs `examples/scenes/sec3.5-outer.toml` at `fidelity = full`, detects one impact per ball
 //! pass (the outer-force maximum after the ball's outer contact opened at the spall entry),
@@ -8,9 +8,14 @@
 //! (973.5, 985.9)), the dominant component of the raw pedestal-acceleration spectrum
 //! (5885 Hz ± 10 %) and the speed (wall s per simulated s), and writes a Markdown table.
 
+use raceway::geometry::Bearing;
+use raceway::models::full::{FullModel, FullOptions};
+use raceway::models::Model;
 use raceway::scene::{Fidelity, Scene};
 use raceway::signal::{self, Window};
+use raceway::simulation::Inputs;
 use raceway::simulation::{out, Simulation};
+use raceway::solver::{EventAction, EventSystem, Integrator, Method, Options, StepView, System};
 use std::path::Path;
 use std::time::Instant;
 
@@ -47,19 +52,15 @@ fn main() {
         (980.4, "BPFO", "980.4 Hz ± 0.3 %, inside (973.5, 985.9)")
     };
     let skip = 0.02;
-    let mut sim = match Simulation::new(&scene) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(2);
-        }
-    };
+    // Optional fifth argument "lock_tilt": hold the inner-ring tilt (FullOptions::lock_tilt),
+    // driven through the model and the integrator directly (the scene has no such switch).
+    let lock_tilt = args.get(5).is_some_and(|s| s == "lock_tilt");
     let mut t = Vec::new();
     let mut acc = Vec::new();
     let mut qo: Vec<Vec<f64>> = vec![Vec::new(); z];
     let mut cage = Vec::new();
     let start = Instant::now();
-    let res = sim.advance_sampled(duration, 1.0 / fs, &mut |ts, o| {
+    let mut record = |ts: f64, o: &[f64]| {
         t.push(ts);
         acc.push(o[out::PEDESTAL_A_Z]);
         cage.push(o[out::CAGE_SPEED]);
@@ -67,13 +68,30 @@ fn main() {
             // The spalled race's contact force.
             q.push(o[out::CONTACT_START + if inner { j } else { z + j }]);
         }
-    });
+    };
+    let (t_end, stats) = if lock_tilt {
+        match run_direct(&scene, duration, fs, &mut record) {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(2);
+            }
+        }
+    } else {
+        let mut sim = match Simulation::new(&scene) {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(2);
+            }
+        };
+        if let Err(e) = sim.advance_sampled(duration, 1.0 / fs, &mut record) {
+            eprintln!("run failed: {e}");
+        }
+        let st = sim.stats();
+        (sim.time(), (st.steps, st.rejected, st.rhs_evals))
+    };
     let wall = start.elapsed().as_secs_f64();
-    if let Err(e) = res {
-        eprintln!("run failed: {e}");
-    }
-    let t_end = sim.time();
-    let stats = sim.stats();
     // Impacts: per ball, after the outer force fell below 5 % of its recent level (entry), the
     // maximum within the next 150 µs; the same ball is then ignored for 5 ms (it returns to an
     // outer-race spall only once per cage revolution, ≈ 14 ms), so the rattling after exit is
@@ -123,7 +141,14 @@ fn main() {
     let dom_f = dominant.as_ref().map_or(f64::NAN, |p| p.freq);
     let ok_dom = (dom_f / 5885.0 - 1.0).abs() < 0.10;
     let mut md = String::new();
-    md += &format!("Scene: `{scene_file}` at fidelity full.\n\n");
+    md += &format!(
+        "Scene: `{scene_file}` at fidelity full{}.\n\n",
+        if lock_tilt {
+            ", inner-ring tilt held (FullOptions::lock_tilt)"
+        } else {
+            ""
+        }
+    );
     md += &format!(
         "| quantity | paper / target | L4 (this run) | pass |\n|---|---|---|---|\n\
          | simulated time | ≥ 100 impacts | {t_end:.3} s, {n_imp} impacts after {skip} s | {} |\n\
@@ -137,10 +162,10 @@ fn main() {
         if ok_target { "yes" } else { "no" },
         env.as_ref().map_or("none".to_string(), |p| format!("{:.2} Hz", p.freq)),
         if ok_dom { "yes" } else { "no" },
-        stats.steps,
-        stats.rejected,
-        stats.rhs_evals as f64 / t_end.max(1e-12),
-        wall / stats.rhs_evals.max(1) as f64 * 1e6,
+        stats.0,
+        stats.1,
+        stats.2 as f64 / t_end.max(1e-12),
+        wall / stats.2.max(1) as f64 * 1e6,
     );
     print!("{md}");
     if let Some(p) = out_path {
@@ -148,4 +173,78 @@ fn main() {
             eprintln!("cannot write {p}: {e}");
         }
     }
+}
+
+struct Driver<'a>(&'a mut FullModel);
+
+impl System for Driver<'_> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        self.0.rhs(t, y, dydt)
+    }
+}
+
+impl EventSystem for Driver<'_> {
+    fn n_events(&self) -> usize {
+        self.0.n_events()
+    }
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        self.0.events(t, y, g)
+    }
+    fn handle_event(&mut self, _index: usize, t: f64, y: &mut [f64]) -> EventAction {
+        self.0.update_mode(t, y);
+        EventAction::Continue
+    }
+}
+
+/// Runs the full model with the inner-ring tilt held, sampling the outputs every 1/fs s;
+/// returns the end time and (steps, rejected, RHS evaluations).
+fn run_direct(
+    scene: &Scene,
+    duration: f64,
+    fs: f64,
+    record: &mut dyn FnMut(f64, &[f64]),
+) -> Result<(f64, (u64, u64, u64)), String> {
+    let bearing = Bearing::new(&scene.bearing).map_err(|e| e.to_string())?;
+    let inputs = Inputs::from_scene(scene);
+    let opts = FullOptions {
+        traction: true,
+        lock_tilt: true,
+    };
+    let mut m =
+        FullModel::with_options(scene, &bearing, &inputs, opts).map_err(|e| e.to_string())?;
+    let n = m.dim();
+    let mut y0 = vec![0.0; n];
+    m.initial_state(&mut y0);
+    m.update_mode(0.0, &y0);
+    let mut nominal = vec![0.0; n];
+    m.nominal(&mut nominal);
+    let rtol = scene.solver.rtol;
+    let atol = nominal.iter().map(|v| v * rtol).collect();
+    let mut integ = Integrator::new(Options::new(Method::Dop853, rtol, atol), 0.0, &y0)
+        .map_err(|e| e.to_string())?;
+    let mut states: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut buf = vec![0.0; n];
+    let mut obs = |v: &StepView| {
+        let mut k = (v.t_start() * fs).floor() as i64 + 1;
+        while k as f64 / fs <= v.t_end() {
+            v.interpolate(k as f64 / fs, &mut buf);
+            states.push((k as f64 / fs, buf.clone()));
+            k += 1;
+        }
+    };
+    let res = integ.advance_with_events(&mut Driver(&mut m), duration, Some(&mut obs));
+    let mut o = vec![0.0; raceway::simulation::output_table(bearing.z).len()];
+    for (ts, y) in &states {
+        m.update_mode(*ts, y);
+        m.outputs(*ts, y, &mut o);
+        record(*ts, &o);
+    }
+    if let Err(e) = res {
+        eprintln!("run failed: {e}");
+    }
+    let st = integ.stats();
+    Ok((integ.t(), (st.steps, st.rejected, st.rhs_evals)))
 }

@@ -12,3 +12,6 @@ mkdir -p docs
 bin="$CARGO_TARGET_DIR/release/examples/validate_full"
 "$bin" "$duration" docs/validation-full-sec3.5.md 20 outer
 "$bin" "$duration" docs/validation-full-sec3.5-inner.md 20 inner
+# The same with the inner-ring tilt held (FullOptions::lock_tilt): see docs/validation.md.
+"$bin" "$duration" docs/validation-full-sec3.5-lock-tilt.md 20 outer lock_tilt
+"$bin" "$duration" docs/validation-full-sec3.5-inner-lock-tilt.md 20 inner lock_tilt
