@@ -1,0 +1,88 @@
+//! The full model's right-hand side and event functions do not allocate (a counting global
+//! allocator watches them), with and without a spall, with balls inside the spall zone.
+
+use raceway::defect::DefectSpec;
+use raceway::geometry::{Bearing, Race};
+use raceway::models::full::FullModel;
+use raceway::models::Model;
+use raceway::scene::{Fidelity, Operating, Scene};
+use raceway::simulation::Inputs;
+use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+struct Counting;
+static COUNT: AtomicUsize = AtomicUsize::new(0);
+static ON: AtomicBool = AtomicBool::new(false);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        if ON.load(Ordering::SeqCst) {
+            COUNT.fetch_add(1, Ordering::SeqCst);
+        }
+        unsafe { SysAlloc.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { SysAlloc.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        if ON.load(Ordering::SeqCst) {
+            COUNT.fetch_add(1, Ordering::SeqCst);
+        }
+        unsafe { SysAlloc.realloc(p, l, n) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn rhs_and_events_do_not_allocate() {
+    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let mut scene = Scene::healthy(
+        file,
+        Operating {
+            speed_rpm: 9900.0,
+            fa: 4000.0,
+            fr: 1000.0,
+            fy: 0.0,
+        },
+    );
+    scene.fidelity = Fidelity::Full;
+    for defect in [None, Some(Race::Outer), Some(Race::Inner)] {
+        scene.defect = defect.map(|ring| DefectSpec {
+            ring,
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: 0.0,
+        });
+        let bearing = Bearing::new(&scene.bearing).unwrap();
+        let inputs = Inputs::from_scene(&scene);
+        let mut m = FullModel::new(&scene, &bearing, &inputs).unwrap();
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        // Move ball 0 onto the spall (θ_d0 = 0, ball 0 starts at a clear azimuth).
+        let lay = m.layout();
+        let psi = lay.psi();
+        let mut d = vec![0.0; n];
+        let mut g = vec![0.0; m.n_events()];
+        let mut shifts = Vec::new();
+        for k in 0..8 {
+            shifts.push(-0.3 + 0.6 * k as f64 / 7.0);
+        }
+        ON.store(true, Ordering::SeqCst);
+        for &s in &shifts {
+            y[psi] = s;
+            m.update_mode(0.0, &y);
+            m.rhs(0.0, &y, &mut d);
+            m.events(0.0, &y, &mut g);
+        }
+        ON.store(false, Ordering::SeqCst);
+        assert!(d.iter().all(|v| v.is_finite()));
+    }
+    assert_eq!(
+        COUNT.load(Ordering::SeqCst),
+        0,
+        "allocations in rhs/events/update_mode"
+    );
+}
