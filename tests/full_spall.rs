@@ -1,6 +1,7 @@
 //! L4 with a spall (spec §4, §4.8): one ball crossing the paper's Sec. 3.1 outer-race spall
 //! (2.0 × 0.5 mm, Fa 3000 N, 10 000 rpm) loses its outer contact at entry, flies free of both
-//! races, and hits the trailing edge with a force well above the running load.
+//! races, hits the trailing edge with a force well above the running load and then bounces
+//! between the races; an inner-ring spall turning with the shaft; point mode; Sec. 3.5 BPFO.
 
 use raceway::defect::DefectSpec;
 use raceway::geometry::Race;
@@ -48,7 +49,7 @@ fn run(scene: &Scene, t_end: f64, dt: f64) -> (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<
 fn outer_spall_entry_flight_and_trailing_edge_impact() {
     let scene = sec31_scene(Race::Outer, 0.0);
     let dt = 0.5e-6;
-    let (t, qi, qo) = run(&scene, 0.8e-3, dt);
+    let (t, qi, qo) = run(&scene, 0.9e-3, dt);
     // Running load: L1 gives Q_o = 417.6 N at this operating point (spec §8.2).
     let running = 417.6;
     // The first ball that crosses: its outer force falls below 5 % of the running load.
@@ -74,26 +75,50 @@ fn outer_spall_entry_flight_and_trailing_edge_impact() {
         "outer force 25 µs before the drop {:.1} N",
         qo[j][k5]
     );
-    // Pass time across the spall ≈ 2θ_e/θ̇ ≈ 0.049/449 ≈ 110 µs; look 150 µs ahead.
+    // Pass time across the spall ≈ 2θ_e/θ̇ ≈ 0.049/449 ≈ 110 µs.
     let k_end = (k_entry + (150e-6 / dt) as usize).min(t.len());
-    let window = k_entry..k_end;
     // A separation stage: the ball touches neither race.
-    let free = window.clone().any(|k| qi[j][k] == 0.0 && qo[j][k] == 0.0);
-    assert!(free, "no contact-separation stage");
-    // The trailing-edge impact: a force that is a multiple of the running load.
-    let (k_imp, peak) = window
-        .clone()
-        .map(|k| (k, qo[j][k]))
-        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    let k_free = (k_entry..k_end)
+        .find(|&k| qi[j][k] == 0.0 && qo[j][k] == 0.0)
+        .expect("no contact-separation stage");
+    // The flight ends on the trailing edge of the outer race: the first outer contact after the
+    // free stage, whose force rises to a multiple of the running load.
+    let k_hit = (k_free..k_end)
+        .find(|&k| qo[j][k] > 0.0)
+        .expect("no trailing-edge impact before the pass ends");
+    let k_hit_end = (k_hit + (40e-6 / dt) as usize).min(t.len());
+    let peak = (k_hit..k_hit_end).map(|k| qo[j][k]).fold(0.0, f64::max);
     eprintln!(
-        "ball {j}: entry at {:.1} µs, impact {:.0} N at {:.1} µs ({:.1}x running load)",
+        "ball {j}: entry at {:.1} µs, free from {:.1} µs, trailing-edge impact from {:.1} µs, \
+         peak {peak:.0} N ({:.1}x running load)",
         t[k_entry] * 1e6,
-        peak,
-        t[k_imp] * 1e6,
+        t[k_free] * 1e6,
+        t[k_hit] * 1e6,
         peak / running
     );
     assert!(peak > 2.0 * running, "impact force {peak:.1} N");
-    assert!(t[k_imp] > t[k_entry] + 20e-6, "impact right at entry");
+    assert!(t[k_hit] - t[k_free] > 20e-6, "no real flight");
+    // After the impact the ball jumps between the races: within 250 µs its contacts open and
+    // close alternately several times (inner-only and outer-only instants alternate).
+    let k_after = (k_hit_end + (250e-6 / dt) as usize).min(t.len());
+    let mut switches = 0;
+    let mut last = 0i8;
+    for k in k_hit_end..k_after {
+        let state = match (qi[j][k] > 0.0, qo[j][k] > 0.0) {
+            (true, false) => 1,
+            (false, true) => -1,
+            _ => 0,
+        };
+        if state != 0 && state != last {
+            switches += usize::from(last != 0);
+            last = state;
+        }
+    }
+    eprintln!("after the impact: {switches} switches between inner-only and outer-only contact");
+    assert!(
+        switches >= 3,
+        "the ball does not bounce between the races ({switches})"
+    );
 }
 
 /// First ball whose force on `q` falls below 5 % of `running`: (ball, sample index).
