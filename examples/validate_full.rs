@@ -24,8 +24,15 @@ fn main() {
     let duration: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.14);
     let out_path = args.get(2).cloned();
     // Optional fourth argument: "inner" runs sec3.5-inner.toml (BPFI 1329 Hz ± 0.3 %, < 1336.5).
+    // "impact3000" / "impact4000" / "impact5000": the Table-2 impact test (fel, feh).
     let inner = args.get(4).is_some_and(|s| s == "inner");
-    let scene_file = if inner {
+    let impact = args
+        .get(4)
+        .and_then(|s| s.strip_prefix("impact"))
+        .map(|fa| format!("examples/scenes/impact-test-fa{fa}.toml"));
+    let scene_file = if let Some(f) = impact.as_deref() {
+        f
+    } else if inner {
         "examples/scenes/sec3.5-inner.toml"
     } else {
         "examples/scenes/sec3.5-outer.toml"
@@ -140,6 +147,28 @@ fn main() {
     let ok_target = (bpfo / target - 1.0).abs() < 0.003;
     let dom_f = dominant.as_ref().map_or(f64::NAN, |p| p.freq);
     let ok_dom = (dom_f / 5885.0 - 1.0).abs() < 0.10;
+    if impact.is_some() {
+        // Impact test (C14): acceleration spectrum of pedestal.a.z from the pulse (20 ms) on.
+        let sp = signal::amplitude_spectrum(a, fs, Window::Hann).ok();
+        let pk = |lo: f64, hi: f64| {
+            sp.as_ref()
+                .and_then(|s| signal::dominant_peak(s, lo, hi))
+                .map_or(f64::NAN, |p| p.freq)
+        };
+        let (fel, feh) = (pk(400.0, 800.0), pk(3000.0, 9000.0));
+        let md = format!(
+            "| {scene_file} | tilt {} | fel {fel:.1} Hz | feh {feh:.0} Hz | {speed:.1} s/s |\n",
+            if lock_tilt { "held" } else { "free" }
+        );
+        print!("{md}");
+        if let Some(p) = out_path {
+            let old = std::fs::read_to_string(&p).unwrap_or_default();
+            if let Err(e) = std::fs::write(&p, old + &md) {
+                eprintln!("cannot write {p}: {e}");
+            }
+        }
+        return;
+    }
     let mut md = String::new();
     md += &format!(
         "Scene: `{scene_file}` at fidelity full{}.\n\n",

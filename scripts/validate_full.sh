@@ -15,3 +15,10 @@ bin="$CARGO_TARGET_DIR/release/examples/validate_full"
 # The same with the inner-ring tilt held (FullOptions::lock_tilt): see docs/validation.md.
 "$bin" "$duration" docs/validation-full-sec3.5-lock-tilt.md 20 outer lock_tilt
 "$bin" "$duration" docs/validation-full-sec3.5-inner-lock-tilt.md 20 inner lock_tilt
+# Table-2 impact test (C14), tilt free and held: fel, feh per Fa.
+rm -f docs/validation-full-table2.md
+for fa in 3000 4000 5000; do
+  for tilt in free lock_tilt; do
+    "$bin" 0.1 docs/validation-full-table2.md 20 "impact$fa" "$tilt"
+  done
+done
