@@ -90,6 +90,42 @@ base = "../scenes/default.toml"
 }
 
 #[test]
+fn ring_and_level_codes_are_stored_as_names() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[axes]
+"defect.ring" = [0, 1, "inner"]
+"fidelity" = [2]
+"#,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let canon: Vec<String> = runs
+        .iter()
+        .map(|r| {
+            format!(
+                "{}/{}",
+                r.params[0].1.canonical(),
+                r.params[1].1.canonical()
+            )
+        })
+        .collect();
+    assert_eq!(canon, ["none/lumped", "outer/lumped", "inner/lumped"]);
+    assert!(sw.scene_for(&runs[0]).unwrap().0.defect.is_none());
+    // Code 1 and the name give the same run id.
+    let by_name = parse(
+        "base = \"../scenes/default.toml\"\n[axes]\n\"defect.ring\" = [\"outer\"]\n\"fidelity\" = [\"lumped\"]\n",
+    )
+    .unwrap();
+    assert_eq!(by_name.runs()[0].id, runs[1].id);
+    let e = parse("base = \"../scenes/default.toml\"\n[axes]\n\"defect.ring\" = [1, \"outer\"]\n")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("appears twice"), "{e}");
+}
+
+#[test]
 fn seed_run_gives_each_run_its_own_deterministic_seed() {
     let sw = parse(
         r#"

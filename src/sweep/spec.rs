@@ -108,19 +108,23 @@ fn parse_fidelity(key: &str, v: &AxisValue) -> Result<Fidelity, String> {
     })
 }
 
-/// Checks that a value has the kind its key needs (a sweep-file error, not a failed run).
-fn check_kind(key: &str, v: &AxisValue) -> Result<(), SweepError> {
+/// Checks that a value has the kind its key needs (a sweep-file error, not a failed run) and
+/// returns it in canonical form: rings and levels as names (`1` → `outer`, `2` → `lumped`), so
+/// equal settings give equal run ids.
+fn normalize(key: &str, v: &AxisValue) -> Result<AxisValue, SweepError> {
     let kind = key_kind(key)?;
     let r = match kind {
         KeyKind::Number => match v {
-            AxisValue::Num(_) => Ok(()),
+            AxisValue::Num(_) => Ok(v.clone()),
             AxisValue::Text(s) => Err(format!("{key} = \"{s}\": expected a number")),
         },
-        KeyKind::Ring => parse_ring(key, v).map(|_| ()),
-        KeyKind::Fidelity => parse_fidelity(key, v).map(|_| ()),
+        KeyKind::Ring => {
+            parse_ring(key, v).map(|r| AxisValue::Text(r.map_or("none", |r| r.name()).to_string()))
+        }
+        KeyKind::Fidelity => parse_fidelity(key, v).map(|f| AxisValue::Text(f.name().into())),
         KeyKind::Seed => match v {
-            AxisValue::Num(_) => Ok(()),
-            AxisValue::Text(s) if s == "run" => Ok(()),
+            AxisValue::Num(_) => Ok(v.clone()),
+            AxisValue::Text(s) if s == "run" => Ok(v.clone()),
             AxisValue::Text(s) => Err(format!(
                 "{key} = \"{s}\": expected an integer or \"run\" (a seed derived from the run id)"
             )),
@@ -350,8 +354,11 @@ fn axis_values(key: &str, v: &toml::Value) -> Result<Vec<AxisValue>, SweepError>
     if values.is_empty() {
         return Err(SweepError::new(format!("axes.{key}: no values")));
     }
+    let values = values
+        .iter()
+        .map(|v| normalize(key, v))
+        .collect::<Result<Vec<_>, _>>()?;
     for (i, a) in values.iter().enumerate() {
-        check_kind(key, a)?;
         if let AxisValue::Num(x) = a {
             if !x.is_finite() {
                 return Err(SweepError::new(format!("axes.{key}: {x} is not finite")));
@@ -403,8 +410,7 @@ impl Sweep {
         };
         let mut set = Vec::new();
         for (k, v) in &file.set {
-            let v = value_of(k, v)?;
-            check_kind(k, &v)?;
+            let v = normalize(k, &value_of(k, v)?)?;
             set.push((k.clone(), v));
         }
         let mut axes = Vec::new();
