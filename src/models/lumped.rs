@@ -16,7 +16,7 @@
 use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
-use crate::quasi_static::{self, LoadCase};
+use crate::quasi_static;
 use crate::scene::{Pulse, Resonator, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::{PI, TAU};
@@ -153,28 +153,13 @@ impl LumpedModel {
 
     /// L1 at the given inputs: the cage-speed ratio and the static ring offset.
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
-        let case = LoadCase {
-            speed: inputs.shaft_speed,
-            fa: inputs.fx,
-            fy: inputs.fy,
-            fz: inputs.fz,
+        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) start")?;
+        self.cage_ratio = if inputs.shaft_speed > 0.0 {
+            qs.cage_speed / inputs.shaft_speed
+        } else {
+            kinematic_cage_ratio(bearing, &qs)
         };
-        match quasi_static::solve(bearing, &case) {
-            Ok(qs) => {
-                self.cage_ratio = if inputs.shaft_speed > 0.0 {
-                    qs.cage_speed / inputs.shaft_speed
-                } else {
-                    kinematic_cage_ratio(bearing, &qs)
-                };
-                self.ring_offset = [qs.delta_axial, qs.delta_y, qs.delta_z];
-            }
-            Err(e) => {
-                return Err(SimError::Input(format!(
-                    "the quasi-static (L1) start failed at shaft.speed = {:.3} rad/s, load = ({}, {}, {}) N: {e}",
-                    inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
-                )))
-            }
-        }
+        self.ring_offset = [qs.delta_axial, qs.delta_y, qs.delta_z];
         self.l1_inputs = *inputs;
         Ok(())
     }

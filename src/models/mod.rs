@@ -15,6 +15,27 @@ use crate::geometry::Bearing;
 use crate::scene::{Fidelity, Scene};
 use crate::simulation::{Inputs, SimError};
 
+/// L1 (quasi-static) solution at the given inputs; every level starts from it (spec §7). A failure
+/// names the operating point and says why, prefixed by what needed the solution.
+pub fn solve_l1(
+    bearing: &Bearing,
+    inputs: &Inputs,
+    purpose: &str,
+) -> Result<crate::quasi_static::QuasiStatic, SimError> {
+    let case = crate::quasi_static::LoadCase {
+        speed: inputs.shaft_speed,
+        fa: inputs.fx,
+        fy: inputs.fy,
+        fz: inputs.fz,
+    };
+    crate::quasi_static::solve(bearing, &case).map_err(|e| {
+        SimError::Input(format!(
+            "{purpose} failed at shaft.speed = {:.3} rad/s, load = ({}, {}, {}) N: {e}",
+            inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
+        ))
+    })
+}
+
 /// Builds the model of the scene's fidelity level (one arm per level).
 pub fn build(
     scene: &Scene,

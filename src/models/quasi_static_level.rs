@@ -16,7 +16,7 @@
 
 use super::Model;
 use crate::geometry::Bearing;
-use crate::quasi_static::{self, LoadCase, QuasiStatic};
+use crate::quasi_static::QuasiStatic;
 use crate::scene::Scene;
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
@@ -49,18 +49,7 @@ pub struct L1Table {
 impl L1Table {
     /// Solves L1 at `inputs`.
     pub fn solve(bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
-        let case = LoadCase {
-            speed: inputs.shaft_speed,
-            fa: inputs.fx,
-            fy: inputs.fy,
-            fz: inputs.fz,
-        };
-        let qs = quasi_static::solve(bearing, &case).map_err(|e| {
-            SimError::Input(format!(
-                "the quasi-static (L1) solve failed at shaft.speed = {:.3} rad/s, load = ({}, {}, {}) N: {e}",
-                inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
-            ))
-        })?;
+        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) solve")?;
         Ok(Self::from_solution(bearing, &qs, inputs))
     }
 

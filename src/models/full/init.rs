@@ -4,7 +4,7 @@ use super::layout::*;
 use super::FullModel;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
-use crate::quasi_static::{self, LoadCase};
+
 use crate::simulation::{Inputs, SimError};
 use std::f64::consts::TAU;
 
@@ -37,19 +37,11 @@ pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
 /// Fills `m.y0` and the reference cage ratio from L1 at the model's inputs.
 pub fn initial_state(m: &mut FullModel, bearing: &Bearing) -> Result<(), SimError> {
     let inputs = m.inputs;
-    let case = LoadCase {
-        speed: inputs.shaft_speed,
-        fa: inputs.fx,
-        fy: inputs.fy,
-        fz: inputs.fz,
-    };
-    let qs = quasi_static::solve(bearing, &case).map_err(|e| {
-        SimError::Input(format!(
-            "the quasi-static (L1) start of the full model failed at shaft.speed = {:.3} rad/s, \
-             load = ({}, {}, {}) N: {e}",
-            inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
-        ))
-    })?;
+    let qs = super::super::solve_l1(
+        bearing,
+        &inputs,
+        "the quasi-static (L1) start of the full model",
+    )?;
     let lay = m.lay;
     let y = &mut m.y0;
     y.iter_mut().for_each(|v| *v = 0.0);
