@@ -7,33 +7,9 @@ use raceway::models::full::FullModel;
 use raceway::models::Model;
 use raceway::scene::{Fidelity, Operating, Scene};
 use raceway::simulation::Inputs;
-use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-
-struct Counting;
-static COUNT: AtomicUsize = AtomicUsize::new(0);
-static ON: AtomicBool = AtomicBool::new(false);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        if ON.load(Ordering::SeqCst) {
-            COUNT.fetch_add(1, Ordering::SeqCst);
-        }
-        unsafe { SysAlloc.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { SysAlloc.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        if ON.load(Ordering::SeqCst) {
-            COUNT.fetch_add(1, Ordering::SeqCst);
-        }
-        unsafe { SysAlloc.realloc(p, l, n) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+#[path = "common/alloc_counter.rs"]
+mod alloc_counter;
+use alloc_counter::allocations_during;
 
 #[test]
 fn rhs_and_events_do_not_allocate() {
@@ -70,19 +46,15 @@ fn rhs_and_events_do_not_allocate() {
         for k in 0..8 {
             shifts.push(-0.3 + 0.6 * k as f64 / 7.0);
         }
-        ON.store(true, Ordering::SeqCst);
-        for &s in &shifts {
-            y[psi] = s;
-            m.update_mode(0.0, &y);
-            m.rhs(0.0, &y, &mut d);
-            m.events(0.0, &y, &mut g);
-        }
-        ON.store(false, Ordering::SeqCst);
+        let (n, ()) = allocations_during(|| {
+            for &s in &shifts {
+                y[psi] = s;
+                m.update_mode(0.0, &y);
+                m.rhs(0.0, &y, &mut d);
+                m.events(0.0, &y, &mut g);
+            }
+        });
         assert!(d.iter().all(|v| v.is_finite()));
+        assert_eq!(n, 0, "allocations in rhs/events/update_mode ({defect:?})");
     }
-    assert_eq!(
-        COUNT.load(Ordering::SeqCst),
-        0,
-        "allocations in rhs/events/update_mode"
-    );
 }

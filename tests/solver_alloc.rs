@@ -2,33 +2,9 @@
 //! `advance_with_events` after the first call (which may size the event buffers).
 
 use raceway::solver::*;
-use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-
-struct Counting;
-static COUNT: AtomicUsize = AtomicUsize::new(0);
-static ON: AtomicBool = AtomicBool::new(false);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        if ON.load(Ordering::SeqCst) {
-            COUNT.fetch_add(1, Ordering::SeqCst);
-        }
-        unsafe { SysAlloc.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { SysAlloc.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        if ON.load(Ordering::SeqCst) {
-            COUNT.fetch_add(1, Ordering::SeqCst);
-        }
-        unsafe { SysAlloc.realloc(p, l, n) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+#[path = "common/alloc_counter.rs"]
+mod alloc_counter;
+use alloc_counter::allocations_during;
 
 struct Ball;
 impl System for Ball {
@@ -70,13 +46,12 @@ fn stepping_does_not_allocate() {
         };
         it.advance_with_events(&mut Ball, 0.1, Some(&mut obs))
             .unwrap();
-        ON.store(true, Ordering::SeqCst);
-        it.advance_with_events(&mut Ball, 5.0, Some(&mut obs))
-            .unwrap();
-        it.advance(&mut Ball, 6.0, None).unwrap();
-        it.advance(&mut Ball, 7.0, Some(&mut obs)).unwrap();
-        ON.store(false, Ordering::SeqCst);
-        let n = COUNT.swap(0, Ordering::SeqCst);
+        let (n, ()) = allocations_during(|| {
+            it.advance_with_events(&mut Ball, 5.0, Some(&mut obs))
+                .unwrap();
+            it.advance(&mut Ball, 6.0, None).unwrap();
+            it.advance(&mut Ball, 7.0, Some(&mut obs)).unwrap();
+        });
         assert!(
             it.stats().events > 2,
             "{m}: {:?} y={:?}",
