@@ -205,3 +205,35 @@ fn cage_follows_a_speed_step() {
     eprintln!("cage after the step {mean:.3} Hz");
     assert!(mean > 1.1 * 69.54 && mean < 1.1 * 70.42 * 1.005, "{mean}");
 }
+
+#[test]
+fn scene_full_table_reaches_the_model() {
+    let text = |extra: &str| {
+        format!(
+            "fidelity = \"full\"\n[operating]\nspeed_rpm = 9900.0\nfa = 4000.0\nfr = 1000.0\n{extra}"
+        )
+    };
+    let sc = Scene::from_toml_str(
+        &text("[full]\nlock_tilt = true\ntraction = false\n"),
+        "t",
+        None,
+    )
+    .unwrap();
+    assert!(sc.full.lock_tilt && !sc.full.traction);
+    let dflt = Scene::from_toml_str(&text(""), "t", None).unwrap();
+    assert!(!dflt.full.lock_tilt && dflt.full.traction);
+    let e = Scene::from_toml_str(&text("[full]\ntilt = 1\n"), "t", None).unwrap_err();
+    assert!(e.to_string().contains("tilt"), "{e}");
+    // Normal forces act through planes containing the shaft axis: without traction the
+    // friction torque is zero up to roundoff; with it, it is not.
+    let torque = |sc: &Scene| {
+        let mut sim = Simulation::new(sc).unwrap();
+        sim.advance(2e-4).unwrap();
+        let mut o = vec![0.0; sim.output_table().len()];
+        sim.outputs(&mut o);
+        o[out::FRICTION_TORQUE]
+    };
+    let (t_off, t_on) = (torque(&sc), torque(&dflt));
+    assert!(t_off.abs() < 1e-9, "{t_off}");
+    assert!(t_on.abs() > 1e-4, "{t_on}");
+}

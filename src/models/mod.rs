@@ -50,7 +50,15 @@ pub fn build(
             scene, bearing, inputs,
         )?)),
         Fidelity::Lumped => Ok(Box::new(lumped::LumpedModel::new(scene, bearing, inputs)?)),
-        Fidelity::Full => Ok(Box::new(full::FullModel::new(scene, bearing, inputs)?)),
+        Fidelity::Full => Ok(Box::new(full::FullModel::with_options(
+            scene,
+            bearing,
+            inputs,
+            full::FullOptions {
+                traction: scene.full.traction,
+                lock_tilt: scene.full.lock_tilt,
+            },
+        )?)),
         other => Err(SimError::Unsupported(format!(
             "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
             other.name(),
