@@ -35,9 +35,14 @@ pub struct FaultFrequencies {
 /// `BSF = (dm/2D) fs (1 − γ²)`, with `γ = D cos α / dm`.
 pub fn fault_frequencies(b: &Bearing, speed_hz: f64, alpha: f64) -> FaultFrequencies {
     let gamma = b.gamma(alpha);
-    let z = b.z as f64;
     let ftf = 0.5 * speed_hz * (1.0 - gamma);
     let bsf = b.dm / (2.0 * b.d) * speed_hz * (1.0 - gamma * gamma);
+    from_ftf_bsf(b, speed_hz, ftf, bsf)
+}
+
+/// All frequencies from the cage (FTF) and ball-spin (BSF) frequencies [Hz].
+fn from_ftf_bsf(b: &Bearing, speed_hz: f64, ftf: f64, bsf: f64) -> FaultFrequencies {
+    let z = b.z as f64;
     FaultFrequencies {
         shaft: speed_hz,
         ftf,
@@ -108,17 +113,12 @@ pub fn frequencies_from_cage(
     cage_ratio: f64,
     spin_ratio: f64,
 ) -> FaultFrequencies {
-    let z = b.z as f64;
-    let ftf = cage_ratio * speed_hz;
-    let bsf = spin_ratio.abs() * speed_hz;
-    FaultFrequencies {
-        shaft: speed_hz,
-        ftf,
-        bpfo: z * ftf,
-        bpfi: z * (speed_hz - ftf),
-        bsf,
-        two_bsf: 2.0 * bsf,
-    }
+    from_ftf_bsf(
+        b,
+        speed_hz,
+        cage_ratio * speed_hz,
+        spin_ratio.abs() * speed_hz,
+    )
 }
 
 /// Outer-race-control frequencies for loaded angles `alpha_i`, `alpha_o` [rad] at `speed_hz`.

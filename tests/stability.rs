@@ -67,28 +67,7 @@ fn jacobian(sys: &mut Sys, y0: &[f64]) -> DMatrix<f64> {
 
 /// Largest s such that |R(s·e^{iφ})| ≤ 1 for all 0 < s' ≤ s along the ray of direction (dr, di).
 fn ray_reach(t: &Tableau, dr: f64, di: f64) -> f64 {
-    let unstable = |s: f64| {
-        let (r, i) = t.stability_function(s * dr, s * di);
-        (r * r + i * i).sqrt() > 1.0 + 1e-12
-    };
-    let dx = 1e-3;
-    let mut s = dx;
-    while s < 20.0 {
-        if unstable(s) {
-            let (mut lo, mut hi) = (s - dx, s);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if unstable(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            return lo;
-        }
-        s += dx;
-    }
-    20.0
+    t.stability_reach((dr, di), 1e-12, 1e-3, 20.0)
 }
 
 /// Predicted fixed-step limit: min over the Jacobian's eigenvalues λ of reach(arg λ)/|λ|.

@@ -80,8 +80,16 @@ impl Tableau {
     /// Largest `x` such that `|R(i y)| <= 1 + tol` for all `0 < y <= x`, scanning up to `x_max`
     /// (the imaginary-axis stability reach). Found by a scan with step `dx` and bisection.
     pub fn imaginary_stability_reach(&self, tol: f64, dx: f64, x_max: f64) -> f64 {
+        self.stability_reach((0.0, 1.0), tol, dx, x_max)
+    }
+
+    /// Largest `s` such that `|R(s·d)| <= 1 + tol` for all `0 < s' <= s` along the unit direction
+    /// `d = (re, im)` of the complex plane (e.g. the direction of a Jacobian eigenvalue, so that
+    /// `h_crit = s / |λ|`), scanning with step `dx` up to `x_max`, refined by bisection.
+    pub fn stability_reach(&self, direction: (f64, f64), tol: f64, dx: f64, x_max: f64) -> f64 {
+        let (dr, di) = direction;
         let unstable = |x: f64| {
-            let (r, i) = self.stability_function(0.0, x);
+            let (r, i) = self.stability_function(x * dr, x * di);
             (r * r + i * i).sqrt() > 1.0 + tol
         };
         let mut x = dx;
