@@ -110,24 +110,29 @@ fn inner_spall_envelope_shows_bpfi_with_shaft_sidebands() {
     }
 }
 
-/// Pedestal-acceleration response to the pulse: the run with the pulse minus the same run
-/// without it, from the pulse on; returns (fel, feh) as the peaks of its amplitude spectrum.
-fn impact_frequencies(fa: f64) -> (f64, f64) {
-    let mut sc = scene(&format!("impact-test-fa{}.toml", fa as i32));
+/// Pedestal-acceleration response to the scene's pulse: the run with the pulse minus the same
+/// run without it, over `window` seconds from the pulse on, zero-padded to 1 s (1 Hz bins) for a
+/// smooth amplitude spectrum of the decayed transient.
+fn pulse_response_spectrum(sc: &Scene, window: f64) -> signal::Spectrum {
     let fs = sc.output.sample_rate;
-    let t0 = sc.pulse.as_ref().unwrap().t0;
-    let dur = t0 + 0.06;
-    let (_, with) = run(&sc, dur, fs, t0);
-    sc.pulse = None;
-    let (_, without) = run(&sc, dur, fs, t0);
+    let t0 = sc.pulse.as_ref().expect("a scene with a pulse").t0;
+    let mut quiet = sc.clone();
+    quiet.pulse = None;
+    let (_, with) = run(sc, t0 + window, fs, t0);
+    let (_, without) = run(&quiet, t0 + window, fs, t0);
     let mut d: Vec<f64> = with
         .iter()
         .zip(&without)
         .map(|(a, b)| a[out::PEDESTAL_A_Z] - b[out::PEDESTAL_A_Z])
         .collect();
-    // The response has decayed after 60 ms: zero-pad to 1 s for a smooth spectrum (1 Hz bins).
     d.resize(fs as usize, 0.0);
-    let s = signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap();
+    signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap()
+}
+
+/// (fel, feh) of the impact test at axial load `fa`: the peaks of the pulse response (which
+/// has decayed after 60 ms).
+fn impact_frequencies(fa: f64) -> (f64, f64) {
+    let s = pulse_response_spectrum(&scene(&format!("impact-test-fa{}.toml", fa as i32)), 0.06);
     let fel = signal::dominant_peak(&s, 300.0, 1500.0).unwrap().freq;
     let feh = signal::dominant_peak(&s, 2500.0, 12000.0).unwrap().freq;
     (fel, feh)
@@ -374,21 +379,7 @@ fn sensor_resonator_adds_its_mode_to_the_pedestal_response() {
         damping_ratio: 0.05,
         mass: 0.05,
     });
-    let fs = sc.output.sample_rate;
-    let t0 = sc.pulse.as_ref().unwrap().t0;
-    let response = |sc: &Scene| {
-        let mut quiet = sc.clone();
-        quiet.pulse = None;
-        let (_, with) = run(sc, t0 + 0.03, fs, t0);
-        let (_, without) = run(&quiet, t0 + 0.03, fs, t0);
-        let mut d: Vec<f64> = with
-            .iter()
-            .zip(&without)
-            .map(|(a, b)| a[out::PEDESTAL_A_Z] - b[out::PEDESTAL_A_Z])
-            .collect();
-        d.resize(fs as usize, 0.0);
-        signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap()
-    };
+    let response = |sc: &Scene| pulse_response_spectrum(sc, 0.03);
     let s = response(&sc);
     let p = signal::dominant_peak(&s, 12000.0, 25000.0).unwrap();
     let predicted = 16000.0 * (1.0 + 0.05 / 0.829_f64).sqrt();

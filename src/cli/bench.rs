@@ -265,6 +265,33 @@ fn parse_list<T>(s: &str, f: impl Fn(&str) -> Option<T>, what: &str) -> Result<V
         .collect()
 }
 
+/// Runs `repeats` times (stopping at the first failure): the wall times of the successful runs
+/// and the last outcome (`None` only when `repeats` is 0).
+fn run_repeated(
+    scene: &Scene,
+    method: MethodName,
+    rtol: f64,
+    duration: f64,
+    time_limit: f64,
+    repeats: usize,
+) -> (Vec<f64>, Option<Result<Run, SimError>>) {
+    let mut walls = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats {
+        match run(scene, method, rtol, duration, time_limit) {
+            Ok(r) => {
+                walls.push(r.wall);
+                last = Some(Ok(r));
+            }
+            Err(e) => {
+                last = Some(Err(e));
+                break;
+            }
+        }
+    }
+    (walls, last)
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     v[v.len() / 2]
@@ -474,20 +501,8 @@ pub fn run_cli(args: Args) -> Result<(), String> {
             }
             for &method in &methods {
                 for &rtol in &level_rtols {
-                    let mut walls = Vec::new();
-                    let mut last = None;
-                    for _ in 0..level_repeats {
-                        match run(&scene, method, rtol, duration, limit) {
-                            Ok(r) => {
-                                walls.push(r.wall);
-                                last = Some(Ok(r));
-                            }
-                            Err(e) => {
-                                last = Some(Err(e));
-                                break;
-                            }
-                        }
-                    }
+                    let (walls, last) =
+                        run_repeated(&scene, method, rtol, duration, limit, level_repeats);
                     match last {
                         Some(Ok(r)) => {
                             let e = errors(&r.signal, &reference.signal, fault);
@@ -562,20 +577,14 @@ pub fn run_cli(args: Args) -> Result<(), String> {
         // The cheap levels against the highest dynamic level's reference.
         for level in cheap {
             let scene = scene_of(scene_name, level)?;
-            let mut walls = Vec::new();
-            let mut last = None;
-            for _ in 0..repeats {
-                match run(&scene, MethodName::Dop853, 1e-6, duration, args.time_limit) {
-                    Ok(r) => {
-                        walls.push(r.wall);
-                        last = Some(Ok(r));
-                    }
-                    Err(e) => {
-                        last = Some(Err(e));
-                        break;
-                    }
-                }
-            }
+            let (walls, last) = run_repeated(
+                &scene,
+                MethodName::Dop853,
+                1e-6,
+                duration,
+                args.time_limit,
+                repeats,
+            );
             match last {
                 Some(Ok(r)) => {
                     let (e, status) = match &top {
