@@ -10,6 +10,7 @@ pub mod full;
 pub mod kinematic;
 pub mod lumped;
 pub mod quasi_static_level;
+pub mod reduced;
 
 use crate::geometry::Bearing;
 use crate::scene::{Fidelity, Scene};
@@ -50,6 +51,9 @@ pub fn build(
             scene, bearing, inputs,
         )?)),
         Fidelity::Lumped => Ok(Box::new(lumped::LumpedModel::new(scene, bearing, inputs)?)),
+        Fidelity::Reduced => Ok(Box::new(reduced::ReducedModel::new(
+            scene, bearing, inputs,
+        )?)),
         Fidelity::Full => Ok(Box::new(full::FullModel::with_options(
             scene,
             bearing,
@@ -59,11 +63,6 @@ pub fn build(
                 lock_tilt: scene.full.lock_tilt,
             },
         )?)),
-        other => Err(SimError::Unsupported(format!(
-            "fidelity '{}' (code {}) is not available yet; available: 'lumped' (code 2)",
-            other.name(),
-            other.code()
-        ))),
     }
 }
 

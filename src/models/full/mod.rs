@@ -92,7 +92,7 @@ pub struct FullModel {
 }
 
 /// Per-race constants from the bearing (spec §2.1, §2.3, C7).
-fn race_const(b: &Bearing, race: Race) -> RaceConst {
+pub(crate) fn race_const(b: &Bearing, race: Race) -> RaceConst {
     let (xg, rg) = b.groove_centre(race);
     let f = b.f(race);
     let e = (f - 0.5) * b.d;

@@ -1,0 +1,659 @@
+//! L3: the reduced per-ball dynamic model (spec §6 L3).
+//!
+//! Every ball keeps the full model's translational states (x, r, θ and their rates in inertial
+//! cylindrical coordinates) but only one rotational state: the spin rate ω_s about an attitude
+//! axis `ê_s = cos β e_x − sin β e_r(θ)` whose angle β is fixed (from L1). The ball's inertial
+//! angular velocity is `θ̇ e_x + ω_s ê_s`. The inner ring translates (no tilt, spin prescribed,
+//! C4); the outer ring moves with the 2-DOF pedestal (C3).
+//!
+//! The normal contacts are the full model's ([`super::full::contact::evaluate`]: geometry with
+//! changing contact angles, Hertz with contact damping, the spall's three effects with the
+//! spall half frozen between edge events located on the dense output). Traction is one point
+//! at the contact, `P = r_b + (R − δ/2) n`, rolling component only:
+//! `F_t = −Q κ(|u2|) sign(u2) c2` with the traction law of [`crate::contact::traction`], u2 the
+//! slip of ball against race along the rolling direction c2 (rotated with the contact normal in
+//! a spall). The spin obeys `J ω̇_s = (Σ r_cp × F_t)·ê_s`; the other components of the contact
+//! moments are taken up by the fixed-attitude constraint. Centrifugal and Coriolis forces come
+//! from the cylindrical equations of motion (§5.1).
+//!
+//! State layout ([`ReducedLayout`]), deviations as in the full model (solvers.md): per ball j
+//! (7 states from `7 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_s. Then the inner
+//! ring (6 from `7 z`): x, y, z, ẋ, ẏ, ż; the pedestal (4 from `7 z + 6`): y_p, z_p, ẏ_p, ż_p;
+//! the reference cage angle ψ (`7 z + 10`) and the shaft angle φ (`7 z + 11`). 7z + 12 states
+//! (110 for z = 14; the spec's 7z + 10 plus the two bookkeeping angles the full model also has).
+//!
+//! The initial state is the full model's (spec §7, from L1), reduced to these states.
+
+use super::full::contact::{
+    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, V3,
+};
+use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
+use super::full::{self as full_model, FullModel, FullOptions};
+use super::Model;
+use crate::contact::traction::TractionCurve;
+use crate::defect::Defect;
+use crate::geometry::{Bearing, Race};
+use crate::scene::{Pulse, Scene};
+use crate::simulation::{out, Inputs, SimError};
+use std::f64::consts::TAU;
+
+/// States per ball.
+pub const PER_BALL: usize = 7;
+/// Offset of the spin rate ω_s inside a ball's block (x, r, θ, ẋ, ṙ, θ̇ are at the full
+/// model's offsets `layout::BX` … `layout::BW`).
+pub const BWS: usize = 6;
+/// States of the inner-ring block (x, y, z at `layout::RX`, velocities at `layout::RV`).
+pub const RING_STATES: usize = 6;
+
+/// Index arithmetic of the reduced model for a bearing with `z` balls.
+#[derive(Debug, Clone, Copy)]
+pub struct ReducedLayout {
+    pub z: usize,
+}
+
+impl ReducedLayout {
+    /// First state of ball j.
+    #[inline(always)]
+    pub fn ball(&self, j: usize) -> usize {
+        PER_BALL * j
+    }
+    /// First state of the inner ring (x, y, z, ẋ, ẏ, ż).
+    #[inline(always)]
+    pub fn ring(&self) -> usize {
+        PER_BALL * self.z
+    }
+    /// First state of the pedestal (y_p, z_p, ẏ_p, ż_p).
+    #[inline(always)]
+    pub fn pedestal(&self) -> usize {
+        PER_BALL * self.z + RING_STATES
+    }
+    /// Reference cage angle ψ.
+    #[inline(always)]
+    pub fn psi(&self) -> usize {
+        PER_BALL * self.z + RING_STATES + 4
+    }
+    /// Shaft angle φ.
+    #[inline(always)]
+    pub fn phi(&self) -> usize {
+        PER_BALL * self.z + RING_STATES + 5
+    }
+    /// Number of states.
+    #[inline(always)]
+    pub fn dim(&self) -> usize {
+        PER_BALL * self.z + RING_STATES + 6
+    }
+}
+
+/// Switches of the reduced model that are not part of a scene (diagnostics and tests).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReducedOptions {
+    /// Rolling traction on (default) or frictionless contacts.
+    pub traction: bool,
+}
+
+impl Default for ReducedOptions {
+    fn default() -> Self {
+        Self { traction: true }
+    }
+}
+
+/// One contact's rolling traction: force on the ball and the contact point relative to the
+/// ball centre.
+#[derive(Debug, Clone, Copy, Default)]
+struct Traction {
+    f: V3,
+    r_cp: V3,
+}
+
+/// The L3 model.
+pub struct ReducedModel {
+    lay: ReducedLayout,
+    z: usize,
+    ball_mass: f64,
+    ball_inertia: f64,
+    ball_radius: f64,
+    pitch_radius: f64,
+    inner: RaceConst,
+    outer: RaceConst,
+    c_br: f64,
+    traction: Option<TractionCurve>,
+    m_ir: f64,
+    m_p: f64,
+    k_py: f64,
+    k_pz: f64,
+    c_py: f64,
+    c_pz: f64,
+    pulse: Option<Pulse>,
+    defect: Option<Defect>,
+    /// Semi-major-axis factor of the spall-edge contact.
+    defect_a_star: f64,
+    inputs: Inputs,
+    /// Reference cage speed ratio ψ̇/Ω.
+    cage_ratio: f64,
+    /// Azimuth of ball 0 at ψ = 0 [rad].
+    theta_start: f64,
+    /// (cos β, sin β) of the fixed attitude angle.
+    attitude: (f64, f64),
+    /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
+    sides: Vec<f64>,
+    /// Normal forces of the last RHS evaluation (inner, outer) [N].
+    q_inner: Vec<f64>,
+    q_outer: Vec<f64>,
+    /// Initial state (the full model's L1 start, reduced).
+    y0: Vec<f64>,
+    /// Scratch derivative for outputs.
+    scratch: Vec<f64>,
+    /// Force of the bearing on the inner ring (last RHS) [N] and its moment about x [N m].
+    ring_force: V3,
+    ring_moment_x: f64,
+}
+
+impl ReducedModel {
+    /// Builds the model for a scene with the default options.
+    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+        Self::with_options(scene, bearing, inputs, ReducedOptions::default())
+    }
+
+    /// Builds the model with explicit [`ReducedOptions`].
+    pub fn with_options(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &Inputs,
+        options: ReducedOptions,
+    ) -> Result<Self, SimError> {
+        let file = &bearing.file;
+        let z = bearing.z;
+        if z == 0 {
+            return Err(SimError::Input("the bearing has no balls".into()));
+        }
+        // The full model's start (spec §7: L1, pedestal and ring offsets, ball placement clear of
+        // the spall) and its spall; without traction it builds no strip tables.
+        let full = FullModel::with_options(
+            scene,
+            bearing,
+            inputs,
+            FullOptions {
+                traction: false,
+                lock_tilt: true,
+            },
+        )?;
+        let traction = if options.traction {
+            Some(TractionCurve::new(&file.traction)?)
+        } else {
+            None
+        };
+        let defect = full.defect().cloned();
+        let defect_a_star = defect
+            .as_ref()
+            .map_or(0.0, |d| d.corner_hertz().semi_axis_factors().0);
+        let lay = ReducedLayout { z };
+        let cage_ratio = if inputs.shaft_speed > 0.0 {
+            full.cage_speed() / inputs.shaft_speed
+        } else {
+            0.5 * (1.0 - bearing.gamma(bearing.alpha0))
+        };
+        let mut m = Self {
+            lay,
+            z,
+            ball_mass: bearing.ball_mass,
+            ball_inertia: bearing.ball_inertia,
+            ball_radius: bearing.ball_radius(),
+            pitch_radius: 0.5 * bearing.dm,
+            inner: full_model::race_const(bearing, Race::Inner),
+            outer: full_model::race_const(bearing, Race::Outer),
+            c_br: file.contact.c_br,
+            traction,
+            m_ir: file.inner_ring.mass,
+            m_p: file.pedestal.mass,
+            k_py: file.pedestal.k_y,
+            k_pz: file.pedestal.k_z,
+            c_py: file.pedestal.c_y,
+            c_pz: file.pedestal.c_z,
+            pulse: scene.pulse.clone(),
+            theta_start: full_model::init::choose_theta_start(z, defect.as_ref()),
+            defect,
+            defect_a_star,
+            inputs: *inputs,
+            cage_ratio,
+            attitude: (1.0, 0.0),
+            sides: vec![0.0; z],
+            q_inner: vec![0.0; z],
+            q_outer: vec![0.0; z],
+            y0: vec![0.0; lay.dim()],
+            scratch: vec![0.0; lay.dim()],
+            ring_force: [0.0; 3],
+            ring_moment_x: 0.0,
+        };
+        m.reduce_initial_state(&full, bearing);
+        Ok(m)
+    }
+
+    /// Maps the full model's initial state onto the reduced states. The ball spin of L1,
+    /// `ω_b = ω_c e_x + ω_R ê_s(β_j)`, gives the attitude angle β (the mean over the balls; at
+    /// zero speed, where L1 has no spin, the outer-race-control angle at α0) and ω_s = the spin
+    /// part projected on the common axis.
+    fn reduce_initial_state(&mut self, full: &FullModel, bearing: &Bearing) {
+        let fl = full.layout();
+        let mut yf = vec![0.0; fl.dim()];
+        full.initial_state(&mut yf);
+        let lay = self.lay;
+        let y = &mut self.y0;
+        y.iter_mut().for_each(|v| *v = 0.0);
+        // Spin vectors w_j = ω_b − θ̇ e_x of the full start.
+        let mut spins = Vec::with_capacity(self.z);
+        let (mut beta_sum, mut n_beta) = (0.0, 0);
+        for j in 0..self.z {
+            let (bf, b) = (fl.ball(j), lay.ball(j));
+            for k in [BX, BR, BTH, BVX, BVR, BW] {
+                y[b + k] = yf[bf + k];
+            }
+            let theta = self.theta_start + TAU * j as f64 / self.z as f64 + yf[bf + BTH];
+            let (s, c) = theta.sin_cos();
+            let er = [0.0, -s, c];
+            let w = [yf[bf + 6] - yf[bf + BW], yf[bf + 7], yf[bf + 8]];
+            let norm = dot(w, w).sqrt();
+            if norm > 0.0 {
+                // ω_R < 0 for Ω > 0 (spec §6 L0): ê_s = w/ω_R = −w/|w|.
+                let es = scale(w, -1.0 / norm);
+                beta_sum += (-dot(es, er)).atan2(es[0]);
+                n_beta += 1;
+            }
+            spins.push((w, er));
+        }
+        let beta = if n_beta > 0 {
+            beta_sum / n_beta as f64
+        } else {
+            crate::kinematics::outer_race_control(bearing, bearing.alpha0, bearing.alpha0).beta
+        };
+        let (sb, cb) = beta.sin_cos();
+        self.attitude = (cb, sb);
+        for (j, (w, er)) in spins.into_iter().enumerate() {
+            let es = [cb, -sb * er[1], -sb * er[2]];
+            y[lay.ball(j) + BWS] = dot(w, es);
+        }
+        let (rf, r) = (fl.ring(), lay.ring());
+        for k in 0..3 {
+            y[r + RX + k] = yf[rf + RX + k];
+            y[r + RV + k] = yf[rf + RV + k];
+        }
+        let (pf, p) = (fl.pedestal(), lay.pedestal());
+        for k in [PY, PZ, PVY, PVZ] {
+            y[p + k] = yf[pf + k];
+        }
+        y[lay.psi()] = yf[fl.psi()];
+        y[lay.phi()] = yf[fl.phi()];
+    }
+
+    /// The state layout.
+    pub fn layout(&self) -> ReducedLayout {
+        self.lay
+    }
+
+    /// The fixed attitude angle β of the spin axis [rad].
+    pub fn attitude_angle(&self) -> f64 {
+        self.attitude.1.atan2(self.attitude.0)
+    }
+
+    /// Normal forces of the last evaluation: (inner, outer) per ball [N].
+    pub fn contact_forces(&self) -> (&[f64], &[f64]) {
+        (&self.q_inner, &self.q_outer)
+    }
+
+    /// The spall, if any.
+    pub fn defect(&self) -> Option<&Defect> {
+        self.defect.as_ref()
+    }
+
+    #[inline(always)]
+    fn inner_pose(&self, y: &[f64]) -> RingPose {
+        let r = self.lay.ring();
+        RingPose {
+            p: [y[r + RX], y[r + RX + 1], y[r + RX + 2]],
+            v: [y[r + RV], y[r + RV + 1], y[r + RV + 2]],
+            beta: [0.0; 3],
+            beta_rate: [0.0; 3],
+            spin: self.inputs.shaft_speed,
+        }
+    }
+
+    #[inline(always)]
+    fn outer_pose(&self, y: &[f64]) -> RingPose {
+        let p = self.lay.pedestal();
+        RingPose {
+            p: [0.0, y[p + PY], y[p + PZ]],
+            v: [0.0, y[p + PVY], y[p + PVZ]],
+            beta: [0.0; 3],
+            beta_rate: [0.0; 3],
+            spin: 0.0,
+        }
+    }
+
+    /// Ball j's kinematics (angular velocity θ̇ e_x + ω_s ê_s) and its cylindrical triad
+    /// (e_r, e_θ), radius and orbital rate.
+    #[inline(always)]
+    fn ball_kin(&self, y: &[f64], j: usize) -> (BallKin, V3, V3, f64, f64) {
+        let b = self.lay.ball(j);
+        let theta =
+            y[self.lay.psi()] + self.theta_start + TAU * j as f64 / self.z as f64 + y[b + BTH];
+        let (s, c) = theta.sin_cos();
+        let er = [0.0, -s, c];
+        let et = [0.0, -c, -s];
+        let r = self.pitch_radius + y[b + BR];
+        let w = y[b + BW];
+        let ws = y[b + BWS];
+        let (cb, sb) = self.attitude;
+        let (vx, vr) = (y[b + BVX], y[b + BVR]);
+        let kin = BallKin {
+            p: [y[b + BX], r * er[1], r * er[2]],
+            v: [vx, vr * er[1] + r * w * et[1], vr * er[2] + r * w * et[2]],
+            omega: [w + ws * cb, -ws * sb * er[1], -ws * sb * er[2]],
+        };
+        (kin, er, et, r, w)
+    }
+
+    /// The spall as seen by ball j on `race` in the frozen interval, if it is in the zone.
+    #[inline(always)]
+    fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+        let d = self.defect.as_ref()?;
+        if d.ring() != race || self.sides[j] == 0.0 {
+            return None;
+        }
+        let rate = match race {
+            Race::Inner => w - self.inputs.shaft_speed,
+            Race::Outer => w,
+        };
+        Some(DefectView {
+            defect: d,
+            side: self.sides[j],
+            phi: y[self.lay.phi()],
+            theta_bd_rate: rate,
+            a_star: self.defect_a_star,
+        })
+    }
+
+    /// Rolling traction of one closed contact (single point, rolling component only).
+    #[inline(always)]
+    fn traction_of(
+        &self,
+        curve: &TractionCurve,
+        kin: &BallKin,
+        ring: &RingPose,
+        c: &ContactOut,
+    ) -> Traction {
+        if c.q <= 0.0 {
+            return Traction::default();
+        }
+        let n = scale(c.qn, 1.0 / c.q);
+        // Rolling direction: the ring's circumferential direction at the ball; in a spall the
+        // contact frame turns about c1 with the normal, c2 = n_q × c1.
+        let rr = ring.to_ring(sub(kin.p, ring.p));
+        let inv_rho = 1.0 / (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
+        let c2_ring = ring.to_inertial([0.0, -rr[2] * inv_rho, rr[1] * inv_rho]);
+        let c2 = if c.in_defect {
+            let c1 = cross(c2_ring, n);
+            cross(n, scale(c1, 1.0 / dot(c1, c1).sqrt()))
+        } else {
+            c2_ring
+        };
+        let r_cp = scale(n, self.ball_radius - 0.5 * c.delta);
+        let v_ball = add(kin.v, cross(kin.omega, r_cp));
+        let v_race = add(ring.v, cross(ring.omega(), sub(add(kin.p, r_cp), ring.p)));
+        let u2 = dot(sub(v_ball, v_race), c2);
+        let f2 = -c.q * curve.kappa_over_u(u2.abs()) * u2;
+        Traction {
+            f: scale(c2, f2),
+            r_cp,
+        }
+    }
+
+    /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
+    fn theta_bd(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let (pose, rate) = match d.ring() {
+            Race::Inner => (self.inner_pose(y), w - self.inputs.shaft_speed),
+            Race::Outer => (self.outer_pose(y), w),
+        };
+        (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
+    }
+
+    /// Re-derives the frozen spall half of every ball at state y (as the full model does).
+    fn update_sides(&mut self, y: &[f64]) {
+        let Some(d) = &self.defect else { return };
+        let te = d.half_angle();
+        for j in 0..self.z {
+            let (tbd, rate) = self.theta_bd(d, y, j);
+            let a = tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0));
+            self.sides[j] = if a.is_nan() || a.abs() >= te {
+                0.0
+            } else if a < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+        }
+    }
+
+    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts [J].
+    pub fn hertz_potential(&self, y: &[f64]) -> f64 {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        let mut e = 0.0;
+        for j in 0..self.z {
+            let (kin, _, _, _, _) = self.ball_kin(y, j);
+            for (pose, race) in [(&inner, &self.inner), (&outer, &self.outer)] {
+                let c = contact::evaluate(&kin, pose, race, self.ball_radius, 0.0, None, None);
+                if c.delta > 0.0 {
+                    e += 0.4 * race.k * c.delta * c.delta * c.delta.sqrt();
+                }
+            }
+        }
+        e
+    }
+
+    /// Total mechanical energy [J]: ball translation and spin ½Jω_s², inner-ring translation,
+    /// pedestal, Hertz potential of the intact contacts, pedestal springs, minus the work of the
+    /// constant loads. Conserved without traction, damping and spall (the orbital part θ̇ e_x
+    /// of the ball's angular velocity is kinematic here and carries no energy of its own).
+    pub fn energy(&self, y: &[f64]) -> f64 {
+        let inner = self.inner_pose(y);
+        let mut e = self.hertz_potential(y);
+        for j in 0..self.z {
+            let (kin, _, _, _, _) = self.ball_kin(y, j);
+            let ws = y[self.lay.ball(j) + BWS];
+            e += 0.5 * self.ball_mass * dot(kin.v, kin.v) + 0.5 * self.ball_inertia * ws * ws;
+        }
+        let p = self.lay.pedestal();
+        e += 0.5 * self.m_ir * dot(inner.v, inner.v)
+            + 0.5 * self.m_p * (y[p + PVY].powi(2) + y[p + PVZ].powi(2))
+            + 0.5 * self.k_py * y[p + PY].powi(2)
+            + 0.5 * self.k_pz * y[p + PZ].powi(2)
+            - (self.inputs.fx * inner.p[0]
+                + self.inputs.fy * inner.p[1]
+                + self.inputs.fz * inner.p[2]);
+        e
+    }
+
+    /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
+    pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
+        (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+}
+
+impl Model for ReducedModel {
+    fn dim(&self) -> usize {
+        self.lay.dim()
+    }
+
+    fn nominal(&self, out: &mut [f64]) {
+        // As the full model: deflection-scale positions 1e-5 m, velocities 1e-2 m/s, angle
+        // deviations 1e-3 rad, orbital rates 100 rad/s, spins 1e3 rad/s.
+        for j in 0..self.z {
+            let b = self.lay.ball(j);
+            out[b + BX] = 1e-5;
+            out[b + BR] = 1e-5;
+            out[b + BTH] = 1e-3;
+            out[b + BVX] = 1e-2;
+            out[b + BVR] = 1e-2;
+            out[b + BW] = 100.0;
+            out[b + BWS] = 1e3;
+        }
+        let r = self.lay.ring();
+        for k in 0..3 {
+            out[r + RX + k] = 1e-5;
+            out[r + RV + k] = 1e-2;
+        }
+        let p = self.lay.pedestal();
+        out[p + PY] = 1e-5;
+        out[p + PZ] = 1e-5;
+        out[p + PVY] = 1e-2;
+        out[p + PVZ] = 1e-2;
+        out[self.lay.psi()] = 1.0;
+        out[self.lay.phi()] = 1.0;
+    }
+
+    fn initial_state(&self, y: &mut [f64]) {
+        y.copy_from_slice(&self.y0);
+    }
+
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+        self.inputs = *inputs;
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        let psi_rate = self.cage_ratio * self.inputs.shaft_speed;
+        let (cb, sb) = self.attitude;
+        let mut f_ring: V3 = [0.0; 3];
+        let mut m_ring_x = 0.0;
+        let mut f_outer: V3 = [0.0; 3];
+        let (m, jb) = (self.ball_mass, self.ball_inertia);
+        for j in 0..self.z {
+            let b = self.lay.ball(j);
+            let (kin, er, et, r, w) = self.ball_kin(y, j);
+            let ci = contact::evaluate(
+                &kin,
+                &inner,
+                &self.inner,
+                self.ball_radius,
+                self.c_br,
+                None,
+                self.defect_view(y, j, Race::Inner, w),
+            );
+            let co = contact::evaluate(
+                &kin,
+                &outer,
+                &self.outer,
+                self.ball_radius,
+                self.c_br,
+                None,
+                self.defect_view(y, j, Race::Outer, w),
+            );
+            self.q_inner[j] = ci.q;
+            self.q_outer[j] = co.q;
+            let (ti, to) = match &self.traction {
+                Some(curve) => (
+                    self.traction_of(curve, &kin, &inner, &ci),
+                    self.traction_of(curve, &kin, &outer, &co),
+                ),
+                None => (Traction::default(), Traction::default()),
+            };
+            let fi = add(ci.f, ti.f);
+            let fo = add(co.f, to.f);
+            let f = add(fi, fo);
+            let moment = add(cross(ti.r_cp, ti.f), cross(to.r_cp, to.f));
+            let es = [cb, -sb * er[1], -sb * er[2]];
+            let vr = y[b + BVR];
+            dydt[b + BX] = y[b + BVX];
+            dydt[b + BR] = vr;
+            dydt[b + BTH] = w - psi_rate;
+            dydt[b + BVX] = f[0] / m;
+            dydt[b + BVR] = dot(f, er) / m + r * w * w;
+            dydt[b + BW] = (dot(f, et) / m - 2.0 * vr * w) / r;
+            dydt[b + BWS] = dot(moment, es) / jb;
+            // Reactions: −F on the inner ring at the contact point, −F on the outer ring.
+            f_ring = sub(f_ring, fi);
+            let arm = sub(add(kin.p, ti.r_cp), inner.p);
+            m_ring_x -= arm[1] * fi[2] - arm[2] * fi[1];
+            f_outer = sub(f_outer, fo);
+        }
+        self.ring_force = f_ring;
+        self.ring_moment_x = m_ring_x;
+        let r = self.lay.ring();
+        let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
+        for k in 0..3 {
+            dydt[r + RX + k] = y[r + RV + k];
+            dydt[r + RV + k] = (ext[k] + f_ring[k]) / self.m_ir;
+        }
+        let p = self.lay.pedestal();
+        let pulse = self.pulse.as_ref().map_or(0.0, |pl| pl.force(t));
+        dydt[p + PY] = y[p + PVY];
+        dydt[p + PZ] = y[p + PVZ];
+        dydt[p + PVY] = (f_outer[1] - self.k_py * y[p + PY] - self.c_py * y[p + PVY]) / self.m_p;
+        dydt[p + PVZ] =
+            (f_outer[2] - self.k_pz * y[p + PZ] - self.c_pz * y[p + PVZ] - pulse) / self.m_p;
+        dydt[self.lay.psi()] = psi_rate;
+        dydt[self.lay.phi()] = self.inputs.shaft_speed;
+    }
+
+    fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
+        let p = self.pulse.as_ref()?;
+        [p.t0, p.t0 + 0.5 * p.duration, p.t0 + p.duration]
+            .into_iter()
+            .filter(|&tp| tp > t + 1e-15 && tp <= t_max)
+            .reduce(f64::min)
+    }
+
+    fn update_mode(&mut self, _t: f64, y: &[f64]) {
+        self.update_sides(y);
+    }
+
+    fn n_events(&self) -> usize {
+        if self.defect.is_some() {
+            2 * self.z
+        } else {
+            0
+        }
+    }
+
+    /// Per ball, as in the full model: θ_e − |θ_bd| (edge crossings) and θ_bd clipped to
+    /// ±0.5 rad (the centre, where the ball changes corners).
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        let Some(d) = &self.defect else { return };
+        for j in 0..self.z {
+            let (tbd, _) = self.theta_bd(d, y, j);
+            g[2 * j] = d.zone_margin(tbd);
+            g[2 * j + 1] = tbd.clamp(-0.5, 0.5);
+        }
+    }
+
+    fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+        let mut dydt = std::mem::take(&mut self.scratch);
+        self.rhs(t, y, &mut dydt);
+        let p = self.lay.pedestal();
+        let r = self.lay.ring();
+        o[out::PEDESTAL_A_Y] = dydt[p + PVY];
+        o[out::PEDESTAL_A_Z] = dydt[p + PVZ];
+        self.scratch = dydt;
+        o[out::PEDESTAL_Y] = y[p + PY];
+        o[out::PEDESTAL_Z] = y[p + PZ];
+        o[out::PEDESTAL_V_Y] = y[p + PVY];
+        o[out::PEDESTAL_V_Z] = y[p + PVZ];
+        o[out::RING_X] = y[r + RX];
+        o[out::RING_Y] = y[r + RX + 1];
+        o[out::RING_Z] = y[r + RX + 2];
+        o[out::BEARING_F_X] = self.ring_force[0];
+        o[out::BEARING_F_Y] = self.ring_force[1];
+        o[out::BEARING_F_Z] = self.ring_force[2];
+        o[out::FRICTION_TORQUE] = -self.ring_moment_x;
+        o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
+        for j in 0..self.z {
+            o[out::CONTACT_START + j] = self.q_inner[j];
+            o[out::CONTACT_START + self.z + j] = self.q_outer[j];
+        }
+    }
+
+    fn cage_speed(&self) -> f64 {
+        self.cage_ratio * self.inputs.shaft_speed
+    }
+}

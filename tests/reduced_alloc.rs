@@ -1,0 +1,63 @@
+//! The reduced model's right-hand side and event functions do not allocate (a counting global
+//! allocator watches them), with and without a spall, with balls inside the spall zone.
+
+use raceway::defect::DefectSpec;
+use raceway::geometry::{Bearing, Race};
+use raceway::models::reduced::ReducedModel;
+use raceway::models::Model;
+use raceway::scene::{Fidelity, Operating, Scene};
+use raceway::simulation::Inputs;
+#[path = "common/alloc_counter.rs"]
+mod alloc_counter;
+use alloc_counter::allocations_during;
+
+#[test]
+fn rhs_and_events_do_not_allocate() {
+    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let mut scene = Scene::healthy(
+        file,
+        Operating {
+            speed_rpm: 9900.0,
+            fa: 4000.0,
+            fr: 1000.0,
+            fy: 0.0,
+        },
+    );
+    scene.fidelity = Fidelity::Reduced;
+    for defect in [None, Some(Race::Outer), Some(Race::Inner)] {
+        scene.defect = defect.map(|ring| DefectSpec {
+            ring,
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: 0.0,
+        });
+        let bearing = Bearing::new(&scene.bearing).unwrap();
+        let inputs = Inputs::from_scene(&scene);
+        let mut m = ReducedModel::new(&scene, &bearing, &inputs).unwrap();
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        // Turn the reference cage angle so that balls sweep over the spall (θ_d0 = 0).
+        let psi = m.layout().psi();
+        let mut d = vec![0.0; n];
+        let mut o = vec![0.0; raceway::simulation::output_table(bearing.z).len()];
+        let mut g = vec![0.0; m.n_events()];
+        let shifts: Vec<f64> = (0..8).map(|k| -0.3 + 0.6 * k as f64 / 7.0).collect();
+        let mut in_zone = 0;
+        let (count, ()) = allocations_during(|| {
+            for &s in &shifts {
+                y[psi] = s;
+                m.update_mode(0.0, &y);
+                m.rhs(0.0, &y, &mut d);
+                m.events(0.0, &y, &mut g);
+                m.outputs(0.0, &y, &mut o);
+                in_zone += g.iter().step_by(2).filter(|&&v| v > 0.0).count();
+            }
+        });
+        assert!(d.iter().all(|v| v.is_finite()));
+        assert_eq!(count, 0, "allocations in rhs/events/outputs ({defect:?})");
+        if defect.is_some() {
+            assert!(in_zone > 0, "no ball reached the spall zone");
+        }
+    }
+}
