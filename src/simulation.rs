@@ -122,8 +122,31 @@ pub mod out {
     pub const BEARING_F_Z: usize = 11;
     pub const FRICTION_TORQUE: usize = 12;
     pub const CAGE_SPEED: usize = 13;
-    /// First of the z inner contact forces, then z outer ones.
+    /// First of the z inner contact forces, then z outer ones; then the z ball orbital speeds
+    /// ([`orbit_speed`]) and the z separation flags ([`separated`]).
     pub const CONTACT_START: usize = 14;
+
+    /// Index of ball j's orbital speed θ̇ (j from 0) in a bearing with `z` balls.
+    #[inline]
+    pub fn orbit_speed(z: usize, j: usize) -> usize {
+        CONTACT_START + 2 * z + j
+    }
+
+    /// Index of ball j's separation flag (j from 0) in a bearing with `z` balls.
+    #[inline]
+    pub fn separated(z: usize, j: usize) -> usize {
+        CONTACT_START + 3 * z + j
+    }
+
+    /// Sets every ball's separation flag from its contact forces already in `o`: 1 when the
+    /// ball touches neither race (both normal forces zero), else 0.
+    #[inline]
+    pub fn set_separation_flags(o: &mut [f64], z: usize) {
+        for j in 0..z {
+            let free = o[CONTACT_START + j] == 0.0 && o[CONTACT_START + z + j] == 0.0;
+            o[separated(z, j)] = if free { 1.0 } else { 0.0 };
+        }
+    }
 }
 
 /// The outputs of a bearing with `z` balls, in output-vector order.
@@ -187,6 +210,25 @@ pub fn output_table(z: usize) -> Vec<OutputInfo> {
                 description: format!("Normal contact force of ball {j} on the {race} race"),
             });
         }
+    }
+    for j in 1..=z {
+        v.push(OutputInfo {
+            name: format!("ball.orbit_speed[{j}]"),
+            unit: "rad/s",
+            description: format!(
+                "Orbital speed of ball {j} about the shaft axis (the cage speed at the kinematic \
+                 and quasi-static levels, plus the slip-jitter rate at the lumped level)"
+            ),
+        });
+    }
+    for j in 1..=z {
+        v.push(OutputInfo {
+            name: format!("ball.separated[{j}]"),
+            unit: "1",
+            description: format!(
+                "1 while ball {j} touches neither race (both contact forces zero), else 0"
+            ),
+        });
     }
     v
 }

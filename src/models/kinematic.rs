@@ -448,6 +448,7 @@ impl Model for KinematicModel {
                 let j = ((rel / spacing).round() as i64).rem_euclid(z as i64) as usize;
                 o[out::CONTACT_START + j] = (o[out::CONTACT_START + j] - self.dip).max(0.0);
                 o[out::CONTACT_START + z + j] = (o[out::CONTACT_START + z + j] - self.dip).max(0.0);
+                out::set_separation_flags(o, z);
             }
         }
     }

@@ -573,6 +573,10 @@ impl Model for LumpedModel {
         o[out::BEARING_F_Z] = f_ring[2];
         o[out::FRICTION_TORQUE] = 0.0;
         o[out::CAGE_SPEED] = self.cage_rate();
+        for j in 0..z {
+            o[out::orbit_speed(z, j)] = self.ball_angle(j, y[CAGE], self.cage_rate()).1;
+        }
+        out::set_separation_flags(o, z);
     }
 
     fn discrete_state(&self) -> Vec<f64> {

@@ -153,7 +153,9 @@ pub(crate) fn static_outputs(
         let b = (a + 1) % z;
         o[out::CONTACT_START + j] = (1.0 - s) * table.q_inner[a] + s * table.q_inner[b];
         o[out::CONTACT_START + z + j] = (1.0 - s) * table.q_outer[a] + s * table.q_outer[b];
+        o[out::orbit_speed(z, j)] = table.cage_speed;
     }
+    out::set_separation_flags(o, z);
 }
 
 /// The quasi-static level.

@@ -650,7 +650,9 @@ impl Model for ReducedModel {
         for j in 0..self.z {
             o[out::CONTACT_START + j] = self.q_inner[j];
             o[out::CONTACT_START + self.z + j] = self.q_outer[j];
+            o[out::orbit_speed(self.z, j)] = y[self.lay.ball(j) + BW];
         }
+        out::set_separation_flags(o, self.z);
     }
 
     fn cage_speed(&self) -> f64 {

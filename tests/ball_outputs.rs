@@ -1,0 +1,164 @@
+//! Per-ball outputs of every level (issue 4 item 4): `ball.orbit_speed[j]` (the ball's θ̇) and
+//! `ball.separated[j]` (1 while the ball touches neither race), after the contact forces.
+
+use raceway::defect::DefectSpec;
+use raceway::geometry::Race;
+use raceway::scene::{Fidelity, Operating, Scene};
+use raceway::simulation::{out, output_table, Simulation};
+use std::f64::consts::TAU;
+
+const Z: usize = 14;
+
+fn scene(level: Fidelity, rpm: f64, fa: f64, fr: f64) -> Scene {
+    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let mut s = Scene::healthy(
+        file,
+        Operating {
+            speed_rpm: rpm,
+            fa,
+            fr,
+            fy: 0.0,
+        },
+    );
+    s.fidelity = level;
+    s
+}
+
+/// All output vectors sampled every `dt` up to `t_end`.
+fn run(sc: &Scene, t_end: f64, dt: f64) -> Vec<(f64, Vec<f64>)> {
+    let mut sim = Simulation::new(sc).unwrap();
+    let mut rows = Vec::new();
+    sim.advance_sampled(t_end, dt, &mut |t, o| rows.push((t, o.to_vec())))
+        .unwrap();
+    rows
+}
+
+#[test]
+fn names_units_and_order_follow_the_contact_forces() {
+    let t = output_table(Z);
+    assert_eq!(t.len(), out::CONTACT_START + 4 * Z);
+    for j in 0..Z {
+        let o = &t[out::orbit_speed(Z, j)];
+        assert_eq!(o.name, format!("ball.orbit_speed[{}]", j + 1));
+        assert_eq!(o.unit, "rad/s");
+        let s = &t[out::separated(Z, j)];
+        assert_eq!(s.name, format!("ball.separated[{}]", j + 1));
+        assert_eq!(s.unit, "1");
+    }
+    assert_eq!(
+        t[out::CONTACT_START + 2 * Z - 1].name,
+        format!("contact.outer.Q[{Z}]")
+    );
+}
+
+#[test]
+fn orbit_speed_is_the_cage_speed_at_the_kinematic_levels() {
+    for level in [Fidelity::Kinematic, Fidelity::QuasiStatic, Fidelity::Lumped] {
+        let rows = run(&scene(level, 9900.0, 4000.0, 1000.0), 2e-3, 1e-4);
+        // L1 (outer-race control, loaded angles) at 9900 rpm: FTF 70.42 Hz (spec §8.2); the
+        // kinematic balls all orbit at it.
+        for (t, o) in &rows {
+            for j in 0..Z {
+                let w = o[out::orbit_speed(Z, j)];
+                assert_eq!(w, o[out::CAGE_SPEED], "{level:?} t {t} ball {j}");
+                assert!((w / TAU / 70.42 - 1.0).abs() < 2e-3, "{level:?}: {w}");
+                assert_eq!(
+                    o[out::separated(Z, j)],
+                    0.0,
+                    "{level:?}: a healthy ball flies"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn lumped_orbit_speed_carries_the_slip_jitter_rate() {
+    let mut sc = scene(Fidelity::Lumped, 9900.0, 4000.0, 1000.0);
+    sc.lumped.slip_jitter = 0.01;
+    sc.lumped.seed = 7;
+    // 1.5 cage revolutions (the jitter is linear within each revolution).
+    let rows = run(&sc, 0.02, 5e-5);
+    let cage = rows[0].1[out::CAGE_SPEED];
+    let mut mean = 0.0;
+    let mut n = 0.0;
+    let mut distinct = 0;
+    for (_, o) in &rows {
+        for j in 0..Z {
+            let w = o[out::orbit_speed(Z, j)];
+            mean += w;
+            n += 1.0;
+            distinct += usize::from(w != cage);
+            // σ = 1 % of the ball spacing per revolution: rate deviations of a few % at most.
+            assert!((w / cage - 1.0).abs() < 0.05, "{w} vs {cage}");
+        }
+    }
+    mean /= n;
+    assert!(distinct > 0, "no jitter rate in the orbit speeds");
+    assert!(
+        (mean / cage - 1.0).abs() < 5e-3,
+        "mean {mean} vs cage {cage}"
+    );
+}
+
+#[test]
+fn dynamic_orbit_speeds_average_to_the_cage_speed() {
+    // L3 (healthy, 9900 rpm): the balls' own orbital speeds fluctuate through the load zone; their
+    // mean over the balls is the cage speed output, and over time it lies between pure rolling
+    // (69.537 Hz) and outer-race control (70.42 Hz), spec §8.1–8.2.
+    let rows = run(
+        &scene(Fidelity::Reduced, 9900.0, 4000.0, 1000.0),
+        8e-3,
+        2e-5,
+    );
+    let (mut mean, mut n) = (0.0, 0.0);
+    let mut spread: f64 = 0.0;
+    for (t, o) in &rows {
+        let w: Vec<f64> = (0..Z).map(|j| o[out::orbit_speed(Z, j)]).collect();
+        let avg = w.iter().sum::<f64>() / Z as f64;
+        assert!((avg / o[out::CAGE_SPEED] - 1.0).abs() < 1e-12, "t {t}");
+        if *t > 3e-3 {
+            mean += avg;
+            n += 1.0;
+            let (lo, hi) = w
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+            spread = spread.max(hi - lo);
+        }
+    }
+    let hz = mean / n / TAU;
+    assert!(hz > 69.537 && hz < 70.42, "{hz} Hz");
+    assert!(spread > 0.0, "the balls orbit in lockstep");
+}
+
+#[test]
+fn separation_flag_is_set_exactly_while_a_ball_flies_through_a_spall() {
+    // Paper Sec. 3.1 (Fa 3000 N, 10 000 rpm, outer spall 2.0 × 0.5 mm): a ball flies free of both
+    // races inside the spall. Reduced level (per-ball dynamics) and lumped level (kinematic balls
+    // unloaded over the spall).
+    for level in [Fidelity::Reduced, Fidelity::Lumped] {
+        let mut sc = scene(level, 10_000.0, 3000.0, 0.0);
+        sc.defect = Some(DefectSpec {
+            ring: Race::Outer,
+            width: 2.0e-3,
+            depth: 0.5e-3,
+            theta0: 0.0,
+        });
+        let rows = run(&sc, 0.7e-3, 1e-6);
+        let mut flying = vec![0usize; Z];
+        for (t, o) in &rows {
+            for j in 0..Z {
+                let free = o[out::CONTACT_START + j] == 0.0 && o[out::CONTACT_START + Z + j] == 0.0;
+                let flag = o[out::separated(Z, j)];
+                assert!(flag == 0.0 || flag == 1.0, "{flag}");
+                assert_eq!(flag == 1.0, free, "{level:?} t {t} ball {j}");
+                flying[j] += usize::from(free);
+            }
+        }
+        // Only the ball crossing the spall flies, for tens of µs (tens of samples).
+        let fliers: Vec<usize> = (0..Z).filter(|&j| flying[j] > 0).collect();
+        eprintln!("{level:?}: samples in flight per ball {flying:?}");
+        assert_eq!(fliers.len(), 1, "{level:?}: {flying:?}");
+        assert!(flying[fliers[0]] >= 10, "{level:?}: {flying:?}");
+    }
+}
