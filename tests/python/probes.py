@@ -403,6 +403,24 @@ def probe_step_invariance(ctx, t_end=0.02):
     return {"names": names, "fine": fine, "coarse": coarse, "irregular": irregular}
 
 
+def probe_reduced_level(ctx, n=20, h=1e-4):
+    """fidelity = 3 (reduced) through the FMU: per-ball orbital speeds and separation flags."""
+    s = ctx.ready(ints={"fidelity": 3})
+    z = sum(1 for name in ctx.vr if name.startswith("contact.inner.Q["))
+    names = ["cage.speed"] + [f"ball.orbit_speed[{j}]" for j in range(1, z + 1)] + \
+        [f"ball.separated[{j}]" for j in range(1, z + 1)] + \
+        [f"contact.{r}.Q[{j}]" for r in ("inner", "outer") for j in range(1, z + 1)]
+    vrs = [ctx.vr[x] for x in names]
+    rows, t = [], 0.0
+    for k in range(n):
+        st = status_of(s.doStep, t, h)
+        if st:
+            return {"status": st, "message": last_message()}
+        t += h
+        rows.append(list(s.getReal(vrs)))
+    return {"status": 0, "z": z, "names": names, "rows": rows}
+
+
 def main():
     name, fmu_dir, *args = sys.argv[1:]
     ctx = Ctx(fmu_dir)
