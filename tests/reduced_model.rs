@@ -1,7 +1,8 @@
 //! L3 reduced per-ball model (spec §6 L3): energy conservation without traction and damping
 //! (§10 item 4 applied to L3), static equilibrium at zero speed against L1, the dynamic cage
-//! speed between pure rolling and outer-race control, the paper's Sec. 3.5 BPFO from impact
-//! spacing and the Sec. 3.1 flight through a wide spall.
+//! speed between pure rolling and outer-race control (also after a speed step), the paper's
+//! Sec. 3.5 BPFO from impact spacing, the Sec. 3.1 flight through a wide outer spall and an
+//! inner-ring spall turning with the shaft.
 
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
@@ -273,4 +274,60 @@ fn sec31_ball_flies_through_the_spall_and_hits_the_trailing_edge() {
     assert!(peak > 2.0 * running, "impact force {peak:.1} N");
     // It regains contact with both races after the pass.
     assert!(qi[j][t.len() - 1] > 0.0 && qo[j][t.len() - 1] > 0.0);
+}
+
+#[test]
+fn cage_follows_a_speed_step() {
+    let sc = scene(9900.0, 4000.0, 1000.0);
+    let mut sim = Simulation::new(&sc).unwrap();
+    sim.advance(2e-3).unwrap();
+    let mut inputs = sim.inputs();
+    inputs.shaft_speed *= 1.1;
+    sim.set_inputs(inputs).unwrap();
+    let mut speeds = Vec::new();
+    sim.advance_sampled(8e-3, 2e-5, &mut |t, o| {
+        if t > 6e-3 {
+            speeds.push(o[out::CAGE_SPEED]);
+        }
+    })
+    .unwrap();
+    let mean = speeds.iter().sum::<f64>() / speeds.len() as f64 / TAU;
+    eprintln!("cage after the step {mean:.3} Hz");
+    // 10 % faster shaft: between 1.1 × pure rolling and 1.1 × outer-race control.
+    assert!(mean > 1.1 * 69.537 && mean < 1.1 * 70.42 * 1.005, "{mean}");
+}
+
+#[test]
+fn inner_spall_turns_with_the_shaft_and_is_hit() {
+    // Sec. 3.1 conditions with the spall on the inner ring at θ_d0 = 0: it turns at Ω while the
+    // balls orbit at ≈ 0.43 Ω, so it meets a ball within 2π/14/(0.57 Ω) ≈ 0.75 ms; the ball loses
+    // its inner contact and is hit by the edge with a multiple of the running inner load
+    // (368.3 N, spec §8.2), while its outer contact is not the spalled one.
+    let mut sc = scene(10_000.0, 3000.0, 0.0);
+    sc.defect = Some(DefectSpec {
+        ring: Race::Inner,
+        width: 2.0e-3,
+        depth: 0.5e-3,
+        theta0: 0.0,
+    });
+    let dt = 0.5e-6;
+    let (t, qi, qo) = run(&sc, 1.0e-3, dt);
+    let running = 368.3;
+    let (j, k_entry) = (0..qi.len())
+        .filter_map(|j| {
+            (20..t.len())
+                .find(|&k| qi[j][k] < 0.05 * running)
+                .map(|k| (j, k))
+        })
+        .min_by_key(|&(_, k)| k)
+        .expect("a ball meets the inner spall");
+    assert!(t[k_entry] < 0.8e-3, "first entry at {} s", t[k_entry]);
+    let k_end = (k_entry + (150e-6 / dt) as usize).min(t.len());
+    let peak = (k_entry..k_end).map(|k| qi[j][k]).fold(0.0, f64::max);
+    eprintln!(
+        "inner spall: ball {j} enters at {:.1} µs, inner impact {peak:.0} N",
+        t[k_entry] * 1e6
+    );
+    assert!(peak > 2.0 * running, "inner impact {peak:.1} N");
+    assert!(qo[j][k_entry] > 0.0);
 }
