@@ -292,3 +292,36 @@ fn coupling_mode_in_scenes() {
     assert!(sim.set_journal(Journal::default()).is_err());
     assert!(sim.reaction_jacobian().is_err());
 }
+
+#[test]
+fn lumped_cage_speed_follows_the_reaction_when_the_speed_changes() {
+    use raceway::quasi_static::{solve, LoadCase};
+    let sc = scene(Fidelity::Lumped, false);
+    let mut sim = Simulation::new(&sc).unwrap();
+    // Press the journal 5 µm down (more radial load than the start's), then change the speed.
+    let mut j = sim.journal();
+    j.x[2] -= 5e-6;
+    sim.set_journal(j).unwrap();
+    let f = force(&mut sim);
+    let mut inp = sim.inputs();
+    inp.shaft_speed *= 1.1;
+    sim.set_inputs(inp).unwrap();
+    let case = |fx: f64, fy: f64, fz: f64| LoadCase {
+        speed: inp.shaft_speed,
+        fa: fx,
+        fy,
+        fz,
+    };
+    let expect = solve(sim.bearing(), &case(-f[0], -f[1], -f[2]))
+        .unwrap()
+        .cage_speed;
+    let at_start_loads = solve(
+        sim.bearing(),
+        &case(sc.operating.fa, sc.operating.fy, -sc.operating.fr),
+    )
+    .unwrap()
+    .cage_speed;
+    assert!(f[2] > 1.5 * sc.operating.fr, "radial reaction {}", f[2]);
+    assert!((sim.cage_speed() - expect).abs() < 1e-9 * expect);
+    assert!((expect - at_start_loads).abs() > 1e-6 * expect);
+}
