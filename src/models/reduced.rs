@@ -146,6 +146,9 @@ pub struct ReducedModel {
     /// Force of the bearing on the inner ring (last RHS) [N] and its moment about x [N m].
     ring_force: V3,
     ring_moment_x: f64,
+    /// Coupling mode "motion": the ring translation is prescribed (zero translational
+    /// acceleration; `Simulation` writes the journal's position and velocity into the states).
+    prescribed: bool,
 }
 
 impl ReducedModel {
@@ -223,6 +226,7 @@ impl ReducedModel {
             scratch: vec![0.0; lay.dim()],
             ring_force: [0.0; 3],
             ring_moment_x: 0.0,
+            prescribed: false,
         };
         m.reduce_initial_state(&full, bearing);
         Ok(m)
@@ -583,7 +587,11 @@ impl Model for ReducedModel {
         let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
         for k in 0..3 {
             dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = (ext[k] + f_ring[k]) / self.m_ir;
+            dydt[r + RV + k] = if self.prescribed {
+                0.0
+            } else {
+                (ext[k] + f_ring[k]) / self.m_ir
+            };
         }
         let p = self.lay.pedestal();
         let pulse = self.pulse.as_ref().map_or(0.0, |pl| pl.force(t));
@@ -657,5 +665,17 @@ impl Model for ReducedModel {
 
     fn cage_speed(&self) -> f64 {
         self.cage_ratio * self.inputs.shaft_speed
+    }
+
+    fn ring_states(&self) -> Option<super::RingStates> {
+        let r = self.lay.ring();
+        Some(super::RingStates {
+            pos: [r + RX, r + RX + 1, r + RX + 2],
+            vel: [r + RV, r + RV + 1, r + RV + 2],
+        })
+    }
+
+    fn set_prescribed_ring(&mut self, on: bool) {
+        self.prescribed = on;
     }
 }

@@ -89,6 +89,9 @@ pub struct FullModel {
     /// Force of the bearing on the inner ring and its moment (last RHS) [N], [N m].
     ring_force: V3,
     ring_moment: V3,
+    /// Coupling mode "motion": the ring translation is prescribed (zero translational
+    /// acceleration); the tilt stays a free degree of freedom (or held by `lock_tilt`).
+    prescribed: bool,
 }
 
 /// Per-race constants from the bearing (spec §2.1, §2.3, C7).
@@ -185,6 +188,7 @@ impl FullModel {
             scratch: vec![0.0; lay.dim()],
             ring_force: [0.0; 3],
             ring_moment: [0.0; 3],
+            prescribed: false,
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
         init::initial_state(&mut m, bearing)?;
@@ -479,7 +483,11 @@ impl Model for FullModel {
         let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
         for k in 0..3 {
             dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = (ext[k] + f_ring[k]) / self.m_ir;
+            dydt[r + RV + k] = if self.prescribed {
+                0.0
+            } else {
+                (ext[k] + f_ring[k]) / self.m_ir
+            };
         }
         dydt[r + RBY] = y[r + RWY];
         dydt[r + RBZ] = y[r + RWZ];
@@ -561,5 +569,88 @@ impl Model for FullModel {
 
     fn cage_speed(&self) -> f64 {
         self.cage_ratio * self.inputs.shaft_speed
+    }
+
+    fn ring_states(&self) -> Option<super::RingStates> {
+        let r = self.lay.ring();
+        Some(super::RingStates {
+            pos: [r + RX, r + RX + 1, r + RX + 2],
+            vel: [r + RV, r + RV + 1, r + RV + 2],
+        })
+    }
+
+    fn set_prescribed_ring(&mut self, on: bool) {
+        self.prescribed = on;
+    }
+
+    /// Analytic for frictionless contacts ([`contact::ring_translation_jacobian`] per intact
+    /// inner contact; a contact the spall alters by central differences of its normal force).
+    /// With traction on, `None`: the simulation then differentiates the full reaction (traction
+    /// included) by central differences.
+    fn reaction_jacobian(&mut self, _t: f64, y: &[f64]) -> Option<super::ReactionJacobian> {
+        if self.traction.is_some() {
+            return None;
+        }
+        let inner = self.inner_pose(y);
+        let mut jac = super::ReactionJacobian::default();
+        for j in 0..self.z {
+            let (kin, _, _, _, w) = self.ball_kin(y, j);
+            let dv = self.defect_view(y, j, Race::Inner, w);
+            let (dfdx, dfdv) = match contact::ring_translation_jacobian(
+                &kin,
+                &inner,
+                &self.inner,
+                self.ball_radius,
+                self.c_br,
+                dv,
+            ) {
+                Some(m) => m,
+                None => {
+                    // Central differences of this contact's force on the ring.
+                    let f = |pose: &RingPose| {
+                        let c = contact::evaluate(
+                            &kin,
+                            pose,
+                            &self.inner,
+                            self.ball_radius,
+                            self.c_br,
+                            None,
+                            dv,
+                        );
+                        c.qn
+                    };
+                    let mut m = ([[0.0; 3]; 3], [[0.0; 3]; 3]);
+                    for k in 0..3 {
+                        for (h, vel) in [(1e-10, false), (1e-5, true)] {
+                            let (mut pp, mut pm) = (inner, inner);
+                            if vel {
+                                pp.v[k] += h;
+                                pm.v[k] -= h;
+                            } else {
+                                pp.p[k] += h;
+                                pm.p[k] -= h;
+                            }
+                            let (fp, fm) = (f(&pp), f(&pm));
+                            for i in 0..3 {
+                                let d = (fp[i] - fm[i]) / (2.0 * h);
+                                if vel {
+                                    m.1[i][k] = d;
+                                } else {
+                                    m.0[i][k] = d;
+                                }
+                            }
+                        }
+                    }
+                    m
+                }
+            };
+            for i in 0..3 {
+                for k in 0..3 {
+                    jac.dfdx[i][k] += dfdx[i][k];
+                    jac.dfdv[i][k] += dfdv[i][k];
+                }
+            }
+        }
+        Some(jac)
     }
 }
