@@ -225,11 +225,20 @@ impl LumpedModel {
         [Some(-te), tb.map(|v| -v), Some(0.0), tb, Some(te)]
     }
 
-    /// Zone of a ball from its defect angle, looking in the direction of motion at boundaries.
-    fn zone_of(d: &Defect, theta_bd: f64, rate: f64) -> Zone {
+    /// Round-off of a ball-to-defect angle computed from the cage and shaft angles at time t
+    /// [rad]: the angles grow without bound (≈ 4400 rad after 10 s at 9900 rpm) and the time has
+    /// an ulp of ≈ 1e-15 s there. Boundaries closer than this are the one a ball is standing on.
+    fn angle_tol(t: f64, y: &[f64], rate: f64) -> f64 {
+        let magnitude = y[CAGE].abs() + y[SHAFT].abs() + TAU;
+        1e-12_f64.max(64.0 * f64::EPSILON * magnitude + 4.0 * f64::EPSILON * t.abs() * rate.abs())
+    }
+
+    /// Zone of a ball from its defect angle, looking in the direction of motion at boundaries
+    /// (`tol` from [`Self::angle_tol`]).
+    fn zone_of(d: &Defect, theta_bd: f64, rate: f64, tol: f64) -> Zone {
         let te = d.half_angle();
         // Position a hair ahead along the motion decides on which side of a boundary we are.
-        let eps = 1e-12 * rate.signum();
+        let eps = tol * rate.signum();
         let a = theta_bd + if rate == 0.0 { 0.0 } else { eps };
         if a.abs() >= te {
             Zone::Outside
@@ -505,14 +514,18 @@ impl Model for LumpedModel {
                 if rate == 0.0 {
                     continue;
                 }
-                // The next boundary ahead in the direction of motion.
+                // The next boundary ahead in the direction of motion (not the one the ball is on).
+                let tol = Self::angle_tol(t, y, rate);
                 for &b in bounds.iter().flatten() {
                     let mut gap = (b - tbd) * rate.signum();
-                    if gap <= 1e-13 {
+                    if gap <= tol {
                         gap += TAU;
                     }
-                    let dt = gap / rate.abs();
-                    best = best.min(t + dt);
+                    // A stop that rounds to `t` would end the search (None): skip it instead.
+                    let stop = t + gap / rate.abs();
+                    if stop > t {
+                        best = best.min(stop);
+                    }
                 }
             }
         }
@@ -535,13 +548,13 @@ impl Model for LumpedModel {
         (best <= t_max && best > t).then_some(best)
     }
 
-    fn update_mode(&mut self, _t: f64, y: &[f64]) {
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
         let cage_rate = self.cage_rate();
         if let Some(d) = &self.defect {
             for j in 0..self.z {
                 let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
                 let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                self.zones[j] = Self::zone_of(d, tbd, rate);
+                self.zones[j] = Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
             }
         }
     }
