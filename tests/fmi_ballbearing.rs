@@ -259,3 +259,169 @@ fn unavailable_fidelity_fails_exit_initialization_with_the_library_message() {
         sh::free_instance::<BallBearing>(c);
     }
 }
+
+/// One stalled fmi2DoStep of the default scene and what the instance reports afterwards.
+struct Stall {
+    status: Fmi2Status,
+    message: String,
+    terminated: Fmi2Boolean,
+    last_good: f64,
+    rhs_evals: i32,
+    steps: i32,
+    pedestal_z: f64,
+    ring_z: f64,
+    next: Fmi2Status,
+    wall: f64,
+}
+
+/// Initializes the default scene (tolerance from fmi2SetupExperiment, solver.max_steps), takes
+/// one 1 ms step, records the outcome, then checks that reset, a fresh initialization with the
+/// defaults and a step work, and frees the instance.
+fn stall(tolerance: f64, max_steps: i32) -> Stall {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let c = h.inst(&raceway::fmi::guid(&b), None);
+    assert!(!c.is_null(), "{}", h.last());
+    let (budget, rhs, steps) = (
+        vr(&b, "solver.max_steps"),
+        vr(&b, "solver.rhs_evals"),
+        vr(&b, "solver.steps"),
+    );
+    let (pz, rz) = (vr(&b, "pedestal.z"), vr(&b, "ring.z"));
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, tolerance, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &budget, 1, &max_steps),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        let start = std::time::Instant::now();
+        let status = sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1);
+        let wall = start.elapsed().as_secs_f64();
+        let message = h.last();
+        let mut terminated = FMI2_FALSE;
+        assert_eq!(
+            sh::get_boolean_status::<BallBearing>(c, FMI2_TERMINATED, &mut terminated),
+            Fmi2Status::Ok
+        );
+        let mut last_good = f64::NAN;
+        assert_eq!(
+            sh::get_real_status::<BallBearing>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last_good),
+            Fmi2Status::Ok
+        );
+        let (mut rhs_evals, mut n_steps) = (-1, -1);
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rhs, 1, &mut rhs_evals),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &steps, 1, &mut n_steps),
+            Fmi2Status::Ok
+        );
+        let (mut pedestal_z, mut ring_z) = (f64::NAN, f64::NAN);
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &pz, 1, &mut pedestal_z),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &rz, 1, &mut ring_z),
+            Fmi2Status::Ok
+        );
+        let next = sh::do_step::<BallBearing>(c, last_good, 1e-3, 1);
+        // The instance is still usable: reset, initialize with the defaults, step.
+        assert_eq!(sh::reset::<BallBearing>(c), Fmi2Status::Ok, "{}", h.last());
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        sh::free_instance::<BallBearing>(c);
+        Stall {
+            status,
+            message,
+            terminated,
+            last_good,
+            rhs_evals,
+            steps: n_steps,
+            pedestal_z,
+            ring_z,
+            next,
+            wall,
+        }
+    }
+}
+
+/// T3 (FMU): a stall inside fmi2DoStep ends as fmi2Discard with a message, in bounded work, and
+/// leaves a usable instance. Criteria, for (a) a step budget of 3 (solver.max_steps) and (b) a
+/// genuine stall, tolerance 1e-15 from fmi2SetupExperiment (below round-off: the error estimate
+/// cannot meet it, the step size shrinks until it underflows, ≈ 0.5 ms in):
+/// - fmi2DoStep returns fmi2Discard and the logger receives a message naming the cause ("step
+///   budget" / "fell below the minimum") and the time;
+/// - fmi2Terminated is true, fmi2LastSuccessfulTime lies in [0, 1 ms), further fmi2DoStep calls
+///   are refused (fmi2Error), fmi2GetReal returns finite outputs of the last good state (the
+///   pedestal at its static deflection −Fr/k_z within 2 %);
+/// - the work is bounded by counts, not by time: (a) at most 3 attempted steps of at most 16 RHS
+///   evaluations each (DOP853: 12 stages, 3 more for the dense output) plus 4 for the start, (b) under 2e5 RHS evaluations (the default budget
+///   would allow 1.2e8); a wall-time sanity bound of 20 s;
+/// - fmi2Reset, a new initialization and a step then succeed, and the instance frees.
+#[test]
+fn t3_fmu_stall_ends_as_discard_with_a_message_in_bounded_work() {
+    let b = BearingFile::default_preset();
+    let zp = -1000.0 / b.pedestal.k_z; // default scene: Fr = 1000 N
+    for (tolerance, max_steps, cause, rhs_bound) in [
+        (1e-6, 3, "step budget", 3 * 16 + 4),
+        (1e-15, 10_000_000, "fell below the minimum", 200_000),
+    ] {
+        let s = stall(tolerance, max_steps);
+        let what = format!("tolerance {tolerance}, max_steps {max_steps}");
+        assert_eq!(s.status, Fmi2Status::Discard, "{what}: {}", s.message);
+        assert!(
+            s.message.contains("discarded") && s.message.contains(cause),
+            "{what}: {}",
+            s.message
+        );
+        assert_eq!(s.terminated, FMI2_TRUE, "{what}");
+        assert!(
+            (0.0..1e-3).contains(&s.last_good),
+            "{what}: {}",
+            s.last_good
+        );
+        assert_eq!(s.next, Fmi2Status::Error, "{what}");
+        assert!(s.pedestal_z.is_finite() && s.ring_z.is_finite(), "{what}");
+        assert!(
+            (s.pedestal_z - zp).abs() < 0.02 * zp.abs(),
+            "{what}: pedestal.z {} vs {zp}",
+            s.pedestal_z
+        );
+        assert!(
+            s.rhs_evals >= 0 && s.rhs_evals <= rhs_bound,
+            "{what}: {} RHS evaluations ({} steps)",
+            s.rhs_evals,
+            s.steps
+        );
+        assert!(s.wall < 20.0, "{what}: {} s", s.wall);
+        eprintln!(
+            "T3 FMU stall ({what}): last good t = {:.6e} s, {} steps, {} RHS, {:.3} s wall: {}",
+            s.last_good, s.steps, s.rhs_evals, s.wall, s.message
+        );
+    }
+}
