@@ -268,6 +268,7 @@ struct Stall {
     last_good: f64,
     rhs_evals: i32,
     steps: i32,
+    rejected: i32,
     pedestal_z: f64,
     ring_z: f64,
     next: Fmi2Status,
@@ -282,10 +283,11 @@ fn stall(tolerance: f64, max_steps: i32) -> Stall {
     let b = BearingFile::default_preset();
     let c = h.inst(&raceway::fmi::guid(&b), None);
     assert!(!c.is_null(), "{}", h.last());
-    let (budget, rhs, steps) = (
+    let (budget, rhs, steps, rejected) = (
         vr(&b, "solver.max_steps"),
         vr(&b, "solver.rhs_evals"),
         vr(&b, "solver.steps"),
+        vr(&b, "solver.rejected"),
     );
     let (pz, rz) = (vr(&b, "pedestal.z"), vr(&b, "ring.z"));
     unsafe {
@@ -319,7 +321,11 @@ fn stall(tolerance: f64, max_steps: i32) -> Stall {
             sh::get_real_status::<BallBearing>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last_good),
             Fmi2Status::Ok
         );
-        let (mut rhs_evals, mut n_steps) = (-1, -1);
+        let (mut rhs_evals, mut n_steps, mut n_rejected) = (-1, -1, -1);
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rejected, 1, &mut n_rejected),
+            Fmi2Status::Ok
+        );
         assert_eq!(
             sh::get_integer::<BallBearing>(c, &rhs, 1, &mut rhs_evals),
             Fmi2Status::Ok
@@ -362,6 +368,7 @@ fn stall(tolerance: f64, max_steps: i32) -> Stall {
             last_good,
             rhs_evals,
             steps: n_steps,
+            rejected: n_rejected,
             pedestal_z,
             ring_z,
             next,
@@ -371,57 +378,63 @@ fn stall(tolerance: f64, max_steps: i32) -> Stall {
 }
 
 /// T3 (FMU): a stall inside fmi2DoStep ends as fmi2Discard with a message, in bounded work, and
-/// leaves a usable instance. Criteria, for (a) a step budget of 3 (solver.max_steps) and (b) a
-/// genuine stall, tolerance 1e-15 from fmi2SetupExperiment (below round-off: the error estimate
-/// cannot meet it, the step size shrinks until it underflows, ≈ 0.5 ms in):
+/// leaves a usable instance. Criteria, for a step budget of 3 (solver.max_steps) on the default
+/// scene, whose first 1 ms step needs ~50 steps:
 /// - fmi2DoStep returns fmi2Discard and the logger receives a message naming the cause ("step
-///   budget" / "fell below the minimum") and the time;
+///   budget") and the time;
 /// - fmi2Terminated is true, fmi2LastSuccessfulTime lies in [0, 1 ms), further fmi2DoStep calls
 ///   are refused (fmi2Error), fmi2GetReal returns finite outputs of the last good state (the
 ///   pedestal at its static deflection −Fr/k_z within 2 %);
-/// - the work is bounded by counts, not by time: (a) at most 3 attempted steps of at most 16 RHS
-///   evaluations each (DOP853: 12 stages, 3 more for the dense output) plus 4 for the start, (b) under 2e5 RHS evaluations (the default budget
-///   would allow 1.2e8); a wall-time sanity bound of 20 s;
+/// - the work is bounded by counts, not by time: at most 3 attempted steps (solver.steps +
+///   solver.rejected) in the whole communication step, spall stops and contact events included,
+///   and at most 16 RHS evaluations per attempt (DOP853: 12 stages, 3 for the dense output, 1
+///   restart) plus 2 for the initial step size; a wall-time sanity bound of 20 s;
 /// - fmi2Reset, a new initialization and a step then succeed, and the instance frees.
+///
+/// An unattainable tolerance (1e-18, below round-off) is refused by fmi2SetupExperiment with a
+/// message naming it: measured before this check, DOP853 at 1e-18 did not fail but crawled at
+/// 1e-9 s steps (7761 wall s per simulated s).
 #[test]
 fn t3_fmu_stall_ends_as_discard_with_a_message_in_bounded_work() {
     let b = BearingFile::default_preset();
     let zp = -1000.0 / b.pedestal.k_z; // default scene: Fr = 1000 N
-    for (tolerance, max_steps, cause, rhs_bound) in [
-        (1e-6, 3, "step budget", 3 * 16 + 4),
-        (1e-15, 10_000_000, "fell below the minimum", 200_000),
-    ] {
-        let s = stall(tolerance, max_steps);
-        let what = format!("tolerance {tolerance}, max_steps {max_steps}");
-        assert_eq!(s.status, Fmi2Status::Discard, "{what}: {}", s.message);
-        assert!(
-            s.message.contains("discarded") && s.message.contains(cause),
-            "{what}: {}",
-            s.message
+    let s = stall(1e-6, 3);
+    assert_eq!(s.status, Fmi2Status::Discard, "{}", s.message);
+    assert!(
+        s.message.contains("discarded") && s.message.contains("step budget"),
+        "{}",
+        s.message
+    );
+    assert_eq!(s.terminated, FMI2_TRUE);
+    assert!((0.0..1e-3).contains(&s.last_good), "{}", s.last_good);
+    assert_eq!(s.next, Fmi2Status::Error);
+    assert!(s.pedestal_z.is_finite() && s.ring_z.is_finite());
+    assert!(
+        (s.pedestal_z - zp).abs() < 0.02 * zp.abs(),
+        "pedestal.z {} vs {zp}",
+        s.pedestal_z
+    );
+    let attempts = s.steps + s.rejected;
+    assert!((1..=3).contains(&attempts), "{attempts} attempted steps");
+    assert!(
+        s.rhs_evals >= 0 && s.rhs_evals <= 16 * attempts + 2,
+        "{} RHS evaluations for {attempts} attempted steps",
+        s.rhs_evals
+    );
+    assert!(s.wall < 20.0, "{} s", s.wall);
+    eprintln!(
+        "T3 FMU stall: last good t = {:.6e} s, {} steps + {} rejected, {} RHS, {:.4} s wall: {}",
+        s.last_good, s.steps, s.rejected, s.rhs_evals, s.wall, s.message
+    );
+
+    let h = H::new();
+    let c = h.inst(&raceway::fmi::guid(&b), None);
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, 1e-18, 0.0, 0, 0.0),
+            Fmi2Status::Error
         );
-        assert_eq!(s.terminated, FMI2_TRUE, "{what}");
-        assert!(
-            (0.0..1e-3).contains(&s.last_good),
-            "{what}: {}",
-            s.last_good
-        );
-        assert_eq!(s.next, Fmi2Status::Error, "{what}");
-        assert!(s.pedestal_z.is_finite() && s.ring_z.is_finite(), "{what}");
-        assert!(
-            (s.pedestal_z - zp).abs() < 0.02 * zp.abs(),
-            "{what}: pedestal.z {} vs {zp}",
-            s.pedestal_z
-        );
-        assert!(
-            s.rhs_evals >= 0 && s.rhs_evals <= rhs_bound,
-            "{what}: {} RHS evaluations ({} steps)",
-            s.rhs_evals,
-            s.steps
-        );
-        assert!(s.wall < 20.0, "{what}: {} s", s.wall);
-        eprintln!(
-            "T3 FMU stall ({what}): last good t = {:.6e} s, {} steps, {} RHS, {:.3} s wall: {}",
-            s.last_good, s.steps, s.rhs_evals, s.wall, s.message
-        );
+        assert!(h.last().contains("tolerance = 1e-18"), "{}", h.last());
+        sh::free_instance::<BallBearing>(c);
     }
 }

@@ -84,7 +84,18 @@ pub struct LumpedModel {
     c_other: f64,
     /// (sin, cos) of each ball's offset 2πj/z from ball 0.
     ball_offsets: Vec<(f64, f64)>,
+    /// Contact mode of each ball, frozen inside a step once [`Model::update_mode`] has run
+    /// (`modes_set`): loss and regain of contact are state events (see [`Model::events`]).
+    in_contact: Vec<bool>,
+    modes_set: bool,
+    /// Balls whose contact event fired since the last mode update: their mode flips.
+    fired: Vec<bool>,
 }
+
+/// Scale turning the unclamped contact force [N] into the length unit of the contact event
+/// function [m] (any positive constant gives the same roots; this one makes both branches of
+/// min(δ, F/K) comparable near a Hertz deflection of ~1 µm).
+const EVENT_FORCE_SCALE: f64 = 1e8;
 
 impl LumpedModel {
     /// Builds the model for a scene; the cage speed and the initial ring offset come from L1.
@@ -133,6 +144,9 @@ impl LumpedModel {
             ball_offsets: (0..bearing.z)
                 .map(|j| (TAU * j as f64 / bearing.z as f64).sin_cos())
                 .collect(),
+            in_contact: vec![true; bearing.z],
+            modes_set: false,
+            fired: vec![false; bearing.z],
         };
         m.theta_start = m.choose_theta_start();
         m.solve_l1(bearing, inputs)?;
@@ -252,6 +266,60 @@ impl LumpedModel {
     /// Contact forces of all balls; calls `each(j, Q, sin α, cos α, e_ry, e_rz)`.
     #[inline]
     fn contacts(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, f64, f64, f64, f64, f64)) {
+        self.approaches(t, y, |j, delta, delta_rate, k, sa, ca, ery, erz| {
+            each(
+                j,
+                self.normal_force(j, k, delta, delta_rate),
+                sa,
+                ca,
+                ery,
+                erz,
+            )
+        });
+    }
+
+    /// Unclamped contact force k·δ·|δ|^½ + c·δ̇ [N]: the Hertz law with damping, continued
+    /// smoothly to δ < 0 so that a frozen contact mode gives a smooth right-hand side.
+    #[inline(always)]
+    fn unclamped_force(&self, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        k * delta * delta.abs().sqrt() + self.c_b * delta_rate
+    }
+
+    /// Normal force of ball j. Before the modes are set (the static Newton start) the clamped
+    /// law max(0, k δ^1.5 + c δ̇) for δ > 0; afterwards the frozen mode decides: in contact the
+    /// unclamped force, out of contact 0. The switches are located as state events.
+    #[inline(always)]
+    fn normal_force(&self, j: usize, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        if !self.modes_set {
+            if delta > 0.0 {
+                self.unclamped_force(k, delta, delta_rate).max(0.0)
+            } else {
+                0.0
+            }
+        } else if self.in_contact[j] {
+            self.unclamped_force(k, delta, delta_rate)
+        } else {
+            0.0
+        }
+    }
+
+    /// Contact event function of a ball: min(δ, F/K) > 0 exactly where the clamped law has a
+    /// positive force (δ > 0 and k δ^1.5 + c δ̇ > 0); it is continuous, so loss (F reaching 0)
+    /// and regain (δ reaching 0 with the damping jump c δ̇, or F rising through 0) are roots.
+    #[inline(always)]
+    fn contact_event(&self, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        delta.min(self.unclamped_force(k, delta, delta_rate) / EVENT_FORCE_SCALE)
+    }
+
+    /// Approach of every ball; calls `each(j, δ, δ̇, k, sin α, cos α, e_ry, e_rz)`.
+    #[allow(clippy::type_complexity)]
+    #[inline]
+    fn approaches(
+        &self,
+        t: f64,
+        y: &[f64],
+        mut each: impl FnMut(usize, f64, f64, f64, f64, f64, f64, f64),
+    ) {
         let _ = t;
         let dx = y[X];
         let dy = y[Y] - y[YP];
@@ -306,12 +374,29 @@ impl LumpedModel {
                     }
                 }
             }
-            let q = if delta > 0.0 {
-                (k * delta * delta.sqrt() + self.c_b * delta_rate).max(0.0)
-            } else {
-                0.0
-            };
-            each(j, q, ax / len, ar / len, ery, erz);
+            let inv_len = 1.0 / len;
+            each(
+                j,
+                delta,
+                delta_rate,
+                k,
+                ax * inv_len,
+                ar * inv_len,
+                ery,
+                erz,
+            );
+        }
+    }
+
+    /// Re-derives the spall zone of every ball at (t, y).
+    fn update_zones(&mut self, t: f64, y: &[f64]) {
+        let cage_rate = self.cage_rate();
+        if let Some(d) = &self.defect {
+            for j in 0..self.z {
+                let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
+                let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
+                self.zones[j] = Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
+            }
         }
     }
 
@@ -549,14 +634,40 @@ impl Model for LumpedModel {
     }
 
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        let cage_rate = self.cage_rate();
-        if let Some(d) = &self.defect {
-            for j in 0..self.z {
-                let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
-                let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                self.zones[j] = Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
-            }
+        self.update_zones(t, y);
+        // A ball whose contact event just fired switches mode (at the located state its event
+        // function is within the location tolerance of 0, on either side). Every other ball
+        // takes its mode from the sign of the event function (on an exact 0 the direction of
+        // the approach decides: coming together is contact).
+        let mut modes = std::mem::take(&mut self.in_contact);
+        let was_set = self.modes_set;
+        self.approaches(t, y, |j, delta, delta_rate, k, _, _, _, _| {
+            modes[j] = if was_set && self.fired[j] {
+                !modes[j]
+            } else {
+                let g = self.contact_event(k, delta, delta_rate);
+                g > 0.0 || (g == 0.0 && delta_rate > 0.0)
+            };
+        });
+        self.in_contact = modes;
+        self.fired.iter_mut().for_each(|f| *f = false);
+        self.modes_set = true;
+    }
+
+    fn event_fired(&mut self, index: usize) {
+        if let Some(f) = self.fired.get_mut(index) {
+            *f = true;
         }
+    }
+
+    fn n_events(&self) -> usize {
+        self.z
+    }
+
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        self.approaches(t, y, |j, delta, delta_rate, k, _, _, _, _| {
+            g[j] = self.contact_event(k, delta, delta_rate);
+        });
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
@@ -569,8 +680,10 @@ impl Model for LumpedModel {
             f_ring[0] -= q * sa;
             f_ring[1] -= q * ca * ery;
             f_ring[2] -= q * ca * erz;
-            o[out::CONTACT_START + j] = q;
-            o[out::CONTACT_START + z + j] = q;
+            // Inside a step the frozen contact law may give a round-off-small negative force
+            // just before a located loss of contact: report it as 0.
+            o[out::CONTACT_START + j] = q.max(0.0);
+            o[out::CONTACT_START + z + j] = q.max(0.0);
         });
         o[out::PEDESTAL_A_Y] = dydt[VYP];
         o[out::PEDESTAL_A_Z] = dydt[VZP];
