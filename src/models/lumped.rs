@@ -331,9 +331,18 @@ impl LumpedModel {
         // Without jitter the balls are equally spaced: one sin_cos for the cage, then a rotation
         // by each ball's fixed offset.
         let (s0, c0) = (self.theta_start + y[CAGE]).sin_cos();
+        let equal_spacing = self.jitter_sigma == 0.0;
+        // The axial part of the groove-centre distance is the same for every ball.
+        let ax = self.bd * self.sin_a0 + dx;
+        let ar0 = self.bd * self.cos_a0;
         for j in 0..self.z {
-            let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
-            let (s, c) = if self.jitter_sigma == 0.0 {
+            // Equally spaced balls (no jitter): the angle itself is needed only inside the spall.
+            let (theta, theta_rate) = if equal_spacing {
+                (f64::NAN, cage_rate)
+            } else {
+                self.ball_angle(j, y[CAGE], cage_rate)
+            };
+            let (s, c) = if equal_spacing {
                 let (sj, cj) = self.ball_offsets[j];
                 (s0 * cj + c0 * sj, c0 * cj - s0 * sj)
             } else {
@@ -341,16 +350,21 @@ impl LumpedModel {
             };
             // e_r(θ) = (0, −sin θ, cos θ); de_r/dθ = e_θ = (0, −cos θ, −sin θ).
             let (ery, erz) = (-s, c);
-            let ax = self.bd * self.sin_a0 + dx;
-            let ar = self.bd * self.cos_a0 + dy * ery + dz * erz;
+            let ar = ar0 + dy * ery + dz * erz;
             let dax = vx;
             let dar = vy * ery + vz * erz + (dy * (-c) + dz * (-s)) * theta_rate;
             let len = (ax * ax + ar * ar).sqrt();
+            let inv_len = 1.0 / len;
             let mut delta = len - self.bd_touch;
-            let mut delta_rate = (ax * dax + ar * dar) / len;
+            let mut delta_rate = (ax * dax + ar * dar) * inv_len;
             let mut k = self.k_series;
             if let (Some(d), zone) = (&self.defect, self.zones[j]) {
                 if zone != Zone::Outside {
+                    let (theta, theta_rate) = if equal_spacing {
+                        self.ball_angle(j, y[CAGE], cage_rate)
+                    } else {
+                        (theta, theta_rate)
+                    };
                     let (tbd, tbd_rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
                     let mut y_b = d.along_track(tbd);
                     let y_rate = d.along_track_rate(tbd, tbd_rate);
@@ -374,7 +388,6 @@ impl LumpedModel {
                     }
                 }
             }
-            let inv_len = 1.0 / len;
             each(
                 j,
                 delta,
