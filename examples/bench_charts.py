@@ -277,7 +277,10 @@ def main():
               f"rtol) and the 37 µs inside the spall ≈ 18 steps between five spall stops and the "
               f"contact loss and regain of the ball, now located as state events instead of "
               f"rejected steps. Reaching 0.02 s/s would need ≈ 20× fewer RHS evaluations at the "
-              f"same cost each: the target is not met, even at rtol 1e-3 (rows above).\n")
+              f"same cost each: the target is not met, even at rtol 1e-3 (rows above). A PI "
+              f"step-size controller instead of the I controller is measured by `cargo run "
+              f"--release --example lumped_controller` (it is not the default: the controller "
+              f"options are shared by every level and not yet a scene setting).\n")
 
     # References.
     w("## References and their cross-check\n")
