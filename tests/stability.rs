@@ -197,8 +197,8 @@ fn t2_loose_tolerances_finish_without_blow_up() {
 /// T3: tight tolerances across spall edges (outer and inner) with the edges as known-time stops.
 /// Criterion: rtol 1e-10 and 1e-12 either finish or fail within 30 s of wall time with a
 /// `Solver` error; a stall forced by a small step budget ends with a message naming the budget,
-/// at a time before the target, in under a second (the budget counts per call between two
-/// spall stops, so it is set below the steps one such interval needs at rtol 1e-12).
+/// at a time before the target, in under a second (the budget, 5 attempted steps, holds for the
+/// whole advance, spall stops and contact events included).
 #[test]
 fn t3_tight_tolerances_across_spall_edges_finish_or_fail_fast() {
     for ring in [Race::Outer, Race::Inner] {
