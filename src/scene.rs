@@ -172,6 +172,15 @@ pub struct SolverSettings {
     pub max_steps: u64,
 }
 
+/// Smallest accepted relative tolerance. Below it the error estimate is dominated by round-off:
+/// measured on the default scene (lumped, DOP853) rtol 1e-16 still runs at normal cost, 1e-18
+/// crawls with 1e-9 s steps (7761 wall s per simulated s) instead of failing.
+pub const MIN_RTOL: f64 = 1e-14;
+
+/// Why [`MIN_RTOL`] exists (for error messages).
+pub const RTOL_FLOOR_WHY: &str =
+    "the smallest relative tolerance double precision can honour here (below it the integrator crawls on round-off instead of failing)";
+
 fn default_rtol() -> f64 {
     1e-6
 }
@@ -540,6 +549,15 @@ impl Scene {
         positive("solver.rtol", self.solver.rtol)?;
         if self.solver.rtol >= 0.1 {
             return Err(ConfigError::new("solver.rtol", "must be < 0.1"));
+        }
+        if self.solver.rtol < MIN_RTOL {
+            return Err(ConfigError::new(
+                "solver.rtol",
+                format!(
+                    "{} is below {MIN_RTOL:e}, {RTOL_FLOOR_WHY}",
+                    self.solver.rtol
+                ),
+            ));
         }
         if self.solver.max_steps == 0 {
             return Err(ConfigError::new("solver.max_steps", "must be ≥ 1"));

@@ -330,7 +330,8 @@ impl EventSystem for ModelSystem<'_> {
     }
     /// The advance stops at the event; the simulation then switches the mode exactly as at a
     /// known-time stop (after the outputs of the samples before the event are taken).
-    fn handle_event(&mut self, _index: usize, _t: f64, _y: &mut [f64]) -> EventAction {
+    fn handle_event(&mut self, index: usize, _t: f64, _y: &mut [f64]) -> EventAction {
+        self.0.event_fired(index);
         EventAction::Stop
     }
 }
@@ -614,10 +615,14 @@ impl Simulation {
 
     /// Changes the relative tolerance (absolute tolerances follow: rtol × nominal).
     pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SimError> {
-        if !(rtol > 0.0 && rtol < 0.1) {
+        if !(crate::scene::MIN_RTOL..0.1).contains(&rtol) {
             return Err(SimError::Config(ConfigError::new(
                 "solver.rtol",
-                format!("{rtol} must lie in (0, 0.1)"),
+                format!(
+                    "{rtol} must lie in [{:e}, 0.1): {}",
+                    crate::scene::MIN_RTOL,
+                    crate::scene::RTOL_FLOOR_WHY
+                ),
             )));
         }
         // Keep the integrator (its step size, FSAL stage and work counters); change the tolerances.
@@ -663,8 +668,25 @@ impl Simulation {
             )));
         }
         let n = self.model.dim();
+        // The step budget (solver.max_steps) holds for the whole advance (one communication
+        // step), not for each integrator call between two stops or events.
+        let budget = self.scene.solver.max_steps;
+        let attempts = |s: crate::solver::Stats| s.steps + s.rejected;
+        let used0 = attempts(self.integrator.stats());
+        let exhausted = |t: f64| SimError::Solver {
+            t,
+            message: format!(
+                "step budget exhausted: {budget} steps (solver.max_steps) attempted in this \
+                 advance, stopped at t = {t} s"
+            ),
+        };
         while self.integrator.t() < t_end {
             let t = self.integrator.t();
+            let used = attempts(self.integrator.stats()) - used0;
+            if used >= budget {
+                return Err(exhausted(t));
+            }
+            self.integrator.set_max_steps(budget - used);
             let stop = self.model.next_stop(t, self.integrator.y(), t_end);
             let target = stop.unwrap_or(t_end);
             self.samples.clear();
@@ -733,6 +755,9 @@ impl Simulation {
             }
             let event = match result {
                 Ok(event) => event,
+                Err(crate::solver::SolverError::StepBudget { .. }) => {
+                    return Err(exhausted(self.integrator.t()))
+                }
                 Err(e) => {
                     return Err(SimError::Solver {
                         t: self.integrator.t(),

@@ -259,3 +259,182 @@ fn unavailable_fidelity_fails_exit_initialization_with_the_library_message() {
         sh::free_instance::<BallBearing>(c);
     }
 }
+
+/// One stalled fmi2DoStep of the default scene and what the instance reports afterwards.
+struct Stall {
+    status: Fmi2Status,
+    message: String,
+    terminated: Fmi2Boolean,
+    last_good: f64,
+    rhs_evals: i32,
+    steps: i32,
+    rejected: i32,
+    pedestal_z: f64,
+    ring_z: f64,
+    next: Fmi2Status,
+    wall: f64,
+}
+
+/// Initializes the default scene (tolerance from fmi2SetupExperiment, solver.max_steps), takes
+/// one 1 ms step, records the outcome, then checks that reset, a fresh initialization with the
+/// defaults and a step work, and frees the instance.
+fn stall(tolerance: f64, max_steps: i32) -> Stall {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let c = h.inst(&raceway::fmi::guid(&b), None);
+    assert!(!c.is_null(), "{}", h.last());
+    let (budget, rhs, steps, rejected) = (
+        vr(&b, "solver.max_steps"),
+        vr(&b, "solver.rhs_evals"),
+        vr(&b, "solver.steps"),
+        vr(&b, "solver.rejected"),
+    );
+    let (pz, rz) = (vr(&b, "pedestal.z"), vr(&b, "ring.z"));
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, tolerance, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &budget, 1, &max_steps),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        let start = std::time::Instant::now();
+        let status = sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1);
+        let wall = start.elapsed().as_secs_f64();
+        let message = h.last();
+        let mut terminated = FMI2_FALSE;
+        assert_eq!(
+            sh::get_boolean_status::<BallBearing>(c, FMI2_TERMINATED, &mut terminated),
+            Fmi2Status::Ok
+        );
+        let mut last_good = f64::NAN;
+        assert_eq!(
+            sh::get_real_status::<BallBearing>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last_good),
+            Fmi2Status::Ok
+        );
+        let (mut rhs_evals, mut n_steps, mut n_rejected) = (-1, -1, -1);
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rejected, 1, &mut n_rejected),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rhs, 1, &mut rhs_evals),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &steps, 1, &mut n_steps),
+            Fmi2Status::Ok
+        );
+        let (mut pedestal_z, mut ring_z) = (f64::NAN, f64::NAN);
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &pz, 1, &mut pedestal_z),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &rz, 1, &mut ring_z),
+            Fmi2Status::Ok
+        );
+        let next = sh::do_step::<BallBearing>(c, last_good, 1e-3, 1);
+        // The instance is still usable: reset, initialize with the defaults, step.
+        assert_eq!(sh::reset::<BallBearing>(c), Fmi2Status::Ok, "{}", h.last());
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        sh::free_instance::<BallBearing>(c);
+        Stall {
+            status,
+            message,
+            terminated,
+            last_good,
+            rhs_evals,
+            steps: n_steps,
+            rejected: n_rejected,
+            pedestal_z,
+            ring_z,
+            next,
+            wall,
+        }
+    }
+}
+
+/// T3 (FMU): a stall inside fmi2DoStep ends as fmi2Discard with a message, in bounded work, and
+/// leaves a usable instance. Criteria, for a step budget of 3 (solver.max_steps) on the default
+/// scene, whose first 1 ms step needs ~50 steps:
+/// - fmi2DoStep returns fmi2Discard and the logger receives a message naming the cause ("step
+///   budget") and the time;
+/// - fmi2Terminated is true, fmi2LastSuccessfulTime lies in [0, 1 ms), further fmi2DoStep calls
+///   are refused (fmi2Error), fmi2GetReal returns finite outputs of the last good state (the
+///   pedestal at its static deflection −Fr/k_z within 2 %);
+/// - the work is bounded by counts, not by time: at most 3 attempted steps (solver.steps +
+///   solver.rejected) in the whole communication step, spall stops and contact events included,
+///   and at most 16 RHS evaluations per attempt (DOP853: 12 stages, 3 for the dense output, 1
+///   restart) plus 2 for the initial step size; a wall-time sanity bound of 20 s;
+/// - fmi2Reset, a new initialization and a step then succeed, and the instance frees.
+///
+/// An unattainable tolerance (1e-18, below round-off) is refused by fmi2SetupExperiment with a
+/// message naming it: measured before this check, DOP853 at 1e-18 did not fail but crawled at
+/// 1e-9 s steps (7761 wall s per simulated s).
+#[test]
+fn t3_fmu_stall_ends_as_discard_with_a_message_in_bounded_work() {
+    let b = BearingFile::default_preset();
+    let zp = -1000.0 / b.pedestal.k_z; // default scene: Fr = 1000 N
+    let s = stall(1e-6, 3);
+    assert_eq!(s.status, Fmi2Status::Discard, "{}", s.message);
+    assert!(
+        s.message.contains("discarded") && s.message.contains("step budget"),
+        "{}",
+        s.message
+    );
+    assert_eq!(s.terminated, FMI2_TRUE);
+    assert!((0.0..1e-3).contains(&s.last_good), "{}", s.last_good);
+    assert_eq!(s.next, Fmi2Status::Error);
+    assert!(s.pedestal_z.is_finite() && s.ring_z.is_finite());
+    assert!(
+        (s.pedestal_z - zp).abs() < 0.02 * zp.abs(),
+        "pedestal.z {} vs {zp}",
+        s.pedestal_z
+    );
+    let attempts = s.steps + s.rejected;
+    assert!((1..=3).contains(&attempts), "{attempts} attempted steps");
+    assert!(
+        s.rhs_evals >= 0 && s.rhs_evals <= 16 * attempts + 2,
+        "{} RHS evaluations for {attempts} attempted steps",
+        s.rhs_evals
+    );
+    assert!(s.wall < 20.0, "{} s", s.wall);
+    eprintln!(
+        "T3 FMU stall: last good t = {:.6e} s, {} steps + {} rejected, {} RHS, {:.4} s wall: {}",
+        s.last_good, s.steps, s.rejected, s.rhs_evals, s.wall, s.message
+    );
+
+    let h = H::new();
+    let c = h.inst(&raceway::fmi::guid(&b), None);
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, 1e-18, 0.0, 0, 0.0),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("tolerance = 1e-18"), "{}", h.last());
+        sh::free_instance::<BallBearing>(c);
+    }
+}

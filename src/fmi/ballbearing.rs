@@ -106,9 +106,10 @@ impl BallBearing {
         let mut s = self.cfg.scene.clone();
         s.defect = self.cfg.defect.spec();
         if let Some(t) = self.tolerance {
-            if !(t > 0.0 && t < 0.1) {
+            if !(crate::scene::MIN_RTOL..0.1).contains(&t) {
                 return Err(format!(
-                    "the tolerance {t} of fmi2SetupExperiment is outside (0, 0.1) (it overrides solver.rtol)"
+                    "the tolerance {t:e} of fmi2SetupExperiment is outside [{:e}, 0.1) (it overrides solver.rtol)",
+                    crate::scene::MIN_RTOL
                 ));
             }
             s.solver.rtol = t;
@@ -207,9 +208,11 @@ impl FmuModel for BallBearing {
         _stop_time: Option<f64>,
     ) -> Result<(), String> {
         if let Some(t) = tolerance {
-            if !(t > 0.0 && t < 0.1) {
+            if !(crate::scene::MIN_RTOL..0.1).contains(&t) {
                 return Err(format!(
-                    "tolerance = {t}: the integrator's relative tolerance must lie in (0, 0.1)"
+                    "tolerance = {t:e}: the integrator's relative tolerance must lie in [{:e}, 0.1): {}",
+                    crate::scene::MIN_RTOL,
+                    crate::scene::RTOL_FLOOR_WHY
                 ));
             }
         }

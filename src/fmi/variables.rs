@@ -365,7 +365,7 @@ impl Param {
                 "Seed of the random ball slip"),
             Param::SolverMethod => ("solver.method", I, None, Some(0.0), Some(2.0),
                 "Integration method: 0 RKF45, 1 DOPRI5, 2 DOP853"),
-            Param::SolverRtol => ("solver.rtol", R, None, Some(0.0), Some(0.1),
+            Param::SolverRtol => ("solver.rtol", R, None, Some(crate::scene::MIN_RTOL), Some(0.1),
                 "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it"),
             Param::SolverMaxSteps => ("solver.max_steps", I, None, Some(1.0), Some(imax),
                 "Step budget per communication step; when exhausted the step returns fmi2Discard"),

@@ -37,11 +37,9 @@ const SHAFT: usize = 11;
 const ZR: usize = 12;
 const VZR: usize = 13;
 
-/// One ball's contact: force, normal and what its linearization needs.
+/// One ball's approach: normal, Hertz constant and what the force and its linearization need.
 #[derive(Debug, Clone, Copy)]
-struct BallContact {
-    /// Normal force [N] (0 when open or when the damping would pull).
-    q: f64,
+struct Approach {
     /// Normal n = (sin α, cos α e_r) with e_r = (0, e_ry, e_rz).
     sa: f64,
     ca: f64,
@@ -52,6 +50,7 @@ struct BallContact {
     /// Approach δ [m], groove-centre distance |a| [m], the rates of a along e_x and e_r [m/s]
     /// and the ball's orbital rate θ̇ [rad/s].
     delta: f64,
+    delta_rate: f64,
     len: f64,
     dax: f64,
     dar: f64,
@@ -103,11 +102,22 @@ pub struct LumpedModel {
     zones: Vec<Zone>,
     /// Compliance K^(−2/3) of the race without the spall.
     c_other: f64,
-    /// Coupling mode "motion": the ring translation is prescribed (zero acceleration).
-    prescribed: bool,
     /// (sin, cos) of each ball's offset 2πj/z from ball 0.
     ball_offsets: Vec<(f64, f64)>,
+    /// Contact mode of each ball, frozen inside a step once [`Model::update_mode`] has run
+    /// (`modes_set`): loss and regain of contact are state events (see [`Model::events`]).
+    in_contact: Vec<bool>,
+    modes_set: bool,
+    /// Balls whose contact event fired since the last mode update: their mode flips.
+    fired: Vec<bool>,
+    /// Coupling mode "motion": the ring translation is prescribed (zero acceleration).
+    prescribed: bool,
 }
+
+/// Scale turning the unclamped contact force [N] into the length unit of the contact event
+/// function [m] (any positive constant gives the same roots; this one makes both branches of
+/// min(δ, F/K) comparable near a Hertz deflection of ~1 µm).
+const EVENT_FORCE_SCALE: f64 = 1e8;
 
 impl LumpedModel {
     /// Builds the model for a scene; the cage speed and the initial ring offset come from L1.
@@ -153,10 +163,13 @@ impl LumpedModel {
                 Some(Race::Inner) => bearing.k_outer.powf(-2.0 / 3.0),
                 _ => bearing.k_inner.powf(-2.0 / 3.0),
             },
-            prescribed: false,
             ball_offsets: (0..bearing.z)
                 .map(|j| (TAU * j as f64 / bearing.z as f64).sin_cos())
                 .collect(),
+            in_contact: vec![true; bearing.z],
+            modes_set: false,
+            fired: vec![false; bearing.z],
+            prescribed: false,
         };
         m.theta_start = m.choose_theta_start();
         m.solve_l1(bearing, inputs)?;
@@ -249,11 +262,20 @@ impl LumpedModel {
         [Some(-te), tb.map(|v| -v), Some(0.0), tb, Some(te)]
     }
 
-    /// Zone of a ball from its defect angle, looking in the direction of motion at boundaries.
-    fn zone_of(d: &Defect, theta_bd: f64, rate: f64) -> Zone {
+    /// Round-off of a ball-to-defect angle computed from the cage and shaft angles at time t
+    /// [rad]: the angles grow without bound (≈ 4400 rad after 10 s at 9900 rpm) and the time has
+    /// an ulp of ≈ 1e-15 s there. Boundaries closer than this are the one a ball is standing on.
+    fn angle_tol(t: f64, y: &[f64], rate: f64) -> f64 {
+        let magnitude = y[CAGE].abs() + y[SHAFT].abs() + TAU;
+        1e-12_f64.max(64.0 * f64::EPSILON * magnitude + 4.0 * f64::EPSILON * t.abs() * rate.abs())
+    }
+
+    /// Zone of a ball from its defect angle, looking in the direction of motion at boundaries
+    /// (`tol` from [`Self::angle_tol`]).
+    fn zone_of(d: &Defect, theta_bd: f64, rate: f64, tol: f64) -> Zone {
         let te = d.half_angle();
         // Position a hair ahead along the motion decides on which side of a boundary we are.
-        let eps = 1e-12 * rate.signum();
+        let eps = tol * rate.signum();
         let a = theta_bd + if rate == 0.0 { 0.0 } else { eps };
         if a.abs() >= te {
             Zone::Outside
@@ -267,12 +289,54 @@ impl LumpedModel {
     /// Contact forces of all balls; calls `each(j, Q, sin α, cos α, e_ry, e_rz)`.
     #[inline]
     fn contacts(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, f64, f64, f64, f64, f64)) {
-        self.contacts_full(t, y, |j, c| each(j, c.q, c.sa, c.ca, c.ery, c.erz));
+        self.approaches(t, y, |j, a| {
+            each(
+                j,
+                self.normal_force(j, a.k, a.delta, a.delta_rate),
+                a.sa,
+                a.ca,
+                a.ery,
+                a.erz,
+            )
+        });
     }
 
-    /// Contact state of all balls; calls `each(j, contact)`.
+    /// Unclamped contact force k·δ·|δ|^½ + c·δ̇ [N]: the Hertz law with damping, continued
+    /// smoothly to δ < 0 so that a frozen contact mode gives a smooth right-hand side.
+    #[inline(always)]
+    fn unclamped_force(&self, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        k * delta * delta.abs().sqrt() + self.c_b * delta_rate
+    }
+
+    /// Normal force of ball j. Before the modes are set (the static Newton start) the clamped
+    /// law max(0, k δ^1.5 + c δ̇) for δ > 0; afterwards the frozen mode decides: in contact the
+    /// unclamped force, out of contact 0. The switches are located as state events.
+    #[inline(always)]
+    fn normal_force(&self, j: usize, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        if !self.modes_set {
+            if delta > 0.0 {
+                self.unclamped_force(k, delta, delta_rate).max(0.0)
+            } else {
+                0.0
+            }
+        } else if self.in_contact[j] {
+            self.unclamped_force(k, delta, delta_rate)
+        } else {
+            0.0
+        }
+    }
+
+    /// Contact event function of a ball: min(δ, F/K) > 0 exactly where the clamped law has a
+    /// positive force (δ > 0 and k δ^1.5 + c δ̇ > 0); it is continuous, so loss (F reaching 0)
+    /// and regain (δ reaching 0 with the damping jump c δ̇, or F rising through 0) are roots.
+    #[inline(always)]
+    fn contact_event(&self, k: f64, delta: f64, delta_rate: f64) -> f64 {
+        delta.min(self.unclamped_force(k, delta, delta_rate) / EVENT_FORCE_SCALE)
+    }
+
+    /// Approach of every ball; calls `each(j, approach)`.
     #[inline]
-    fn contacts_full(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, &BallContact)) {
+    fn approaches(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, &Approach)) {
         let _ = t;
         let dx = y[X];
         let dy = y[Y] - y[YP];
@@ -284,9 +348,18 @@ impl LumpedModel {
         // Without jitter the balls are equally spaced: one sin_cos for the cage, then a rotation
         // by each ball's fixed offset.
         let (s0, c0) = (self.theta_start + y[CAGE]).sin_cos();
+        let equal_spacing = self.jitter_sigma == 0.0;
+        // The axial part of the groove-centre distance is the same for every ball.
+        let ax = self.bd * self.sin_a0 + dx;
+        let ar0 = self.bd * self.cos_a0;
         for j in 0..self.z {
-            let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
-            let (s, c) = if self.jitter_sigma == 0.0 {
+            // Equally spaced balls (no jitter): the angle itself is needed only inside the spall.
+            let (theta, theta_rate) = if equal_spacing {
+                (f64::NAN, cage_rate)
+            } else {
+                self.ball_angle(j, y[CAGE], cage_rate)
+            };
+            let (s, c) = if equal_spacing {
                 let (sj, cj) = self.ball_offsets[j];
                 (s0 * cj + c0 * sj, c0 * cj - s0 * sj)
             } else {
@@ -294,16 +367,21 @@ impl LumpedModel {
             };
             // e_r(θ) = (0, −sin θ, cos θ); de_r/dθ = e_θ = (0, −cos θ, −sin θ).
             let (ery, erz) = (-s, c);
-            let ax = self.bd * self.sin_a0 + dx;
-            let ar = self.bd * self.cos_a0 + dy * ery + dz * erz;
+            let ar = ar0 + dy * ery + dz * erz;
             let dax = vx;
             let dar = vy * ery + vz * erz + (dy * (-c) + dz * (-s)) * theta_rate;
             let len = (ax * ax + ar * ar).sqrt();
+            let inv_len = 1.0 / len;
             let mut delta = len - self.bd_touch;
-            let mut delta_rate = (ax * dax + ar * dar) / len;
+            let mut delta_rate = (ax * dax + ar * dar) * inv_len;
             let mut k = self.k_series;
             if let (Some(d), zone) = (&self.defect, self.zones[j]) {
                 if zone != Zone::Outside {
+                    let (theta, theta_rate) = if equal_spacing {
+                        self.ball_angle(j, y[CAGE], cage_rate)
+                    } else {
+                        (theta, theta_rate)
+                    };
                     let (tbd, tbd_rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
                     let mut y_b = d.along_track(tbd);
                     let y_rate = d.along_track_rate(tbd, tbd_rate);
@@ -327,27 +405,34 @@ impl LumpedModel {
                     }
                 }
             }
-            let q = if delta > 0.0 {
-                (k * delta * delta.sqrt() + self.c_b * delta_rate).max(0.0)
-            } else {
-                0.0
-            };
             each(
                 j,
-                &BallContact {
-                    q,
-                    sa: ax / len,
-                    ca: ar / len,
+                &Approach {
+                    sa: ax * inv_len,
+                    ca: ar * inv_len,
                     ery,
                     erz,
                     k,
                     delta,
+                    delta_rate,
                     len,
                     dax,
                     dar,
                     theta_rate,
                 },
             );
+        }
+    }
+
+    /// Re-derives the spall zone of every ball at (t, y).
+    fn update_zones(&mut self, t: f64, y: &[f64]) {
+        let cage_rate = self.cage_rate();
+        if let Some(d) = &self.defect {
+            for j in 0..self.z {
+                let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
+                let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
+                self.zones[j] = Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
+            }
         }
     }
 
@@ -556,14 +641,18 @@ impl Model for LumpedModel {
                 if rate == 0.0 {
                     continue;
                 }
-                // The next boundary ahead in the direction of motion.
+                // The next boundary ahead in the direction of motion (not the one the ball is on).
+                let tol = Self::angle_tol(t, y, rate);
                 for &b in bounds.iter().flatten() {
                     let mut gap = (b - tbd) * rate.signum();
-                    if gap <= 1e-13 {
+                    if gap <= tol {
                         gap += TAU;
                     }
-                    let dt = gap / rate.abs();
-                    best = best.min(t + dt);
+                    // A stop that rounds to `t` would end the search (None): skip it instead.
+                    let stop = t + gap / rate.abs();
+                    if stop > t {
+                        best = best.min(stop);
+                    }
                 }
             }
         }
@@ -586,15 +675,41 @@ impl Model for LumpedModel {
         (best <= t_max && best > t).then_some(best)
     }
 
-    fn update_mode(&mut self, _t: f64, y: &[f64]) {
-        let cage_rate = self.cage_rate();
-        if let Some(d) = &self.defect {
-            for j in 0..self.z {
-                let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
-                let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                self.zones[j] = Self::zone_of(d, tbd, rate);
-            }
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
+        self.update_zones(t, y);
+        // A ball whose contact event just fired switches mode (at the located state its event
+        // function is within the location tolerance of 0, on either side). Every other ball
+        // takes its mode from the sign of the event function (on an exact 0 the direction of
+        // the approach decides: coming together is contact).
+        let mut modes = std::mem::take(&mut self.in_contact);
+        let was_set = self.modes_set;
+        self.approaches(t, y, |j, a| {
+            modes[j] = if was_set && self.fired[j] {
+                !modes[j]
+            } else {
+                let g = self.contact_event(a.k, a.delta, a.delta_rate);
+                g > 0.0 || (g == 0.0 && a.delta_rate > 0.0)
+            };
+        });
+        self.in_contact = modes;
+        self.fired.iter_mut().for_each(|f| *f = false);
+        self.modes_set = true;
+    }
+
+    fn event_fired(&mut self, index: usize) {
+        if let Some(f) = self.fired.get_mut(index) {
+            *f = true;
         }
+    }
+
+    fn n_events(&self) -> usize {
+        self.z
+    }
+
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        self.approaches(t, y, |j, a| {
+            g[j] = self.contact_event(a.k, a.delta, a.delta_rate);
+        });
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
@@ -607,8 +722,10 @@ impl Model for LumpedModel {
             f_ring[0] -= q * sa;
             f_ring[1] -= q * ca * ery;
             f_ring[2] -= q * ca * erz;
-            o[out::CONTACT_START + j] = q;
-            o[out::CONTACT_START + z + j] = q;
+            // Inside a step the frozen contact law may give a round-off-small negative force
+            // just before a located loss of contact: report it as 0.
+            o[out::CONTACT_START + j] = q.max(0.0);
+            o[out::CONTACT_START + z + j] = q.max(0.0);
         });
         o[out::PEDESTAL_A_Y] = dydt[VYP];
         o[out::PEDESTAL_A_Z] = dydt[VZP];
@@ -678,8 +795,9 @@ impl Model for LumpedModel {
     fn reaction_jacobian(&mut self, t: f64, y: &[f64]) -> Option<super::ReactionJacobian> {
         let mut jac = super::ReactionJacobian::default();
         let c_b = self.c_b;
-        self.contacts_full(t, y, |_, c| {
-            if c.q <= 0.0 || c.delta <= 0.0 {
+        self.approaches(t, y, |j, c| {
+            let q = self.normal_force(j, c.k, c.delta, c.delta_rate);
+            if q <= 0.0 || c.delta <= 0.0 {
                 return;
             }
             let n = [c.sa, c.ca * c.ery, c.ca * c.erz];
@@ -689,7 +807,7 @@ impl Model for LumpedModel {
             let adot = [c.dax, c.dar * c.ery, c.dar * c.erz];
             let n_adot = n[0] * adot[0] + n[1] * adot[1] + n[2] * adot[2];
             let stiff = 1.5 * c.k * c.delta.sqrt();
-            let geo = c.q / c.len;
+            let geo = q / c.len;
             for col in 0..3 {
                 let ddr_dd = (adot[col] - n_adot * n[col]) / c.len + c.ca * c.theta_rate * eth[col];
                 let dq_dd = stiff * n[col] + c_b * ddr_dd;

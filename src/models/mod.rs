@@ -130,6 +130,11 @@ pub trait Model: Send {
     /// [`Model::update_mode`] is called at the located time.
     fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
 
+    /// Event `index` fired at the located time (called before [`Model::update_mode`]). At the
+    /// located state the function sits within the location tolerance of 0, on either side by
+    /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.
+    fn event_fired(&mut self, _index: usize) {}
+
     /// Fills the output vector (layout of [`crate::simulation::output_table`]).
     fn outputs(&mut self, t: f64, y: &[f64], out: &mut [f64]);
 

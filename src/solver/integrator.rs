@@ -168,6 +168,11 @@ impl Integrator {
         self.h_next
     }
 
+    /// Change the step budget of each call (see [`Options::max_steps`]); at least 1.
+    pub fn set_max_steps(&mut self, max_steps: u64) {
+        self.opts.max_steps = max_steps.max(1);
+    }
+
     /// Change the relative tolerance (takes effect on the next step).
     pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SolverError> {
         let mut o = self.opts.clone();
