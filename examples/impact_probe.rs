@@ -75,9 +75,10 @@ fn main() {
         std::process::exit(2)
     });
     let (mut duration, mut skip, mut fs) = (0.01, 0.002, 1.0e6);
-    let mut opts = FullOptions::default();
-    opts.lock_tilt = scene.full.lock_tilt;
-    opts.traction = scene.full.traction;
+    let mut opts = FullOptions {
+        lock_tilt: scene.full.lock_tilt,
+        traction: scene.full.traction,
+    };
     let mut summary = false;
     let mut trace: Option<(usize, f64, f64)> = None;
     for kv in &args[2..] {
