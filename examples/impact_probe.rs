@@ -208,6 +208,13 @@ fn main() {
                         ..Pass::default()
                     });
                 }
+                if !inz && was_in[j] {
+                    if let Some(mut p) = open[j].take() {
+                        p.t_out = *ts;
+                        p.e_out = m.energy(y);
+                        after[j] = Some(p);
+                    }
+                }
                 if let Some(p) = open[j].as_mut() {
                     if q > p.q_zone {
                         p.q_zone = q;
@@ -215,13 +222,6 @@ fn main() {
                     }
                     p.q_zone_other = p.q_zone_other.max(q_other);
                     p.a_max = p.a_max.max(acc);
-                }
-                if !inz && was_in[j] {
-                    if let Some(mut p) = open[j].take() {
-                        p.t_out = *ts;
-                        p.e_out = m.energy(y);
-                        after[j] = Some(p);
-                    }
                 }
                 if let Some(p) = after[j].as_mut() {
                     if *ts - p.t_out < 1e-3 {

@@ -200,7 +200,7 @@ pub struct WorkStats {
 }
 
 /// Output sampling of an advance: the interval and the callback receiving (time, outputs).
-type Sampler<'a> = (f64, &'a mut dyn FnMut(f64, &[f64]));
+type Sampler<'a> = (f64, &'a mut dyn FnMut(f64, &[f64], &dyn Model));
 
 /// One simulation run.
 pub struct Simulation {
@@ -377,6 +377,18 @@ impl Simulation {
         dt: f64,
         sample: &mut dyn FnMut(f64, &[f64]),
     ) -> Result<(), SimError> {
+        self.advance_impl(t_end, Some((dt, &mut |t, o, _| sample(t, o))))
+    }
+
+    /// [`Simulation::advance_sampled`] whose callback also sees the model in the sample's
+    /// discrete mode, e.g. to ask which balls are inside the spall zone
+    /// ([`Model::in_spall_zone`]).
+    pub fn advance_sampled_with_model(
+        &mut self,
+        t_end: f64,
+        dt: f64,
+        sample: &mut dyn FnMut(f64, &[f64], &dyn Model),
+    ) -> Result<(), SimError> {
         self.advance_impl(t_end, Some((dt, sample)))
     }
 
@@ -450,7 +462,7 @@ impl Simulation {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
                     self.model.outputs(ts, y, &mut self.out_scratch);
-                    cb(ts, &self.out_scratch);
+                    cb(ts, &self.out_scratch, self.model.as_ref());
                 }
             }
             let event = match result {

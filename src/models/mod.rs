@@ -116,4 +116,11 @@ pub trait Model: Send {
 
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
+
+    /// True when ball j is inside the zone of the spall (|θ_bd| < θ_e) in the current discrete
+    /// mode; false for levels without per-ball positions. Used to measure the paper's impact
+    /// force (the largest contact force while the ball crosses the spall).
+    fn in_spall_zone(&self, _j: usize) -> bool {
+        false
+    }
 }

@@ -580,4 +580,8 @@ impl Model for FullModel {
     fn cage_speed(&self) -> f64 {
         self.cage_ratio * self.inputs.shaft_speed
     }
+
+    fn in_spall_zone(&self, j: usize) -> bool {
+        self.in_defect_zone(j)
+    }
 }
