@@ -200,7 +200,10 @@ pub struct WorkStats {
 }
 
 /// Output sampling of an advance: the interval and the callback receiving (time, outputs).
-type Sampler<'a> = (f64, &'a mut dyn FnMut(f64, &[f64], &dyn Model));
+/// A sample callback that also sees the model (time, outputs, model).
+pub type ModelSampler<'a> = dyn FnMut(f64, &[f64], &dyn Model) + 'a;
+
+type Sampler<'a> = (f64, &'a mut ModelSampler<'a>);
 
 /// One simulation run.
 pub struct Simulation {
@@ -387,7 +390,7 @@ impl Simulation {
         &mut self,
         t_end: f64,
         dt: f64,
-        sample: &mut dyn FnMut(f64, &[f64], &dyn Model),
+        sample: &mut ModelSampler<'_>,
     ) -> Result<(), SimError> {
         self.advance_impl(t_end, Some((dt, sample)))
     }
