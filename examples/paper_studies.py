@@ -20,10 +20,14 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 STUDIES = [
-    # (study, x column, x label, x scale)
-    ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0),
-    ("sec3.3-width", "defect.width", "spall width [mm]", 1e3),
-    ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)", 1.0),
+    # (study, x column, x label, x scale, curve column)
+    ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0, "fidelity"),
+    ("sec3.3-width", "defect.width", "spall width [mm]", 1e3, "fidelity"),
+    ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)",
+     1.0, "fidelity"),
+    ("sec3.4-speed-position", "defect.theta0",
+     "spall position theta_d0 [rad] (pi = load-zone centre), full level", 1.0,
+     "operating.speed_rpm"),
 ]
 
 
@@ -40,12 +44,14 @@ def read(path):
     return sorted(rows, key=lambda r: int(r["run_index"]))
 
 
-def series(rows, xcol, scale):
+def series(rows, xcol, scale, group="fidelity"):
     """{fidelity: [(x, impact, max_q_outer, max_q_inner, status, segment_max)]} sorted by x;
     impact is impact_q_zone where the level records passes, else impact_q_median."""
     out = {}
     for r in rows:
-        fid = r.get("fidelity", "base")
+        fid = r.get(group, "base")
+        if group != "fidelity":
+            fid = f"{float(fid):g} rpm" if group == "operating.speed_rpm" else fid
         ok = r["status"] == "ok"
         vals = [float(r[k]) if ok else float("nan")
                 for k in ("impact_q_zone", "max_q_outer", "max_q_inner", "impact_q_median")]
@@ -73,7 +79,7 @@ def main():
 
     raceway = str(a.raceway or default_raceway())
     Path(a.img).mkdir(parents=True, exist_ok=True)
-    for study, xcol, xlabel, scale in STUDIES:
+    for study, xcol, xlabel, scale, group in STUDIES:
         out = Path(a.out) / study
         if not a.no_run:
             subprocess.run(
@@ -81,14 +87,14 @@ def main():
                  "--out", str(out), "--jobs", str(a.jobs)],
                 check=True,
             )
-        data = series(read(out / "results.csv"), xcol, scale)
+        data = series(read(out / "results.csv"), xcol, scale, group)
         fig, ax = plt.subplots(figsize=(10, 4.2))
         for fid, pts in data.items():
             xs = [p[0] for p in pts]
             label = ("impact: median over passes of the largest force inside the spall zone"
-                     if fid == "full" else "median over 1/BPFO segments of the largest race force")
+                     if fid != "lumped" else "median over 1/BPFO segments of the largest race force")
             line, = ax.plot(xs, [p[1] for p in pts], "o-", lw=2, label=f"{fid}: {label}")
-            if fid == "full":
+            if fid != "lumped":
                 ax.plot(xs, [p[5] for p in pts], "s--", color=line.get_color(), alpha=0.6,
                         label=f"{fid}: old measure, segment maximum (incl. rattling after exit)")
             ax.plot(xs, [p[2] for p in pts], "^:", color=line.get_color(), alpha=0.5,
