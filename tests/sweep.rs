@@ -355,3 +355,20 @@ harmonics = 1
     assert!(num(lumped, "impact_q_zone").is_nan());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `defect.blend_length` sets the C9 edge-stiffness blend of the run's bearing (0 = abrupt).
+#[test]
+fn blend_length_key_reaches_the_scene() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[axes]
+"defect.blend_length" = [0.0, 2.0e-4]
+"#,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let blend = |i: usize| sw.scene_for(&runs[i]).unwrap().0.bearing.defect.blend_length;
+    assert_eq!(blend(0), raceway::config::BlendLength::Metres(0.0));
+    assert_eq!(blend(1), raceway::config::BlendLength::Metres(2.0e-4));
+}
