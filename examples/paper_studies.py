@@ -23,6 +23,8 @@ STUDIES = [
     # (study, x column, x label, x scale, curve column)
     ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0, "fidelity"),
     ("sec3.3-width", "defect.width", "spall width [mm]", 1e3, "fidelity"),
+    ("sec3.3-width-abrupt", "defect.width", "spall width [mm], edge stiffness changed abruptly",
+     1e3, "fidelity"),
     ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)",
      1.0, "fidelity"),
     ("sec3.4-position-abrupt", "defect.theta0",

@@ -368,7 +368,14 @@ base = "../scenes/default.toml"
     )
     .unwrap();
     let runs = sw.runs();
-    let blend = |i: usize| sw.scene_for(&runs[i]).unwrap().0.bearing.defect.blend_length;
+    let blend = |i: usize| {
+        sw.scene_for(&runs[i])
+            .unwrap()
+            .0
+            .bearing
+            .defect
+            .blend_length
+    };
     assert_eq!(blend(0), raceway::config::BlendLength::Metres(0.0));
     assert_eq!(blend(1), raceway::config::BlendLength::Metres(2.0e-4));
 }

@@ -541,8 +541,7 @@ impl Sweep {
                 // C9 edge-stiffness blend length [m] of the bearing's [defect] table (0 = the
                 // paper's abrupt change of the Hertz constant).
                 "defect.blend_length" => {
-                    scene.bearing.defect.blend_length =
-                        crate::config::BlendLength::Metres(num()?)
+                    scene.bearing.defect.blend_length = crate::config::BlendLength::Metres(num()?)
                 }
                 "operating.speed_rpm" => scene.operating.speed_rpm = num()?,
                 "operating.fa" => scene.operating.fa = num()?,
