@@ -14,6 +14,12 @@
 //!   defect centre, positive in +θ;
 //! - the drop `g ≥ 0` is how far the ball centre can move toward the defective race, so the
 //!   overlap there becomes `δ′ = (δ − g) cos θ_dd` (eq. 13);
+//! - the C9 blend makes K depend on y_b; the contact potential (2/5)K(y_b)δ′^{5/2} then also
+//!   pushes along the track ([`DefectContact::dk_dy`]), which the full model applies so that a
+//!   pass over the spall does not create energy. The blend (default ℓ_b = b) and the paper's
+//!   abrupt change (ℓ_b = 0, which creates (2/5)(K_groove − K′)δ^{5/2} at each exit) give
+//!   different impact forces when a ball reaches the exit still deep in the edge contact; the
+//!   paper's Sec. 3.4 trend at 10 000 rpm appears only with ℓ_b = 0 (docs/sweeps.md);
 //! - `θ_dd` is the tilt of the true contact normal from the intact normal in the rolling plane,
 //!   positive when the contact point lies ahead of the ball in +θ (eq. 17–19); the unit vector
 //!   from the ball centre to the contact is `n_q = cos θ_dd n + sin θ_dd c2`.
