@@ -133,7 +133,7 @@ pub struct DefectContact {
     pub k_edge: f64,
     /// The edge constant K′ of `kind` without blending [N/m^1.5].
     pub k_unblended: f64,
-    /// d(k_edge)/dy_b [N/m^2.5]: nonzero inside the blend length ℓ_b of an edge. The contact
+    /// d(k_edge)/dy_b \[N/m^2.5\]: nonzero inside the blend length ℓ_b of an edge. The contact
     /// potential (2/5)K(y_b)δ′^{5/2} then also pushes along the track with
     /// −(2/5)δ′^{5/2} dK/dy_b; without that force the blend would create energy (C9 note).
     pub dk_dy: f64,
