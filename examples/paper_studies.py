@@ -20,10 +20,19 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 STUDIES = [
-    # (study, x column, x label, x scale)
-    ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0),
-    ("sec3.3-width", "defect.width", "spall width [mm]", 1e3),
-    ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)", 1.0),
+    # (study, x column, x label, x scale, curve column)
+    ("sec3.2-speed", "operating.speed_rpm", "shaft speed [rpm]", 1.0, "fidelity"),
+    ("sec3.3-width", "defect.width", "spall width [mm]", 1e3, "fidelity"),
+    ("sec3.3-width-abrupt", "defect.width", "spall width [mm], edge stiffness changed abruptly",
+     1e3, "fidelity"),
+    ("sec3.4-position", "defect.theta0", "spall position theta_d0 [rad] (pi = load-zone centre)",
+     1.0, "fidelity"),
+    ("sec3.4-position-abrupt", "defect.theta0",
+     "spall position theta_d0 [rad] (pi = load-zone centre), edge stiffness changed abruptly", 1.0,
+     "fidelity"),
+    ("sec3.4-speed-position", "defect.theta0",
+     "spall position theta_d0 [rad] (pi = load-zone centre), full level", 1.0,
+     "operating.speed_rpm"),
 ]
 
 
@@ -40,15 +49,21 @@ def read(path):
     return sorted(rows, key=lambda r: int(r["run_index"]))
 
 
-def series(rows, xcol, scale):
-    """{fidelity: [(x, impact_q_median, max_q_outer, max_q_inner, status)]} sorted by x."""
+def series(rows, xcol, scale, group="fidelity"):
+    """{fidelity: [(x, impact, max_q_outer, max_q_inner, status, segment_max)]} sorted by x;
+    impact is impact_q_zone where the level records passes, else impact_q_median."""
     out = {}
     for r in rows:
-        fid = r.get("fidelity", "base")
+        fid = r.get(group, "base")
+        if group != "fidelity":
+            fid = f"{float(fid):g} rpm" if group == "operating.speed_rpm" else fid
         ok = r["status"] == "ok"
         vals = [float(r[k]) if ok else float("nan")
-                for k in ("impact_q_median", "max_q_outer", "max_q_inner")]
-        out.setdefault(fid, []).append((float(r[xcol]) * scale, *vals, r["status"]))
+                for k in ("impact_q_zone", "max_q_outer", "max_q_inner", "impact_q_median")]
+        seg = vals.pop()
+        if ok and not int(r.get("impact_passes", "0") or 0):
+            vals[0] = seg
+        out.setdefault(fid, []).append((float(r[xcol]) * scale, *vals, r["status"], seg))
     for v in out.values():
         v.sort()
     return out
@@ -69,7 +84,7 @@ def main():
 
     raceway = str(a.raceway or default_raceway())
     Path(a.img).mkdir(parents=True, exist_ok=True)
-    for study, xcol, xlabel, scale in STUDIES:
+    for study, xcol, xlabel, scale, group in STUDIES:
         out = Path(a.out) / study
         if not a.no_run:
             subprocess.run(
@@ -77,12 +92,16 @@ def main():
                  "--out", str(out), "--jobs", str(a.jobs)],
                 check=True,
             )
-        data = series(read(out / "results.csv"), xcol, scale)
+        data = series(read(out / "results.csv"), xcol, scale, group)
         fig, ax = plt.subplots(figsize=(10, 4.2))
         for fid, pts in data.items():
             xs = [p[0] for p in pts]
-            line, = ax.plot(xs, [p[1] for p in pts], "o-", lw=2,
-                            label=f"{fid}: impact (median over passes of the pass maximum)")
+            label = ("impact: median over passes of the largest force inside the spall zone"
+                     if fid != "lumped" else "median over 1/BPFO segments of the largest race force")
+            line, = ax.plot(xs, [p[1] for p in pts], "o-", lw=2, label=f"{fid}: {label}")
+            if fid != "lumped":
+                ax.plot(xs, [p[5] for p in pts], "s--", color=line.get_color(), alpha=0.6,
+                        label=f"{fid}: old measure, segment maximum (incl. rattling after exit)")
             ax.plot(xs, [p[2] for p in pts], "^:", color=line.get_color(), alpha=0.5,
                     label=f"{fid}: largest outer-race force")
             ax.plot(xs, [p[3] for p in pts], "v:", color=line.get_color(), alpha=0.3,
@@ -100,7 +119,7 @@ def main():
         print(f"\n### {study}  ({png.relative_to(REPO) if png.is_relative_to(REPO) else png})\n")
         fids = list(data)
         print("| " + xlabel + " | " + " | ".join(
-            f"{f}: impact / max Q_out / max Q_in [N]" for f in fids) + " |")
+            f"{f}: impact / segment max / max Q_out / max Q_in [N]" for f in fids) + " |")
         print("|---" * (len(fids) + 1) + "|")
         xs = sorted({p[0] for pts in data.values() for p in pts})
         for x in xs:
@@ -108,7 +127,7 @@ def main():
             for f in fids:
                 p = next((p for p in data[f] if p[0] == x), None)
                 cells.append("—" if p is None or p[4] != "ok"
-                             else f"**{p[1]:.0f}** / {p[2]:.0f} / {p[3]:.0f}")
+                             else f"**{p[1]:.0f}** / {p[5]:.0f} / {p[2]:.0f} / {p[3]:.0f}")
             print(f"| {x:g} | " + " | ".join(cells) + " |")
 
 

@@ -76,27 +76,12 @@ fn main() {
             q.push(o[out::CONTACT_START + if inner { j } else { z + j }]);
         }
     };
-    let (t_end, stats) = if lock_tilt {
-        match run_direct(&scene, duration, fs, &mut record) {
-            Ok(r) => r,
-            Err(e) => {
-                eprintln!("{e}");
-                std::process::exit(2);
-            }
+    let (t_end, stats) = match simulate(&scene, duration, fs, lock_tilt, &mut record) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(2);
         }
-    } else {
-        let mut sim = match Simulation::new(&scene) {
-            Ok(s) => s,
-            Err(e) => {
-                eprintln!("{e}");
-                std::process::exit(2);
-            }
-        };
-        if let Err(e) = sim.advance_sampled(duration, 1.0 / fs, &mut record) {
-            eprintln!("run failed: {e}");
-        }
-        let st = sim.stats();
-        (sim.time(), (st.steps, st.rejected, st.rhs_evals))
     };
     let wall = start.elapsed().as_secs_f64();
     // Impacts: per ball, after the outer force fell below 5 % of its recent level (entry), the
@@ -148,8 +133,28 @@ fn main() {
     let dom_f = dominant.as_ref().map_or(f64::NAN, |p| p.freq);
     let ok_dom = (dom_f / 5885.0 - 1.0).abs() < 0.10;
     if impact.is_some() {
-        // Impact test (C14): acceleration spectrum of pedestal.a.z from the pulse (20 ms) on.
-        let sp = signal::amplitude_spectrum(a, fs, Window::Hann).ok();
+        // Impact test (C14): the pulse response of pedestal.a.z from the pulse (20 ms) on, i.e.
+        // this run minus the same run without the pulse (removes the running ball-pass
+        // vibration), zero-padded to 1 s (1 Hz bins) with a rectangular window: the response
+        // has decayed long before the record ends (fel mode ζ ≈ 0.21, e-folding ≈ 1.3 ms), so
+        // this is its Fourier transform. A Hann window starting at the pulse would suppress the
+        // first milliseconds, where the heavily damped fel response lives, and move its peak
+        // (single-DOF check: 596 Hz rectangular, 550 Hz Hann; tests/lumped.rs does the same).
+        let mut quiet = scene.clone();
+        quiet.pulse = None;
+        let mut acc0 = Vec::new();
+        let mut rec0 = |_: f64, o: &[f64]| acc0.push(o[out::PEDESTAL_A_Z]);
+        if let Err(e) = simulate(&quiet, duration, fs, lock_tilt, &mut rec0) {
+            eprintln!("{e}");
+            std::process::exit(2);
+        }
+        let mut d: Vec<f64> = a
+            .iter()
+            .zip(acc0.get(k0..).unwrap_or_default())
+            .map(|(x, y)| x - y)
+            .collect();
+        d.resize(fs as usize, 0.0);
+        let sp = signal::amplitude_spectrum(&d, fs, Window::Rectangular).ok();
         let pk = |lo: f64, hi: f64| {
             sp.as_ref()
                 .and_then(|s| signal::dominant_peak(s, lo, hi))
@@ -202,6 +207,26 @@ fn main() {
             eprintln!("cannot write {p}: {e}");
         }
     }
+}
+
+/// Runs the scene at fidelity full (through `Simulation`, or the model directly when the tilt is
+/// held), sampling every 1/fs s; returns the end time and (steps, rejected, RHS evaluations).
+fn simulate(
+    scene: &Scene,
+    duration: f64,
+    fs: f64,
+    lock_tilt: bool,
+    record: &mut dyn FnMut(f64, &[f64]),
+) -> Result<(f64, (u64, u64, u64)), String> {
+    if lock_tilt {
+        return run_direct(scene, duration, fs, record);
+    }
+    let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+    if let Err(e) = sim.advance_sampled(duration, 1.0 / fs, record) {
+        eprintln!("run failed: {e}");
+    }
+    let st = sim.stats();
+    Ok((sim.time(), (st.steps, st.rejected, st.rhs_evals)))
 }
 
 struct Driver<'a>(&'a mut FullModel);

@@ -14,6 +14,12 @@
 //!   defect centre, positive in +θ;
 //! - the drop `g ≥ 0` is how far the ball centre can move toward the defective race, so the
 //!   overlap there becomes `δ′ = (δ − g) cos θ_dd` (eq. 13);
+//! - the C9 blend makes K depend on y_b; the contact potential (2/5)K(y_b)δ′^{5/2} then also
+//!   pushes along the track ([`DefectContact::dk_dy`]), which the full model applies so that a
+//!   pass over the spall does not create energy. The blend (default ℓ_b = b) and the paper's
+//!   abrupt change (ℓ_b = 0, which creates (2/5)(K_groove − K′)δ^{5/2} at each exit) give
+//!   different impact forces when a ball reaches the exit still deep in the edge contact; the
+//!   paper's Sec. 3.4 trend at 10 000 rpm appears only with ℓ_b = 0 (docs/sweeps.md);
 //! - `θ_dd` is the tilt of the true contact normal from the intact normal in the rolling plane,
 //!   positive when the contact point lies ahead of the ball in +θ (eq. 17–19); the unit vector
 //!   from the ball centre to the contact is `n_q = cos θ_dd n + sin θ_dd c2`.
@@ -127,6 +133,10 @@ pub struct DefectContact {
     pub k_edge: f64,
     /// The edge constant K′ of `kind` without blending [N/m^1.5].
     pub k_unblended: f64,
+    /// d(k_edge)/dy_b \[N/m^2.5\]: nonzero inside the blend length ℓ_b of an edge. The contact
+    /// potential (2/5)K(y_b)δ′^{5/2} then also pushes along the track with
+    /// −(2/5)δ′^{5/2} dK/dy_b; without that force the blend would create energy (C9 note).
+    pub dk_dy: f64,
 }
 
 impl DefectContact {
@@ -595,6 +605,7 @@ impl Defect {
             kind,
             k_edge: self.blend(y_b, c, self.c_groove, k),
             k_unblended: k,
+            dk_dy: self.blend_slope(y_b, c, self.c_groove),
         })
     }
 
@@ -612,6 +623,20 @@ impl Defect {
                 c.k_unblended,
             ),
         }
+    }
+
+    /// dK/dy_b of [`Defect::blend`] (the edge constant itself is taken as constant within a
+    /// table cell): inside ℓ_b of an edge the compliance c = c_g + (s/ℓ_b)(c_e − c_g), s =
+    /// w_d/2 − |y_b|, so dK/dy_b = −(3/2) c^(−5/2) dc/dy_b with dc/dy_b = −sign(y_b)(c_e − c_g)/ℓ_b.
+    #[inline]
+    fn blend_slope(&self, y_b: f64, c_edge: f64, c_groove: f64) -> f64 {
+        let s = self.half_width - y_b.abs();
+        if !(s < self.blend_length && s > 0.0) {
+            return 0.0;
+        }
+        let c = c_groove + (s / self.blend_length) * (c_edge - c_groove);
+        let dc = -y_b.signum() * (c_edge - c_groove) / self.blend_length;
+        -1.5 * dc / (c * c * c.sqrt())
     }
 
     /// Compliance blend; `c_edge`, `c_groove` are K^(−2/3), `k_edge` = c_edge^(−3/2).
@@ -734,5 +759,31 @@ mod tests {
         assert!(w > -PI && w <= PI && ((big - w) / TAU - ((big - w) / TAU).round()).abs() < 1e-9);
         assert!(wrap(-1e-300) <= PI && wrap(-1e-300) > -PI);
         assert!(wrap(f64::NAN).is_nan());
+    }
+    #[test]
+    fn blend_slope_matches_finite_differences_of_the_hertz_constant() {
+        let b = Bearing::load("niu2014-table1").unwrap();
+        let spec = DefectSpec {
+            ring: Race::Outer,
+            width: 2.0e-3,
+            depth: 0.5e-3,
+            theta0: 0.0,
+        };
+        let d = Defect::new(&spec, &b, 400.0).unwrap();
+        let kg = b.k(Race::Outer);
+        let lb = d.blend_length();
+        assert!(lb > 0.0);
+        for y in [
+            -1.0e-3 + 0.3 * lb,
+            -1.0e-3 + 0.8 * lb,
+            1.0e-3 - 0.5 * lb,
+            0.5e-3,
+        ] {
+            let h = 1e-9;
+            let fd = (d.hertz_constant(y + h, kg) - d.hertz_constant(y - h, kg)) / (2.0 * h);
+            let c = d.contact_at(y).unwrap();
+            let tol = 1e-5 * (fd.abs() + kg / lb);
+            assert!((c.dk_dy - fd).abs() < tol, "y {y}: {} vs {fd}", c.dk_dy);
+        }
     }
 }

@@ -285,7 +285,10 @@ pub struct WorkStats {
 }
 
 /// Output sampling of an advance: the interval and the callback receiving (time, outputs).
-type Sampler<'a> = (f64, &'a mut dyn FnMut(f64, &[f64]));
+/// A sample callback that also sees the model (time, outputs, model).
+pub type ModelSampler<'a> = dyn FnMut(f64, &[f64], &dyn Model) + 'a;
+
+type Sampler<'a> = (f64, &'a mut ModelSampler<'a>);
 
 /// One simulation run.
 pub struct Simulation {
@@ -650,6 +653,18 @@ impl Simulation {
         dt: f64,
         sample: &mut dyn FnMut(f64, &[f64]),
     ) -> Result<(), SimError> {
+        self.advance_impl(t_end, Some((dt, &mut |t, o, _| sample(t, o))))
+    }
+
+    /// [`Simulation::advance_sampled`] whose callback also sees the model in the sample's
+    /// discrete mode, e.g. to ask which balls are inside the spall zone
+    /// ([`Model::in_spall_zone`]).
+    pub fn advance_sampled_with_model(
+        &mut self,
+        t_end: f64,
+        dt: f64,
+        sample: &mut ModelSampler<'_>,
+    ) -> Result<(), SimError> {
         self.advance_impl(t_end, Some((dt, sample)))
     }
 
@@ -750,7 +765,7 @@ impl Simulation {
                             &mut self.out_scratch,
                         )?;
                     }
-                    cb(ts, &self.out_scratch);
+                    cb(ts, &self.out_scratch, self.model.as_ref());
                 }
             }
             let event = match result {

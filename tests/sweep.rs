@@ -302,3 +302,80 @@ fn a_results_file_of_another_sweep_is_refused() {
     assert!(e.to_string().contains("outside the grid"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The paper's impact force at L4 (`impact_q_zone`): one pass per ball crossing of the outer
+/// spall, counted against the kinematic pass rate, and the per-pass maximum inside the zone is
+/// a multiple of the running load (spec §8.2: Q_o = 417.6 N for Fa 3000 N at 10 000 rpm) but not
+/// above the run's largest outer-race force. A level without ball positions records no pass.
+#[test]
+fn impact_in_the_spall_zone_counts_every_pass() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[set]
+"operating.speed_rpm" = 10000.0
+"operating.fa" = 3000.0
+"operating.fr" = 0.0
+"defect.width" = 2.0e-3
+"defect.depth" = 0.5e-3
+"output.duration" = 0.008
+"output.skip" = 0.002
+"output.sample_rate" = 204800.0
+[axes]
+"fidelity" = ["lumped", "full"]
+[keep]
+harmonics = 1
+"#,
+    )
+    .unwrap();
+    let d = tmp("impact-zone");
+    let s = run(&sw, &d, 2);
+    assert_eq!((s.ran, s.failed), (2, 0));
+    let (h, rows) = canonical_rows(&d.join("results.csv")).unwrap();
+    let col = |name: &str| h.iter().position(|x| x == name).unwrap();
+    let num = |r: &Vec<String>, c: &str| r[col(c)].parse::<f64>().unwrap();
+    let full = rows.iter().find(|r| r[col("fidelity")] == "full").unwrap();
+    let lumped = rows
+        .iter()
+        .find(|r| r[col("fidelity")] == "lumped")
+        .unwrap();
+    // Passes in 6 ms at the model's BPFO (±1 for the passes cut by the window).
+    let expected = 0.006 * num(full, "bpfo_hz");
+    let passes = num(full, "impact_passes");
+    assert!(
+        (passes - expected).abs() <= 1.0,
+        "{passes} passes, expected {expected:.1}"
+    );
+    let impact = num(full, "impact_q_zone");
+    assert!(
+        impact > 1.5 * 417.6 && impact <= num(full, "max_q_outer"),
+        "impact {impact} N"
+    );
+    assert_eq!(num(lumped, "impact_passes"), 0.0);
+    assert!(num(lumped, "impact_q_zone").is_nan());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `defect.blend_length` sets the C9 edge-stiffness blend of the run's bearing (0 = abrupt).
+#[test]
+fn blend_length_key_reaches_the_scene() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[axes]
+"defect.blend_length" = [0.0, 2.0e-4]
+"#,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let blend = |i: usize| {
+        sw.scene_for(&runs[i])
+            .unwrap()
+            .0
+            .bearing
+            .defect
+            .blend_length
+    };
+    assert_eq!(blend(0), raceway::config::BlendLength::Metres(0.0));
+    assert_eq!(blend(1), raceway::config::BlendLength::Metres(2.0e-4));
+}

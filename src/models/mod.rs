@@ -166,4 +166,11 @@ pub trait Model: Send {
     fn reaction_jacobian(&mut self, _t: f64, _y: &[f64]) -> Option<ReactionJacobian> {
         None
     }
+
+    /// True when ball j is inside the zone of the spall (|θ_bd| < θ_e) in the current discrete
+    /// mode; false for levels without per-ball positions. Used to measure the paper's impact
+    /// force (the largest contact force while the ball crosses the spall).
+    fn in_spall_zone(&self, _j: usize) -> bool {
+        false
+    }
 }

@@ -28,6 +28,8 @@ pub fn metric_columns(keep: &Keep) -> Vec<String> {
                 "max_q_inner",
                 "max_q_outer",
                 "impact_q_median",
+                "impact_q_zone",
+                "impact_passes",
             ]
             .map(String::from),
         );
@@ -115,8 +117,27 @@ pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<M
         _ => z,
     };
     let mut q_race = Vec::new();
-    sim.advance_sampled(scene.output.duration, dt, &mut |t, o| {
-        if t < skip - 1e-12 {
+    // The paper's impact force (Sec. 3.1, 3.4: "the maximum contact force at impact point"):
+    // per ball pass, the largest force on the defective race while that ball is inside the
+    // spall zone (the trailing-edge hit), not the rattling after it left. Needs a level that
+    // knows ball positions (Model::in_spall_zone); otherwise no passes are recorded.
+    // Per ball: Some((largest force so far, pass started after output.skip)) while inside.
+    let mut zone_max: Vec<Option<(f64, bool)>> = vec![None; z];
+    let mut pass_maxima: Vec<f64> = Vec::new();
+    sim.advance_sampled_with_model(scene.output.duration, dt, &mut |t, o, model| {
+        let counted = t >= skip - 1e-12;
+        let r = out::CONTACT_START + race_offset;
+        for (j, zm) in zone_max.iter_mut().enumerate() {
+            if model.in_spall_zone(j) {
+                let q = o[r + j];
+                *zm = Some(zm.map_or((q, counted), |(m, c)| (m.max(q), c)));
+            } else if let Some((m, c)) = zm.take() {
+                if c {
+                    pass_maxima.push(m);
+                }
+            }
+        }
+        if !counted {
             return;
         }
         times.push(t);
@@ -191,7 +212,22 @@ pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<M
             n if n % 2 == 1 => maxima[n / 2],
             n => 0.5 * (maxima[n / 2 - 1] + maxima[n / 2]),
         };
-        row.extend([num(q_in.max(q_out)), num(q_in), num(q_out), num(median)]);
+        // Passes still inside the zone at the end are incomplete and not counted.
+        pass_maxima.sort_by(|a, b| a.total_cmp(b));
+        let n = pass_maxima.len();
+        let zone = match n {
+            0 => f64::NAN,
+            n if n % 2 == 1 => pass_maxima[n / 2],
+            n => 0.5 * (pass_maxima[n / 2 - 1] + pass_maxima[n / 2]),
+        };
+        row.extend([
+            num(q_in.max(q_out)),
+            num(q_in),
+            num(q_out),
+            num(median),
+            num(zone),
+            n.to_string(),
+        ]);
     }
     if keep.envelope_peaks {
         let fs = scene.output.sample_rate;

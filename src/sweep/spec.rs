@@ -47,6 +47,7 @@ const KEYS: &[(&str, KeyKind)] = &[
     ("defect.width", KeyKind::Number),
     ("defect.depth", KeyKind::Number),
     ("defect.theta0", KeyKind::Number),
+    ("defect.blend_length", KeyKind::Number),
     ("operating.speed_rpm", KeyKind::Number),
     ("operating.fa", KeyKind::Number),
     ("operating.fr", KeyKind::Number),
@@ -537,6 +538,11 @@ impl Sweep {
                 "defect.width" => defect.width = num()?,
                 "defect.depth" => defect.depth = num()?,
                 "defect.theta0" => defect.theta0 = num()?,
+                // C9 edge-stiffness blend length [m] of the bearing's [defect] table (0 = the
+                // paper's abrupt change of the Hertz constant).
+                "defect.blend_length" => {
+                    scene.bearing.defect.blend_length = crate::config::BlendLength::Metres(num()?)
+                }
                 "operating.speed_rpm" => scene.operating.speed_rpm = num()?,
                 "operating.fa" => scene.operating.fa = num()?,
                 "operating.fr" => scene.operating.fr = num()?,

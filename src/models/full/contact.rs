@@ -224,6 +224,8 @@ pub fn evaluate(
     let mut k_cbrt = race.k_cbrt;
     let mut a_star = race.a_star;
     let mut rs = race.rs;
+    let (mut track_gain, mut dk_dy) = (0.0, 0.0);
+    let c2_track = c2;
     if let Some(dv) = defect {
         let theta_br = (-rr[1]).atan2(rr[2]);
         let tbd = dv.defect.theta_bd(theta_br, dv.phi);
@@ -233,6 +235,9 @@ pub fn evaluate(
         }
         if let Some(c) = dv.defect.contact_at(y_b) {
             let y_rate = dv.defect.along_track_rate(tbd, dv.theta_bd_rate);
+            // dy_b per metre of ball-centre travel along the track direction c2.
+            track_gain = dv.defect.along_track_rate(tbd, 1.0) / rho;
+            dk_dy = c.dk_dy;
             delta = c.deflection(delta);
             ddelta = c.deflection_rate(ddelta, y_rate);
             k = c.k_edge;
@@ -257,6 +262,12 @@ pub fn evaluate(
     let q = (qe + damping * ddelta).max(0.0);
     out.q = q;
     out.f = scale(n, -q);
+    if dk_dy != 0.0 {
+        // Along-track force of the blended edge stiffness: −∂/∂y [(2/5) K(y) δ′^{5/2}] (C9),
+        // through the ball centre (a potential force), reaction on the ring.
+        let f_track = -0.4 * dk_dy * delta * delta * sd * track_gain;
+        out.f = add(out.f, scale(c2_track, f_track));
+    }
     out.qn = scale(n, q);
     out.qn_ring = scale(n_r, q);
     if q == 0.0 {

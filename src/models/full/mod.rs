@@ -205,6 +205,26 @@ impl FullModel {
         (&self.q_inner, &self.q_outer)
     }
 
+    /// True when ball j is inside the spall zone |θ_bd| < θ_e (as of the last
+    /// [`Model::update_mode`]).
+    pub fn in_defect_zone(&self, j: usize) -> bool {
+        self.sides.get(j).is_some_and(|s| *s != 0.0)
+    }
+
+    /// Both contacts of ball j at state y (inner, outer), with the spall half of the last
+    /// [`Model::update_mode`] (diagnostics).
+    pub fn ball_contacts(&self, y: &[f64], j: usize) -> (ContactOut, ContactOut) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        self.contacts_of(y, j, &kin, w, &self.inner_pose(y), &self.outer_pose(y))
+    }
+
+    /// Ball-to-spall angle θ_bd of ball j [rad] (NaN without a spall; diagnostics).
+    pub fn ball_theta_bd(&self, y: &[f64], j: usize) -> f64 {
+        self.defect
+            .as_ref()
+            .map_or(f64::NAN, |d| self.theta_bd(d, y, j).0)
+    }
+
     /// The spall, if any.
     pub fn defect(&self) -> Option<&Defect> {
         self.defect.as_ref()
@@ -652,5 +672,9 @@ impl Model for FullModel {
             }
         }
         Some(jac)
+    }
+
+    fn in_spall_zone(&self, j: usize) -> bool {
+        self.in_defect_zone(j)
     }
 }
