@@ -187,6 +187,7 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
     F_prev = None
     xhat = xv.copy()  # journal motion the bearing's current output belongs to
     ok = True
+    error = None
     t = t0
     for k in range(n):
         if feedthrough:
@@ -215,6 +216,7 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
             bearing.step(t, H)
         except Exception as e:  # an FMU refusing to continue counts as a failure
             ok = False
+            error = f"t = {t}: {e}"
             break
         t = t0 + (k + 1) * H
         xhat = np.concatenate([xv[:3] + H * xv[3:], xv[3:]])
@@ -226,12 +228,22 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
             on_step(t, rotor, bearing)
         if not np.all(np.isfinite(xv)) or np.max(np.abs(xv[:3] - x_start)) > blowup:
             ok = False
+            error = f"t = {t}: the journal left the {blowup} m ball around its start"
             break
     fs.append(bearing.get(BF) if ok else np.full(3, np.nan))
     return {
         "t": np.array(ts), "x": np.array(xs), "v": np.array(vs),
-        "F": np.array(fs[: len(ts)]), "ok": ok,
+        "F": np.array(fs[: len(ts)]), "ok": ok, "error": error,
     }
+
+
+def is_stable(t, e):
+    """Whether the oscillation e(t) decays: negative growth rate, or (when it has decayed into
+    round-off, where the slope is noise) its last eighth below 1e-3 of its first eighth."""
+    e = np.asarray(e) - np.mean(np.asarray(e)[len(e) // 2:])
+    n = max(len(e) // 8, 1)
+    first, last = np.max(np.abs(e[:n])), np.max(np.abs(e[-n:]))
+    return bool(growth_rate(t, e) < 0 or last < 1e-3 * first)
 
 
 def growth_rate(t, e):
