@@ -1128,3 +1128,49 @@ fn fd_jacobian(
     }
     Ok(jac)
 }
+
+/// Displacement-controlled quasi-static state (coupling mode "motion" at L0/L1): the inner ring
+/// held at displacement `u` = (δ_a, δ_y, δ_z) relative to the outer ring [m], every ball in its
+/// own equilibrium (contacts, centrifugal and gyroscopic forces) as in [`solve`]. The result's
+/// [`QuasiStatic::ring_force`] is the load the ring needs to stay at `u` (the bearing pushes the
+/// shaft with minus that), `stiffness` its central-difference Jacobian (h = [`STIFFNESS_STEP`]).
+/// `warm` holds the ball centres of a nearby solve (empty: zero-speed start); it is updated.
+pub fn displacement_controlled(
+    b: &Bearing,
+    speed: f64,
+    u: [f64; 3],
+    warm: &mut Vec<[f64; 2]>,
+) -> Result<QuasiStatic, QuasiStaticError> {
+    check_input(&LoadCase {
+        speed,
+        fa: u[0],
+        fy: u[1],
+        fz: u[2],
+    })?;
+    let g = Geometry::new(b);
+    if warm.len() != b.z {
+        *warm = (0..b.z).map(|j| zero_speed_x(&g, g.a(j, &u))).collect();
+    }
+    let re = eval_ring(&g, speed, &u, warm)?;
+    *warm = re.balls.iter().map(|e| e.eq.x).collect();
+    let stiffness = fd_jacobian(&g, speed, &u, warm, STIFFNESS_STEP, [true; 3])?;
+    let loaded: Vec<&BallEquilibrium> = re
+        .balls
+        .iter()
+        .map(|e| &e.eq)
+        .filter(|e| is_loaded(e.q_inner))
+        .collect();
+    let n = loaded.len().max(1) as f64;
+    Ok(QuasiStatic {
+        speed,
+        delta_axial: u[0],
+        delta_y: u[1],
+        delta_z: u[2],
+        cage_speed: loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n,
+        spin_speed: loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n,
+        balls: re.balls.iter().map(|e| e.eq).collect(),
+        stiffness,
+        iterations: 0,
+        residual: 0.0,
+    })
+}

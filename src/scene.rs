@@ -28,8 +28,10 @@
 //! skip = 0.02                     # transient excluded from spectra
 //! ```
 //!
-//! Optional tables: `[pulse]` (impact test, C14), `[lumped]` (resonator, slip jitter, seed) and
-//! `[full]` (traction on/off, inner-ring tilt held).
+//! Optional tables: `[pulse]` (impact test, C14), `[lumped]` (resonator, slip jitter, seed),
+//! `[full]` (traction on/off, inner-ring tilt held) and `[coupling]` (`mode = "force"`, the
+//! default: loads in, the inner ring integrated inside; or `"motion"`: the journal's
+//! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]).
 
 use crate::config::{BearingFile, ConfigError};
 use crate::defect::DefectSpec;
@@ -301,6 +303,68 @@ impl Default for FullSettings {
     }
 }
 
+/// How the bearing is cut from the shaft (scene table `[coupling]`, FMU parameter `coupling`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CouplingMode {
+    /// Loads in (`load.F*`), the inner ring integrated inside (code 0, the default).
+    #[default]
+    Force,
+    /// The journal's (inner-ring centre's) displacement and velocity in, the bearing's reaction
+    /// on the journal out; the loads only set the quasi-static start (code 1).
+    Motion,
+}
+
+impl CouplingMode {
+    /// The FMU's integer code.
+    pub fn code(self) -> i32 {
+        match self {
+            CouplingMode::Force => 0,
+            CouplingMode::Motion => 1,
+        }
+    }
+
+    pub fn from_code(code: i32) -> Option<Self> {
+        match code {
+            0 => Some(CouplingMode::Force),
+            1 => Some(CouplingMode::Motion),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CouplingMode::Force => "force",
+            CouplingMode::Motion => "motion",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        [CouplingMode::Force, CouplingMode::Motion]
+            .into_iter()
+            .find(|m| m.name() == s)
+    }
+}
+
+/// The `[coupling]` table as written (the mode is checked by name in [`Scene::from_toml_str`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CouplingFile {
+    #[serde(default = "default_coupling_mode")]
+    mode: String,
+}
+
+fn default_coupling_mode() -> String {
+    "force".into()
+}
+
+impl Default for CouplingFile {
+    fn default() -> Self {
+        Self {
+            mode: default_coupling_mode(),
+        }
+    }
+}
+
 /// Where the bearing description comes from in a scene file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
@@ -334,6 +398,8 @@ struct SceneFile {
     lumped: LumpedOptions,
     #[serde(default)]
     full: FullSettings,
+    #[serde(default)]
+    coupling: CouplingFile,
 }
 
 fn default_bearing() -> BearingRef {
@@ -353,6 +419,8 @@ pub struct Scene {
     pub pulse: Option<Pulse>,
     pub lumped: LumpedOptions,
     pub full: FullSettings,
+    /// Force (default) or motion coupling (table `[coupling]`, key `mode`).
+    pub coupling: CouplingMode,
 }
 
 impl Scene {
@@ -375,6 +443,7 @@ impl Scene {
             pulse: None,
             lumped: LumpedOptions::default(),
             full: FullSettings::default(),
+            coupling: CouplingMode::Force,
         }
     }
 
@@ -412,6 +481,15 @@ impl Scene {
                 }
             }
         };
+        let coupling = CouplingMode::from_name(&file.coupling.mode).ok_or_else(|| {
+            ConfigError::new(
+                "coupling.mode",
+                format!(
+                    "{origin}: '{}' is not a coupling mode; valid: 'force' (loads in), 'motion' (journal displacement and velocity in)",
+                    file.coupling.mode
+                ),
+            )
+        })?;
         let scene = Scene {
             name: file.name,
             bearing,
@@ -423,6 +501,7 @@ impl Scene {
             pulse: file.pulse,
             lumped: file.lumped,
             full: file.full,
+            coupling,
         };
         scene.validate()?;
         Ok(scene)

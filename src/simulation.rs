@@ -7,8 +7,9 @@
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
-use crate::models::Model;
-use crate::scene::{MethodName, Scene};
+use crate::models::motion::QsMotion;
+use crate::models::{Model, ReactionJacobian};
+use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
     AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method, Options,
     StepView, System,
@@ -58,6 +59,48 @@ impl Inputs {
             )));
         }
         Ok(())
+    }
+}
+
+/// The journal's (inner-ring centre's) motion in coupling mode "motion": displacement `x` [m]
+/// and velocity `v` [m/s] along x, y, z at the time it was set, in the frame and from the origin
+/// of the `ring.x/y/z` outputs: the inertial frame, x along the shaft axis (the axial load
+/// direction), z up (the radial load acts along −z); origin = the inner-ring centre when the
+/// bearing is unloaded and centred, with the pedestal (outer ring) at rest on unloaded supports.
+/// Until the next change the ring moves as x(t) = x + v (t − t_set).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct Journal {
+    pub x: [f64; 3],
+    pub v: [f64; 3],
+}
+
+impl Journal {
+    /// Rejects non-finite values, naming the FMU input.
+    pub fn check(&self) -> Result<(), SimError> {
+        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            if !self.x[k].is_finite() {
+                return Err(SimError::Input(format!(
+                    "journal.{axis} = {} is not a finite number",
+                    self.x[k]
+                )));
+            }
+            if !self.v[k].is_finite() {
+                return Err(SimError::Input(format!(
+                    "journal.v.{axis} = {} is not a finite number",
+                    self.v[k]
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Displacement at `dt` after it was set.
+    pub fn at(&self, dt: f64) -> [f64; 3] {
+        [
+            self.x[0] + self.v[0] * dt,
+            self.x[1] + self.v[1] * dt,
+            self.x[2] + self.v[2] * dt,
+        ]
     }
 }
 
@@ -215,6 +258,13 @@ pub struct Simulation {
     /// One interpolated state and one output vector (no allocation per advance).
     y_scratch: Vec<f64>,
     out_scratch: Vec<f64>,
+    /// Motion coupling: the journal, when it was set, and the loads of the start (the loads
+    /// the model keeps: `load.F*` act only at initialization in this mode).
+    journal: Journal,
+    journal_t: f64,
+    start_loads: [f64; 3],
+    /// Motion coupling at levels without ring states (L0, L1).
+    qs_motion: Option<QsMotion>,
 }
 
 /// Lets the integrator drive a model (the integrator knows nothing about bearings).
@@ -253,6 +303,8 @@ struct Snapshot {
     inputs: Inputs,
     model: Vec<f64>,
     integrator: IntegratorState,
+    #[serde(default)]
+    journal: Option<(Journal, f64)>,
 }
 
 const SNAPSHOT_FORMAT: &str = "raceway-simulation";
@@ -281,7 +333,7 @@ impl Simulation {
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
         let n_out = output_table(bearing.z).len();
-        Ok(Self {
+        let mut sim = Self {
             scene: scene.clone(),
             bearing,
             model,
@@ -291,7 +343,140 @@ impl Simulation {
             sample_times: Vec::new(),
             y_scratch: vec![0.0; n],
             out_scratch: vec![0.0; n_out],
-        })
+            journal: Journal::default(),
+            journal_t: 0.0,
+            start_loads: [inputs.fx, inputs.fy, inputs.fz],
+            qs_motion: None,
+        };
+        if scene.coupling == CouplingMode::Motion {
+            // The journal starts where the loads of the scene put the ring (the L1 start,
+            // spec §7), at rest.
+            let mut o = vec![0.0; n_out];
+            sim.model.outputs(0.0, &y0, &mut o);
+            let x = [o[out::RING_X], o[out::RING_Y], o[out::RING_Z]];
+            match sim.model.ring_states() {
+                Some(_) => sim.model.set_prescribed_ring(true),
+                None => sim.qs_motion = Some(QsMotion::new(&sim.bearing)),
+            }
+            sim.set_journal(Journal { x, v: [0.0; 3] })?;
+        }
+        Ok(sim)
+    }
+
+    /// The coupling mode of the scene.
+    pub fn coupling(&self) -> CouplingMode {
+        self.scene.coupling
+    }
+
+    /// The journal motion in force (last set, or the start's equilibrium at rest).
+    pub fn journal(&self) -> Journal {
+        self.journal
+    }
+
+    /// Prescribes the journal's (inner-ring centre's) motion from now on: the ring moves as
+    /// x(t) = j.x + j.v (t − now) until the next call (coupling mode "motion" only).
+    pub fn set_journal(&mut self, j: Journal) -> Result<(), SimError> {
+        if self.scene.coupling != CouplingMode::Motion {
+            return Err(SimError::Unsupported(
+                "the journal motion is an input in coupling mode 'motion' only (this simulation couples by force)".into(),
+            ));
+        }
+        j.check()?;
+        let t = self.integrator.t();
+        if let Some(rs) = self.model.ring_states() {
+            let n = self.model.dim();
+            self.y_scratch[..n].copy_from_slice(self.integrator.y());
+            for k in 0..3 {
+                self.y_scratch[rs.pos[k]] = j.x[k];
+                self.y_scratch[rs.vel[k]] = j.v[k];
+            }
+            self.integrator.set_state(t, &self.y_scratch[..n]);
+        } else if let Some(qs) = self.qs_motion.as_mut() {
+            // L0/L1: the model runs at the load the displaced ring needs.
+            let load = qs.solve(self.inputs.shaft_speed, j.x)?.load;
+            qs.applied_load = load;
+            let eff = Inputs {
+                fx: load[0],
+                fy: load[1],
+                fz: load[2],
+                ..self.inputs
+            };
+            self.model.set_inputs(&eff, t, self.integrator.y());
+        }
+        self.journal = j;
+        self.journal_t = t;
+        self.model.update_mode(t, self.integrator.y());
+        self.integrator.discontinuity();
+        Ok(())
+    }
+
+    /// Linearization of the bearing's reaction on the journal (`bearing.F`) with respect to
+    /// the journal's displacement and velocity at the current state (coupling mode "motion").
+    /// Analytic where the level provides it, else central differences of the level's outputs.
+    pub fn reaction_jacobian(&mut self) -> Result<ReactionJacobian, SimError> {
+        if self.scene.coupling != CouplingMode::Motion {
+            return Err(SimError::Unsupported(
+                "the reaction Jacobian ∂bearing.F/∂journal exists in coupling mode 'motion' only"
+                    .into(),
+            ));
+        }
+        let t = self.integrator.t();
+        if let Some(qs) = self.qs_motion.as_mut() {
+            let x = self.journal.at(t - self.journal_t);
+            return Ok(qs.solve(self.inputs.shaft_speed, x)?.jacobian);
+        }
+        let Some(rs) = self.model.ring_states() else {
+            return Err(SimError::Unsupported("no ring states".into()));
+        };
+        if let Some(j) = self.model.reaction_jacobian(t, self.integrator.y()) {
+            return Ok(j);
+        }
+        // Central differences of the model's own bearing.F.
+        let n = self.model.dim();
+        let mut y = self.integrator.y().to_vec();
+        let mut o = vec![0.0; self.out_scratch.len()];
+        let mut jac = ReactionJacobian::default();
+        for (idx, h, is_pos) in rs
+            .pos
+            .iter()
+            .map(|&i| (i, 1e-10, true))
+            .chain(rs.vel.iter().map(|&i| (i, 1e-5, false)))
+            .collect::<Vec<_>>()
+        {
+            let col = if is_pos {
+                rs.pos.iter().position(|&p| p == idx)
+            } else {
+                rs.vel.iter().position(|&p| p == idx)
+            }
+            .expect("index of the ring");
+            let save = y[idx];
+            y[idx] = save + h;
+            self.model.outputs(t, &y[..n], &mut o);
+            let fp = [
+                o[out::BEARING_F_X],
+                o[out::BEARING_F_Y],
+                o[out::BEARING_F_Z],
+            ];
+            y[idx] = save - h;
+            self.model.outputs(t, &y[..n], &mut o);
+            let fm = [
+                o[out::BEARING_F_X],
+                o[out::BEARING_F_Y],
+                o[out::BEARING_F_Z],
+            ];
+            y[idx] = save;
+            for i in 0..3 {
+                let d = (fp[i] - fm[i]) / (2.0 * h);
+                if is_pos {
+                    jac.dfdx[i][col] = d;
+                } else {
+                    jac.dfdv[i][col] = d;
+                }
+            }
+        }
+        // Leave the model's caches at the current state.
+        self.model.outputs(t, &y[..n], &mut o);
+        Ok(jac)
     }
 
     /// Absolute tolerances: rtol × each state's nominal value (spec `solvers.md`).
@@ -331,17 +516,43 @@ impl Simulation {
 
     /// Sets the inputs from now on (piecewise constant until the next change). Unchanged
     /// inputs are free; a change is a discontinuity for the integrator.
+    ///
+    /// In coupling mode "motion" the loads act only at the start: later loads are kept (and
+    /// reported by [`Simulation::inputs`]) but the model runs on the start's loads (L2, L4) or
+    /// on the load the displaced ring needs (L0, L1).
     pub fn set_inputs(&mut self, inputs: Inputs) -> Result<(), SimError> {
         inputs.check()?;
         if inputs == self.inputs {
             return Ok(());
         }
-        self.inputs = inputs;
         let t = self.integrator.t();
-        self.model.set_inputs(&inputs, t, self.integrator.y());
+        let eff = self.effective_inputs(&inputs, t)?;
+        self.inputs = inputs;
+        self.model.set_inputs(&eff, t, self.integrator.y());
         self.model.update_mode(t, self.integrator.y());
         self.integrator.discontinuity();
         Ok(())
+    }
+
+    /// The inputs the model runs on: the given ones in force mode; in motion mode with the
+    /// start's loads (L2, L4) or the load the displaced ring needs (L0, L1).
+    fn effective_inputs(&mut self, inputs: &Inputs, t: f64) -> Result<Inputs, SimError> {
+        let mut eff = *inputs;
+        if self.scene.coupling == CouplingMode::Motion {
+            let load = match self.qs_motion.as_mut() {
+                Some(qs) => {
+                    let x = self.journal.at(t - self.journal_t);
+                    let load = qs.solve(inputs.shaft_speed, x)?.load;
+                    qs.applied_load = load;
+                    load
+                }
+                None => self.start_loads,
+            };
+            eff.fx = load[0];
+            eff.fy = load[1];
+            eff.fz = load[2];
+        }
+        Ok(eff)
     }
 
     /// Changes the relative tolerance (absolute tolerances follow: rtol × nominal).
@@ -450,6 +661,16 @@ impl Simulation {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
                     self.model.outputs(ts, y, &mut self.out_scratch);
+                    if let Some(qs) = self.qs_motion.as_mut() {
+                        let x = self.journal.at(ts - self.journal_t);
+                        qs_motion_outputs(
+                            qs,
+                            &self.bearing,
+                            self.inputs.shaft_speed,
+                            x,
+                            &mut self.out_scratch,
+                        )?;
+                    }
                     cb(ts, &self.out_scratch);
                 }
             }
@@ -477,9 +698,24 @@ impl Simulation {
     }
 
     /// Fills `out` (length `output_table().len()`) with the outputs at the current time.
+    ///
+    /// In coupling mode "motion" at L0/L1 the ring, pedestal and bearing force come from the
+    /// displacement-controlled quasi-static reaction at the journal's current displacement; if
+    /// that cannot be solved (e.g. the journal pushed past the balls) the outputs keep the
+    /// model's values and the error is returned.
     pub fn outputs(&mut self, out: &mut [f64]) {
+        let _ = self.try_outputs(out);
+    }
+
+    /// [`Simulation::outputs`] reporting a failed quasi-static reaction (motion mode, L0/L1).
+    pub fn try_outputs(&mut self, out: &mut [f64]) -> Result<(), SimError> {
         let t = self.integrator.t();
         self.model.outputs(t, self.integrator.y(), out);
+        if let Some(qs) = self.qs_motion.as_mut() {
+            let x = self.journal.at(t - self.journal_t);
+            qs_motion_outputs(qs, &self.bearing, self.inputs.shaft_speed, x, out)?;
+        }
+        Ok(())
     }
 
     /// The cage speed the model uses [rad/s].
@@ -507,6 +743,7 @@ impl Simulation {
             inputs: self.inputs,
             model: self.model.discrete_state(),
             integrator: self.integrator.snapshot(),
+            journal: Some((self.journal, self.journal_t)),
         };
         serde_json::to_vec(&snap).expect("a snapshot serializes")
     }
@@ -536,11 +773,41 @@ impl Simulation {
             .map_err(|e| SimError::State(e.to_string()))?;
         self.inputs = snap.inputs;
         let t = self.integrator.t();
-        self.model.set_inputs(&snap.inputs, t, self.integrator.y());
+        if let Some((j, tj)) = snap.journal {
+            j.check()?;
+            self.journal = j;
+            self.journal_t = tj;
+        }
+        let eff = self.effective_inputs(&snap.inputs, t)?;
+        self.model.set_inputs(&eff, t, self.integrator.y());
         self.model
             .set_discrete_state(&snap.model)
             .map_err(SimError::State)?;
         self.model.update_mode(t, self.integrator.y());
         Ok(())
     }
+}
+
+/// Overrides ring, pedestal and bearing-force outputs with the displacement-controlled
+/// quasi-static reaction at journal displacement `x` (L0/L1 in coupling mode "motion").
+fn qs_motion_outputs(
+    qs: &mut QsMotion,
+    bearing: &Bearing,
+    speed: f64,
+    x: [f64; 3],
+    o: &mut [f64],
+) -> Result<(), SimError> {
+    let applied = qs.applied_load;
+    let r = qs.solve(speed, x)?;
+    let p = &bearing.file.pedestal;
+    // The level placed the pedestal at (the load it runs on)/k_p: move it to this solution's.
+    o[out::PEDESTAL_Y] += r.pedestal[0] - applied[1] / p.k_y;
+    o[out::PEDESTAL_Z] += r.pedestal[1] - applied[2] / p.k_z;
+    o[out::RING_X] = x[0];
+    o[out::RING_Y] = x[1];
+    o[out::RING_Z] = x[2];
+    o[out::BEARING_F_X] = -r.load[0];
+    o[out::BEARING_F_Y] = -r.load[1];
+    o[out::BEARING_F_Z] = -r.load[2];
+    Ok(())
 }

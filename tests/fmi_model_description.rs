@@ -62,13 +62,42 @@ fn every_variable_is_in_the_xml_once_and_outputs_are_listed() {
             );
         }
     }
+    // The reaction depends directly on the journal motion (coupling mode motion): the
+    // dependencies of bearing.F.* list every journal input (what directional derivatives need).
+    let index = |name: &str| 1 + table.iter().position(|e| e.var.name == name).unwrap();
+    for f in ["bearing.F.x", "bearing.F.y", "bearing.F.z"] {
+        let start = xml
+            .find(&format!("<Unknown index=\"{}\" dependencies=\"", index(f)))
+            .unwrap();
+        let line = &xml[start..start + xml[start..].find("/>").unwrap()];
+        let deps: Vec<usize> = line
+            .split("dependencies=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .split_whitespace()
+            .map(|d| d.parse().unwrap())
+            .collect();
+        for j in [
+            "journal.x",
+            "journal.y",
+            "journal.z",
+            "journal.v.x",
+            "journal.v.y",
+            "journal.v.z",
+        ] {
+            assert!(deps.contains(&index(j)), "{f} depends on {j}: {line}");
+        }
+    }
     for attr in [
         "canHandleVariableCommunicationStepSize=\"true\"",
         "canGetAndSetFMUstate=\"true\"",
         "canSerializeFMUstate=\"true\"",
         "needsExecutionTool=\"false\"",
         "canBeInstantiatedOnlyOncePerProcess=\"false\"",
-        "providesDirectionalDerivative=\"false\"",
+        "providesDirectionalDerivative=\"true\"",
         "modelIdentifier=\"BallBearing\"",
         "<BaseUnit s=\"-1\" rad=\"1\"/>",
         "<DisplayUnit name=\"rpm\" factor=\"9.549296585513721\"/>",

@@ -6,17 +6,17 @@ use super::codec::{ByteReader, ByteWriter};
 use super::shell::{
     FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER,
 };
-use super::variables::{table, Config, Input, Param, Role, Stat};
+use super::variables::{table, Config, Input, JournalInput, Param, Role, Stat};
 use crate::config::BearingFile;
-use crate::scene::Scene;
-use crate::simulation::{Inputs, SimError, Simulation};
+use crate::scene::{CouplingMode, Scene};
+use crate::simulation::{out, Inputs, Journal, SimError, Simulation};
 use std::path::Path;
 
 /// Name of the bearing description inside the FMU's `resources/`.
 pub const BEARING_RESOURCE: &str = "bearing.toml";
 
 /// Version of the model part of the serialized FMU state.
-const MODEL_STATE_VERSION: u32 = 1;
+const MODEL_STATE_VERSION: u32 = 2;
 
 /// Reads `resources/bearing.toml`, or the default preset when there is none.
 pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
@@ -54,6 +54,10 @@ pub struct BallBearing {
     initial: Config,
     cfg: Config,
     inputs: Inputs,
+    /// Journal inputs (coupling mode "motion") and whether the master has set any of them; if
+    /// not, the journal starts at the static equilibrium of the L1 start, at rest.
+    journal: Journal,
+    journal_set: bool,
     start_time: f64,
     tolerance: Option<f64>,
     initialized: bool,
@@ -84,6 +88,8 @@ impl BallBearing {
             initial: cfg.clone(),
             cfg,
             inputs,
+            journal: Journal::default(),
+            journal_set: false,
             start_time: 0.0,
             tolerance: None,
             initialized: false,
@@ -121,7 +127,20 @@ impl BallBearing {
         let scene = self.scene_to_build()?;
         let mut sim = Simulation::new(&scene).map_err(sim_err)?;
         sim.set_inputs(self.inputs).map_err(sim_err)?;
+        if scene.coupling == CouplingMode::Motion && self.journal_set {
+            sim.set_journal(self.journal).map_err(sim_err)?;
+        }
         Ok(Live { sim, scene })
+    }
+
+    /// The journal the model uses: the one set, or (motion mode, none set) the start's.
+    fn journal_now(&self) -> Journal {
+        match &self.live {
+            Some(l) if !self.journal_set && l.scene.coupling == CouplingMode::Motion => {
+                l.sim.journal()
+            }
+            _ => self.journal,
+        }
     }
 
     fn ensure_live(&mut self) -> Result<&mut Live, String> {
@@ -135,7 +154,9 @@ impl BallBearing {
     fn refresh_outputs(&mut self) -> Result<(), String> {
         if !self.outputs_valid {
             let mut out = std::mem::take(&mut self.outputs);
-            let r = self.ensure_live().map(|l| l.sim.outputs(&mut out));
+            let r = self
+                .ensure_live()
+                .and_then(|l| l.sim.try_outputs(&mut out).map_err(sim_err));
             self.outputs = out;
             r?;
             self.outputs_valid = true;
@@ -216,6 +237,8 @@ impl FmuModel for BallBearing {
             );
         }
         self.live = Some(live);
+        self.journal = self.journal_now();
+        self.journal_set = true;
         self.initialized = true;
         self.outputs_valid = false;
         Ok(())
@@ -273,6 +296,8 @@ impl FmuModel for BallBearing {
     fn reset(&mut self) -> Result<(), String> {
         self.cfg = self.initial.clone();
         self.inputs = Inputs::from_scene(&self.cfg.scene);
+        self.journal = Journal::default();
+        self.journal_set = false;
         self.start_time = 0.0;
         self.tolerance = None;
         self.initialized = false;
@@ -284,6 +309,7 @@ impl FmuModel for BallBearing {
     fn get_real(&mut self, index: usize) -> Result<f64, String> {
         match self.roles[index] {
             Role::Input(i) => Ok(i.get(&self.inputs)),
+            Role::Journal(j) => Ok(j.get(&self.journal_now())),
             Role::Param(p) => Ok(self.cfg.get(p)),
             Role::Output(i) => {
                 self.refresh_outputs()?;
@@ -307,6 +333,20 @@ impl FmuModel for BallBearing {
                 self.invalidate();
                 Ok(())
             }
+            Role::Journal(j) => {
+                let mut next = self.journal_now();
+                j.set(&mut next, value);
+                match self.live.as_mut().filter(|_| self.initialized) {
+                    Some(live) if live.scene.coupling == CouplingMode::Motion => {
+                        live.sim.set_journal(next).map_err(sim_err)?;
+                    }
+                    _ => next.check().map_err(sim_err)?,
+                }
+                self.journal = next;
+                self.journal_set = true;
+                self.invalidate();
+                Ok(())
+            }
             Role::Param(p) => {
                 self.cfg.set(p, value)?;
                 self.invalidate();
@@ -314,6 +354,66 @@ impl FmuModel for BallBearing {
             }
             _ => Err(format!("'{}' cannot be set", self.vars[index].name)),
         }
+    }
+
+    /// ∂(bearing.F.*, ring.*)/∂(journal.*, load.F*) in coupling mode motion: bearing.F from the
+    /// level's reaction Jacobian, ring.* = journal displacement (identity), loads act only at
+    /// the start (zero). Other pairs are refused with a message (their direct dependence is not
+    /// linearized).
+    fn directional_derivative(
+        &mut self,
+        unknowns: &[usize],
+        knowns: &[usize],
+        dv_known: &[f64],
+        dv_unknown: &mut [f64],
+    ) -> Result<(), String> {
+        let roles = self.roles.clone();
+        let names: Vec<String> = self.vars.iter().map(|v| v.name.clone()).collect();
+        let live = self.ensure_live()?;
+        if live.scene.coupling != CouplingMode::Motion {
+            return Err(
+                "directional derivatives are provided in coupling mode motion (coupling = 1): \
+                 ∂bearing.F.*/∂journal.*; in force mode the outputs depend on the loads only \
+                 through the state"
+                    .into(),
+            );
+        }
+        let jac = live.sim.reaction_jacobian().map_err(sim_err)?;
+        for (u, &iu) in unknowns.iter().enumerate() {
+            let mut acc = 0.0;
+            for (&ik, &dk) in knowns.iter().zip(dv_known) {
+                let row = match roles[iu] {
+                    Role::Output(o) if (out::BEARING_F_X..=out::BEARING_F_Z).contains(&o) => {
+                        Some((o - out::BEARING_F_X, false))
+                    }
+                    Role::Output(o) if (out::RING_X..=out::RING_Z).contains(&o) => {
+                        Some((o - out::RING_X, true))
+                    }
+                    _ => None,
+                };
+                let d = match (row, roles[ik]) {
+                    (_, Role::Input(Input::Fx | Input::Fy | Input::Fz)) => 0.0,
+                    (Some((r, false)), Role::Journal(JournalInput(k))) if k < 3 => jac.dfdx[r][k],
+                    (Some((r, false)), Role::Journal(JournalInput(k))) => jac.dfdv[r][k - 3],
+                    (Some((r, true)), Role::Journal(JournalInput(k))) => {
+                        if k == r {
+                            1.0
+                        } else {
+                            0.0
+                        }
+                    }
+                    _ => {
+                        return Err(format!(
+                            "∂{}/∂{} is not provided: directional derivatives cover bearing.F.* and ring.* with respect to journal.* and load.F*",
+                            names[iu], names[ik]
+                        ))
+                    }
+                };
+                acc += d * dk;
+            }
+            dv_unknown[u] = acc;
+        }
+        Ok(())
     }
 
     fn get_integer(&mut self, index: usize) -> Result<i32, String> {
@@ -352,6 +452,10 @@ impl FmuModel for BallBearing {
         for i in Input::ALL {
             w.f64(i.get(&self.inputs));
         }
+        for j in JournalInput::ALL {
+            w.f64(j.get(&self.journal));
+        }
+        w.bool(self.journal_set);
         w.f64(self.start_time)
             .opt_f64(self.tolerance)
             .bool(self.initialized);
@@ -397,6 +501,11 @@ impl FmuModel for BallBearing {
         for i in Input::ALL {
             i.set(&mut inputs, r.f64("input")?);
         }
+        let mut journal = Journal::default();
+        for j in JournalInput::ALL {
+            j.set(&mut journal, r.f64(j.name())?);
+        }
+        let journal_set = r.bool("journal flag")?;
         let start_time = r.f64("start time")?;
         let tolerance = r.opt_f64("tolerance")?;
         let initialized = r.bool("initialized flag")?;
@@ -424,6 +533,8 @@ impl FmuModel for BallBearing {
         };
         self.cfg = cfg;
         self.inputs = inputs;
+        self.journal = journal;
+        self.journal_set = journal_set;
         self.start_time = start_time;
         self.tolerance = tolerance;
         self.initialized = initialized;

@@ -35,6 +35,49 @@ fn level_text(f: Fidelity) -> &'static str {
     }
 }
 
+/// The coupling-mode section: where the cut is, the two modes, stability, derivatives.
+const COUPLING_HTML: &str = r##"<h2>Coupling modes (parameter <code>coupling</code>)</h2>
+<p>The FMU is cut from the rest of the machine at the journal: the shaft (rotor model, outside) carries the inner ring's centre, the bearing (this FMU) holds the balls, the outer ring and the pedestal.</p>
+<svg xmlns="http://www.w3.org/2000/svg" width="760" height="210" viewBox="0 0 760 210" font-family="sans-serif" font-size="13">
+<rect x="10" y="40" width="150" height="110" fill="#e8f0ff" stroke="#345"/>
+<text x="85" y="30" text-anchor="middle">master / rotor FMU</text>
+<text x="85" y="90" text-anchor="middle">rotor, shaft</text>
+<text x="85" y="108" text-anchor="middle">(mass M, unbalance, ...)</text>
+<line x1="230" y1="20" x2="230" y2="190" stroke="#c00" stroke-width="3" stroke-dasharray="8,5"/>
+<text x="230" y="205" text-anchor="middle" fill="#c00">the cut: journal = inner-ring centre</text>
+<rect x="250" y="40" width="490" height="110" fill="#f6f6f6" stroke="#345"/>
+<text x="495" y="30" text-anchor="middle">BallBearing FMU</text>
+<rect x="265" y="60" width="110" height="70" fill="#fff" stroke="#345"/>
+<text x="320" y="90" text-anchor="middle">inner ring</text>
+<text x="320" y="108" text-anchor="middle">(journal)</text>
+<circle cx="420" cy="80" r="12" fill="#ddd" stroke="#345"/><circle cx="420" cy="112" r="12" fill="#ddd" stroke="#345"/>
+<text x="420" y="145" text-anchor="middle">balls</text>
+<rect x="465" y="60" width="120" height="70" fill="#fff" stroke="#345"/>
+<text x="525" y="90" text-anchor="middle">outer ring +</text>
+<text x="525" y="108" text-anchor="middle">pedestal</text>
+<line x1="585" y1="95" x2="640" y2="95" stroke="#345"/><polyline points="640,95 648,85 656,105 664,85 672,105 680,95 720,95" fill="none" stroke="#345"/>
+<text x="680" y="125" text-anchor="middle">k_p, c_p to ground</text>
+<line x1="160" y1="75" x2="265" y2="75" stroke="#06c" stroke-width="2" marker-end="url(#a)"/>
+<text x="197" y="68" text-anchor="middle" fill="#06c">journal.x/y/z, journal.v.*</text>
+<line x1="265" y1="118" x2="160" y2="118" stroke="#090" stroke-width="2" marker-end="url(#b)"/>
+<text x="197" y="137" text-anchor="middle" fill="#090">bearing.F.x/y/z</text>
+<defs><marker id="a" markerWidth="8" markerHeight="8" refX="8" refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="#06c"/></marker><marker id="b" markerWidth="8" markerHeight="8" refX="8" refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="#090"/></marker></defs>
+</svg>
+<table>
+<tr><th>coupling</th><th>inputs</th><th>what the FMU does</th><th>outputs</th></tr>
+<tr><td>0 force (default)</td><td><code>shaft.speed</code>, <code>load.Fx/Fy/Fz</code> (the external force on the inner ring); <code>journal.*</code> ignored</td><td>integrates the inner ring (with its mass <code>inner_ring.mass</code>) under the loads and the contact forces: one-way studies, loads from a gearbox or a measured spectrum</td><td>everything, <code>ring.x/y/z</code> the computed ring motion, <code>bearing.F.*</code> the contact force sum on the ring</td></tr>
+<tr><td>1 motion</td><td><code>shaft.speed</code>, <code>journal.x/y/z</code> [m], <code>journal.v.x/y/z</code> [m/s]; <code>load.F*</code> only at initialization</td><td>prescribes the inner ring's translation: within a communication step [t_k, t_k+1] the ring moves as x(t) = x_k + v_k (t − t_k) with the values set at t_k; the balls, the outer ring and the pedestal respond. Two-way coupling to a rotor model that owns the shaft mass.</td><td><code>bearing.F.x/y/z</code> = the reaction of the bearing on the journal (sum of the contact forces on the inner ring); <code>ring.x/y/z</code> = the journal displacement; pedestal accelerations and contact forces as in force mode</td></tr>
+</table>
+<p><b>Frame and origin.</b> <code>journal.*</code> and <code>ring.*</code> share the inertial frame (x along the shaft axis and the axial load, z up: the radial load of the default scene acts along −z) and the origin: the inner-ring centre of the unloaded, centred bearing with the pedestal at rest on unloaded supports. In motion mode the inner ring has no mass of its own in the FMU (put the ring's and the shaft's mass in the rotor model).</p>
+<p><b>Initialization.</b> In motion mode the loads <code>load.F*</code> define the quasi-static (L1) start: the FMU places the ring at the static equilibrium under these loads, and <code>ring.x/y/z</code> read in initialization mode (or after fmi2ExitInitializationMode) are that equilibrium. If the master has not set any <code>journal.*</code> before fmi2ExitInitializationMode, the journal starts there at rest (<code>journal.*</code> then read back as that equilibrium); start the rotor there (displacement = <code>ring.*</code>, the rotor's static load equal to <code>load.F*</code>) to begin without a transient. Later changes of <code>load.F*</code> are ignored in motion mode (the rotor carries the loads).</p>
+<p><b>Levels.</b> Lumped (2) and full (4) prescribe the inner-ring translation in their equations of motion; at the full level the ring's tilt stays a free degree of freedom of the ring (the interface has no rotations; set <code>[full] lock_tilt</code> in a scene to hold it at zero). Kinematic (0) and quasi-static (1) give the reaction from the displacement-controlled quasi-static equilibrium of every ball (centrifugal and gyroscopic forces included) with the pedestal in series on its springs; no velocity dependence.</p>
+<h3>Co-simulation stability</h3>
+<p>A bearing is stiff (k_b ≈ 1e8 N/m). For a rotor of mass M on it, ω = √(k_b/M), with damping ratio ζ (rotor damping plus contact damping, both enter alike to first order in ωH), an explicit coupling that holds the force constant over the macro step H is stable only for <b>ωH &lt; 4ζ</b>, and always unstable without damping; for M = 2 kg and ζ = 0.02 that is H &lt; 10 µs. Linear extrapolation of the inputs extends it to ωH &lt; 0.40/0.50/0.69/0.90 for ζ = 0.01/0.02/0.05/0.1. Typical 0.1–1 ms master steps are therefore unstable with a plain cut at the bearing. Remedies: small macro steps (cheap here: the internal steps are 2–5 µs anyway), cutting at a softer interface, input extrapolation, iterated coupling with state rollback (fmi2GetFMUstate/fmi2SetFMUstate), or the interface Jacobian below, which makes the coupling stable for any step on a linear bearing.</p>
+<h3>Interface Jacobian (fmi2GetDirectionalDerivative)</h3>
+<p>In motion mode the FMU provides ∂<code>bearing.F.*</code>/∂<code>journal.*</code> (a 3×6 block: contact stiffness ∂F/∂x and contact damping ∂F/∂v) at the current communication point, for the state and journal just set (direct feedthrough). At the lumped level it is analytic per closed contact: stiffness 1.5 K δ^½ along the normal, the geometric term Q/|a| (P − n nᵀ) of the normal turning with the displacement, the contact damping c_br along the normal and its dependence on the displacement, with the spall's modified Hertz constant for a ball in it. At the full level it is the central difference of the model's own reaction (includes traction). At kinematic and quasi-static levels it is the quasi-static stiffness with the pedestal in series (∂F/∂v = 0). Also provided: ∂<code>ring.*</code>/∂<code>journal.x/y/z</code> = identity and zero derivatives with respect to <code>load.F*</code>. Other pairs return fmi2Error naming them; in force mode the function returns fmi2Error.</p>
+<p>Use: at t_k set <code>journal.*</code>, read F_k = <code>bearing.F.*</code> and K = ∂F/∂x, C = ∂F/∂v (seed vectors e_j on the knowns, or one call per column). Integrate the rotor over [t_k, t_k + H] with the linearized bearing force F ≈ F_k + K (x − x_k) + C (v − v_k) implicitly (linearly implicit coupling, e.g. an exact or trapezoidal step of the linear rotor+bearing system); then step both FMUs. The co-simulation is then stable far beyond ωH = 4ζ.</p>
+"##;
+
 /// The HTML page. `availability` is [`fidelity_availability`]'s result (fmu-build computes it).
 pub fn documentation_html(
     bearing: &BearingFile,
@@ -55,7 +98,7 @@ pub fn documentation_html(
         esc(&info.generation_tool),
         esc(&guid)
     ));
-    h.push_str("<p>The FMU simulates the vibration of a ball bearing with a localized spall on one race after Niu, Cao, He and Li (ASME J. Manuf. Sci. Eng. 136 (2014) 041015): given the shaft speed and the external load on the inner ring (inputs), it integrates the bearing dynamics with an adaptive explicit Runge–Kutta method to exactly each communication point and returns pedestal accelerations, displacements, contact forces, the bearing reaction on the shaft and the cage speed (outputs).</p>\n");
+    h.push_str("<p>The FMU simulates the vibration of a ball bearing with a localized spall on one race after Niu, Cao, He and Li (ASME J. Manuf. Sci. Eng. 136 (2014) 041015): given the shaft speed and the external load on the inner ring (inputs; or, in coupling mode motion, the journal's displacement and velocity), it integrates the bearing dynamics with an adaptive explicit Runge–Kutta method to exactly each communication point and returns pedestal accelerations, displacements, contact forces, the bearing reaction on the shaft and the cage speed (outputs).</p>\n");
     h.push_str(&format!(
         "<h2>Bearing</h2>\n<p>'{}' with {} balls, ball diameter {} m, pitch diameter {} m, free contact angle {}°. The bearing is read at instantiation from <code>resources/bearing.toml</code>; the number of per-ball outputs follows the ball count, so a different bearing needs a different FMU (<code>cargo run --release -p fmu-build -- --bearing &lt;preset|file.toml&gt;</code>).</p>\n",
         esc(&bearing.name),
@@ -105,7 +148,7 @@ pub fn documentation_html(
             ),
         };
         let kind = match e.role {
-            Role::Input(_) => "input",
+            Role::Input(_) | Role::Journal(_) => "input",
             Role::Param(_) => "parameter (fixed)",
             Role::Output(_) | Role::Stat(_) => "output",
         };
@@ -128,9 +171,11 @@ pub fn documentation_html(
     }
     h.push_str("</table>\n");
 
+    h.push_str(COUPLING_HTML);
+
     h.push_str("<h2>Solver</h2>\n<ul>\n<li><code>solver.method</code>: 0 RKF45, 1 DOPRI5, 2 DOP853 (default), explicit embedded Runge–Kutta pairs with step-size control; every communication step ends exactly at t + h, and a change of the inputs is a restart of the integrator.</li>\n<li><code>solver.rtol</code>: relative tolerance (absolute tolerances are rtol × each state's nominal value). The <code>tolerance</code> of fmi2SetupExperiment, when defined, overrides it; the DefaultExperiment's tolerance is 1e-6.</li>\n<li><code>solver.max_steps</code>: step budget per communication step. When it is exhausted, or the step size underflows, or the state becomes non-finite, fmi2DoStep returns fmi2Discard; then fmi2GetBooleanStatus(fmi2Terminated) is true and fmi2GetRealStatus(fmi2LastSuccessfulTime) is the last good time.</li>\n<li>Integer outputs <code>solver.steps</code>, <code>solver.rejected</code>, <code>solver.rhs_evals</code> count the integrator's work since the start.</li>\n</ul>\n");
 
-    h.push_str("<h2>Behaviour of the FMU</h2>\n<ul>\n<li>Any number of instances per process, on any threads; no global state. The FMU state can be saved (fmi2GetFMUstate) and serialized; the serialized form is versioned, pointer-free, carries the GUID, and restores bit-identically in another process.</li>\n<li>Non-finite inputs or parameters, values outside the declared ranges and impossible geometry are rejected with fmi2Error and a message naming the variable. No output is ever returned as NaN with fmi2OK.</li>\n<li>A wrong call sequence returns fmi2Error (\"illegal call sequence\") and has no effect. fmi2Reset returns to the just-instantiated state from any state but Fatal.</li>\n<li>Log categories: logEvents, logSolver, logStatusWarning, logStatusDiscard, logStatusError, logStatusFatal, logAll. Discard, Error and Fatal messages are always passed to the logger.</li>\n<li>fmi2GetDirectionalDerivative, fmi2SetRealInputDerivatives, fmi2GetRealOutputDerivatives and fmi2CancelStep return fmi2Error (not supported).</li>\n</ul>\n");
+    h.push_str("<h2>Behaviour of the FMU</h2>\n<ul>\n<li>Any number of instances per process, on any threads; no global state. The FMU state can be saved (fmi2GetFMUstate) and serialized; the serialized form is versioned, pointer-free, carries the GUID, and restores bit-identically in another process.</li>\n<li>Non-finite inputs or parameters, values outside the declared ranges and impossible geometry are rejected with fmi2Error and a message naming the variable. No output is ever returned as NaN with fmi2OK.</li>\n<li>A wrong call sequence returns fmi2Error (\"illegal call sequence\") and has no effect. fmi2Reset returns to the just-instantiated state from any state but Fatal.</li>\n<li>Log categories: logEvents, logSolver, logStatusWarning, logStatusDiscard, logStatusError, logStatusFatal, logAll. Discard, Error and Fatal messages are always passed to the logger.</li>\n<li>fmi2GetDirectionalDerivative is provided in coupling mode motion (see above); fmi2SetRealInputDerivatives, fmi2GetRealOutputDerivatives and fmi2CancelStep return fmi2Error (not supported).</li>\n</ul>\n");
 
     h.push_str("<h2>Limits of validity</h2>\n<ul>\n<li>Rigid rings and balls apart from the Hertz contacts; the pedestal (with the outer ring) is a 2-DOF mass–spring–damper; the spall is a band across the whole groove with a smooth floor and sharp edges.</li>\n<li>Shaft speed ≥ 0 (rotation about +x); the loads must keep the balls loaded enough for the model's kinematic assumptions (an axial preload, as in the default scene, is advisable).</li>\n<li>Defect width must be smaller than the ball diameter; defect depth and width below 0.1 m.</li>\n<li>Outputs in the first ≈20 ms contain the start-up transient from the quasi-static initial state.</li>\n<li>Results agree between communication step sizes within the integrator tolerance (inputs are piecewise constant).</li>\n</ul>\n");
 

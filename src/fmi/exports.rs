@@ -213,14 +213,18 @@ macro_rules! export_fmi2 {
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
                 c: Fmi2Component,
-                _unknown: *const Fmi2ValueReference,
-                _n_unknown: usize,
-                _known: *const Fmi2ValueReference,
-                _n_known: usize,
-                _dv_known: *const Fmi2Real,
-                _dv_unknown: *mut Fmi2Real,
+                unknown: *const Fmi2ValueReference,
+                n_unknown: usize,
+                known: *const Fmi2ValueReference,
+                n_known: usize,
+                dv_known: *const Fmi2Real,
+                dv_unknown: *mut Fmi2Real,
             ) -> Fmi2Status {
-                unsafe { sh::get_directional_derivative::<M>(c) }
+                unsafe {
+                    sh::get_directional_derivative::<M>(
+                        c, unknown, n_unknown, known, n_known, dv_known, dv_unknown,
+                    )
+                }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetRealInputDerivatives(

@@ -66,6 +66,7 @@ pub fn model_info(bearing: &BearingFile) -> xml::ModelInfo {
         stop_time: DEFAULT_STOP_TIME,
         tolerance: DEFAULT_TOLERANCE,
         step_size: DEFAULT_STEP_SIZE,
+        provides_directional_derivative: true,
     }
 }
 

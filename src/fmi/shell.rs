@@ -326,6 +326,20 @@ pub trait FmuModel: Send + Sized + 'static {
         Err(format!("variable #{index} is not a String of this model"))
     }
 
+    /// `fmi2GetDirectionalDerivative`: `dv_unknown = ∂unknowns/∂knowns · dv_known` at the
+    /// current point (CS: the direct dependence of outputs on inputs). `unknowns` are indices
+    /// of Real outputs, `knowns` of Real inputs (the shell has checked both, and the lengths).
+    /// The default says the FMU does not provide it (`providesDirectionalDerivative="false"`).
+    fn directional_derivative(
+        &mut self,
+        _unknowns: &[usize],
+        _knowns: &[usize],
+        _dv_known: &[f64],
+        _dv_unknown: &mut [f64],
+    ) -> Result<(), String> {
+        Err("not provided by this FMU (providesDirectionalDerivative=\"false\")".into())
+    }
+
     /// The model's own part of an FMU state (pointer-free bytes).
     fn save_state(&self) -> Vec<u8>;
     /// Restores [`FmuModel::save_state`] bytes; must leave the model unchanged on `Err`.
@@ -1658,18 +1672,86 @@ pub unsafe fn deserialize_fmu_state<M: FmuModel>(
     }
 }
 
-/// `fmi2GetDirectionalDerivative`: not provided.
+/// `fmi2GetDirectionalDerivative`: checks the call state, the arrays and that the unknowns are
+/// Real outputs and the knowns Real inputs, then asks [`FmuModel::directional_derivative`].
 ///
 /// # Safety
 /// FMI 2.0 pointer rules.
-pub unsafe fn get_directional_derivative<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
+pub unsafe fn get_directional_derivative<M: FmuModel>(
+    c: Fmi2Component,
+    unknown: *const Fmi2ValueReference,
+    n_unknown: usize,
+    known: *const Fmi2ValueReference,
+    n_known: usize,
+    dv_known: *const Fmi2Real,
+    dv_unknown: *mut Fmi2Real,
+) -> Fmi2Status {
+    const F: &str = "fmi2GetDirectionalDerivative";
     unsafe {
-        unsupported::<M>(
-            c,
-            "fmi2GetDirectionalDerivative",
-            mask::DIRECTIONAL,
-            "not provided by this FMU (providesDirectionalDerivative=\"false\")",
-        )
+        with_instance::<M>(c, F, |me| {
+            if let Err(s) = me.check_state(F, mask::DIRECTIONAL) {
+                return s;
+            }
+            let (Some(vu), Some(vk), Some(dk), Some(du)) = (
+                slice_in(unknown, n_unknown),
+                slice_in(known, n_known),
+                slice_in(dv_known, n_known),
+                slice_out(dv_unknown, n_unknown),
+            ) else {
+                return me.error(
+                    F,
+                    format!(
+                        "vUnknown_ref, vKnown_ref, dvKnown or dvUnknown is NULL (nUnknown = {n_unknown}, nKnown = {n_known})"
+                    ),
+                );
+            };
+            let mut iu = Vec::with_capacity(n_unknown);
+            for &r in vu {
+                let i = match me.lookup(F, r, VarType::Real) {
+                    Ok(i) => i,
+                    Err(s) => return s,
+                };
+                let v = &me.model.variables()[i];
+                if v.causality != Causality::Output {
+                    return me.error(
+                        F,
+                        format!(
+                            "unknown '{}' (value reference {r}) is not an output",
+                            v.name
+                        ),
+                    );
+                }
+                iu.push(i);
+            }
+            let mut ik = Vec::with_capacity(n_known);
+            for (&r, &d) in vk.iter().zip(dk) {
+                let i = match me.lookup(F, r, VarType::Real) {
+                    Ok(i) => i,
+                    Err(s) => return s,
+                };
+                let v = &me.model.variables()[i];
+                if v.causality != Causality::Input {
+                    return me.error(
+                        F,
+                        format!("known '{}' (value reference {r}) is not an input", v.name),
+                    );
+                }
+                if !d.is_finite() {
+                    return me.error(F, format!("dvKnown for '{}' is {d}", v.name));
+                }
+                ik.push(i);
+            }
+            match me.model.directional_derivative(&iu, &ik, dk, du) {
+                Ok(()) => {
+                    if let Some(k) = du.iter().position(|v| !v.is_finite()) {
+                        let name = me.model.variables()[iu[k]].name.clone();
+                        return me.error(F, format!("the derivative of '{name}' is not finite"));
+                    }
+                    Fmi2Status::Ok
+                }
+                Err(e) => me.error(F, e),
+            }
+        })
     }
 }
 

@@ -2,15 +2,16 @@
 //! ([`super::ballbearing`]), the model description ([`super::xml`]) and the documentation
 //! ([`super::docs`]).
 //!
-//! Value references: inputs 1–4, parameters 100 + k (in [`Param::ALL`] order), solver counters
-//! 900–902, real outputs 1000 + i (i = position in [`crate::simulation::output_table`]).
+//! Value references: inputs 1–4, journal inputs 5–10 (`journal.x/y/z`, `journal.v.x/y/z`),
+//! parameters 100 + k (in [`Param::ALL`] order), solver counters 900–902, real outputs 1000 + i
+//! (i = position in [`crate::simulation::output_table`]).
 
 use super::shell::{Causality, Initial, Start, VarType, Variability, Variable};
 use crate::config::{BearingFile, DefectMode};
 use crate::defect::DefectSpec;
 use crate::geometry::Race;
-use crate::scene::{Fidelity, MethodName, Scene};
-use crate::simulation::{output_table, Inputs};
+use crate::scene::{CouplingMode, Fidelity, MethodName, Scene};
+use crate::simulation::{output_table, Inputs, Journal};
 
 /// The continuous inputs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,10 +44,53 @@ impl Input {
     }
 }
 
+/// The journal inputs of coupling mode "motion": displacement x, y, z then velocity x, y, z.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct JournalInput(pub usize);
+
+impl JournalInput {
+    pub const ALL: [JournalInput; 6] = [
+        JournalInput(0),
+        JournalInput(1),
+        JournalInput(2),
+        JournalInput(3),
+        JournalInput(4),
+        JournalInput(5),
+    ];
+
+    pub fn get(self, j: &Journal) -> f64 {
+        if self.0 < 3 {
+            j.x[self.0]
+        } else {
+            j.v[self.0 - 3]
+        }
+    }
+
+    pub fn set(self, j: &mut Journal, v: f64) {
+        if self.0 < 3 {
+            j.x[self.0] = v
+        } else {
+            j.v[self.0 - 3] = v
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        [
+            "journal.x",
+            "journal.y",
+            "journal.z",
+            "journal.v.x",
+            "journal.v.y",
+            "journal.v.z",
+        ][self.0]
+    }
+}
+
 /// The structural parameters (all `variability="fixed"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Param {
     Fidelity,
+    Coupling,
     DefectRing,
     DefectWidth,
     DefectDepth,
@@ -82,6 +126,7 @@ pub enum Stat {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
     Input(Input),
+    Journal(JournalInput),
     Param(Param),
     /// Position in the simulation's output vector.
     Output(usize),
@@ -160,6 +205,7 @@ impl Config {
         let b = &s.bearing;
         match p {
             Param::Fidelity => s.fidelity.code() as f64,
+            Param::Coupling => s.coupling.code() as f64,
             Param::DefectRing => self.defect.ring as f64,
             Param::DefectWidth => self.defect.width,
             Param::DefectDepth => self.defect.depth,
@@ -195,6 +241,11 @@ impl Config {
             Param::Fidelity => {
                 s.fidelity = Fidelity::from_code(code)
                     .ok_or_else(|| format!("fidelity = {code}: valid codes are 0..4"))?
+            }
+            Param::Coupling => {
+                s.coupling = CouplingMode::from_code(code).ok_or_else(|| {
+                    format!("coupling = {code}: valid codes are 0 (force) and 1 (motion)")
+                })?
             }
             Param::DefectRing => self.defect.ring = code,
             Param::DefectWidth => self.defect.width = v,
@@ -232,8 +283,9 @@ impl Config {
 }
 
 impl Param {
-    pub const ALL: [Param; 22] = [
+    pub const ALL: [Param; 23] = [
         Param::Fidelity,
+        Param::Coupling,
         Param::DefectRing,
         Param::DefectWidth,
         Param::DefectDepth,
@@ -273,6 +325,8 @@ impl Param {
         match self {
             Param::Fidelity => ("fidelity", I, None, Some(0.0), Some(4.0),
                 "Fidelity level: 0 kinematic (L0), 1 quasi-static (L1), 2 lumped (L2), 3 reduced (L3), 4 full (L4); see the documentation for which levels this build provides"),
+            Param::Coupling => ("coupling", I, None, Some(0.0), Some(1.0),
+                "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start)"),
             Param::DefectRing => ("defect.ring", I, None, Some(0.0), Some(2.0),
                 "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race"),
             Param::DefectWidth => ("defect.width", R, Some("m"), Some(0.0), Some(0.1),
@@ -432,6 +486,30 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             role: Role::Input(inp),
         });
     }
+    for j in JournalInput::ALL {
+        let (unit, desc) = if j.0 < 3 {
+            ("m", "Journal (inner-ring centre) displacement along {axis} in coupling mode motion, same frame and origin as ring.{axis}; ignored in force mode")
+        } else {
+            ("m/s", "Journal (inner-ring centre) velocity along {axis} in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode")
+        };
+        let axis = ["x", "y", "z"][j.0 % 3];
+        let mut v = with_unit(
+            base(
+                5 + j.0 as u32,
+                j.name(),
+                VarType::Real,
+                Causality::Input,
+                Variability::Continuous,
+                &desc.replace("{axis}", axis),
+            ),
+            Some(unit),
+        );
+        v.start = Start::Real(0.0);
+        t.push(Entry {
+            var: v,
+            role: Role::Journal(j),
+        });
+    }
     for (k, p) in Param::ALL.into_iter().enumerate() {
         let (name, ty, unit, min, max, desc) = p.info();
         let mut v = with_unit(
@@ -526,7 +604,10 @@ mod tests {
         let names: HashSet<&str> = t.iter().map(|e| e.var.name.as_str()).collect();
         assert_eq!(names.len(), t.len(), "unique names");
         let z = b.bearing.z as usize;
-        assert_eq!(t.len(), 4 + Param::ALL.len() + output_table(z).len() + 3);
+        assert_eq!(
+            t.len(),
+            4 + 6 + Param::ALL.len() + output_table(z).len() + 3
+        );
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);

@@ -18,6 +18,9 @@ pub struct ModelInfo {
     pub stop_time: f64,
     pub tolerance: f64,
     pub step_size: f64,
+    /// `providesDirectionalDerivative` (the model implements
+    /// [`super::shell::FmuModel::directional_derivative`]).
+    pub provides_directional_derivative: bool,
 }
 
 /// Placeholder for the GUID while hashing.
@@ -124,8 +127,9 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
     canNotUseMemoryManagementFunctions="true"
     canGetAndSetFMUstate="true"
     canSerializeFMUstate="true"
-    providesDirectionalDerivative="false"/>"#,
-        esc(&info.model_identifier)
+    providesDirectionalDerivative="{}"/>"#,
+        esc(&info.model_identifier),
+        info.provides_directional_derivative
     );
 
     // Units and types actually used, in first-use order.

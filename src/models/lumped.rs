@@ -37,6 +37,27 @@ const SHAFT: usize = 11;
 const ZR: usize = 12;
 const VZR: usize = 13;
 
+/// One ball's contact: force, normal and what its linearization needs.
+#[derive(Debug, Clone, Copy)]
+struct BallContact {
+    /// Normal force [N] (0 when open or when the damping would pull).
+    q: f64,
+    /// Normal n = (sin α, cos α e_r) with e_r = (0, e_ry, e_rz).
+    sa: f64,
+    ca: f64,
+    ery: f64,
+    erz: f64,
+    /// Hertz constant used (the spall's modified one inside it) [N/m^1.5].
+    k: f64,
+    /// Approach δ [m], groove-centre distance |a| [m], the rates of a along e_x and e_r [m/s]
+    /// and the ball's orbital rate θ̇ [rad/s].
+    delta: f64,
+    len: f64,
+    dax: f64,
+    dar: f64,
+    theta_rate: f64,
+}
+
 /// Which part of the spall a ball is in; frozen inside an integration step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Zone {
@@ -82,6 +103,8 @@ pub struct LumpedModel {
     zones: Vec<Zone>,
     /// Compliance K^(−2/3) of the race without the spall.
     c_other: f64,
+    /// Coupling mode "motion": the ring translation is prescribed (zero acceleration).
+    prescribed: bool,
     /// (sin, cos) of each ball's offset 2πj/z from ball 0.
     ball_offsets: Vec<(f64, f64)>,
 }
@@ -130,6 +153,7 @@ impl LumpedModel {
                 Some(Race::Inner) => bearing.k_outer.powf(-2.0 / 3.0),
                 _ => bearing.k_inner.powf(-2.0 / 3.0),
             },
+            prescribed: false,
             ball_offsets: (0..bearing.z)
                 .map(|j| (TAU * j as f64 / bearing.z as f64).sin_cos())
                 .collect(),
@@ -243,6 +267,12 @@ impl LumpedModel {
     /// Contact forces of all balls; calls `each(j, Q, sin α, cos α, e_ry, e_rz)`.
     #[inline]
     fn contacts(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, f64, f64, f64, f64, f64)) {
+        self.contacts_full(t, y, |j, c| each(j, c.q, c.sa, c.ca, c.ery, c.erz));
+    }
+
+    /// Contact state of all balls; calls `each(j, contact)`.
+    #[inline]
+    fn contacts_full(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, &BallContact)) {
         let _ = t;
         let dx = y[X];
         let dy = y[Y] - y[YP];
@@ -302,7 +332,22 @@ impl LumpedModel {
             } else {
                 0.0
             };
-            each(j, q, ax / len, ar / len, ery, erz);
+            each(
+                j,
+                &BallContact {
+                    q,
+                    sa: ax / len,
+                    ca: ar / len,
+                    ery,
+                    erz,
+                    k,
+                    delta,
+                    len,
+                    dax,
+                    dar,
+                    theta_rate,
+                },
+            );
         }
     }
 
@@ -478,9 +523,15 @@ impl Model for LumpedModel {
         dydt[Z] = y[VZ];
         dydt[YP] = y[VYP];
         dydt[ZP] = y[VZP];
-        dydt[VX] = (self.inputs.fx + f_ring[0]) / self.m1;
-        dydt[VY] = (self.inputs.fy + f_ring[1]) / self.m1;
-        dydt[VZ] = (self.inputs.fz + f_ring[2]) / self.m1;
+        if self.prescribed {
+            dydt[VX] = 0.0;
+            dydt[VY] = 0.0;
+            dydt[VZ] = 0.0;
+        } else {
+            dydt[VX] = (self.inputs.fx + f_ring[0]) / self.m1;
+            dydt[VY] = (self.inputs.fy + f_ring[1]) / self.m1;
+            dydt[VZ] = (self.inputs.fz + f_ring[2]) / self.m1;
+        }
         let mut fpz = -f_ring[2] - self.k_pz * y[ZP] - self.c_pz * y[VZP] - pulse;
         if let Some((m_r, k_r, c_r)) = self.resonator {
             let f_r = k_r * (y[ZR] - y[ZP]) + c_r * (y[VZR] - y[VZP]);
@@ -596,5 +647,56 @@ impl Model for LumpedModel {
 
     fn cage_speed(&self) -> f64 {
         self.cage_rate()
+    }
+
+    fn ring_states(&self) -> Option<super::RingStates> {
+        Some(super::RingStates {
+            pos: [X, Y, Z],
+            vel: [VX, VY, VZ],
+        })
+    }
+
+    fn set_prescribed_ring(&mut self, on: bool) {
+        self.prescribed = on;
+    }
+
+    /// Per closed contact (force on the ring f = −Q n, n = (sin α, cos α e_r), a the groove-
+    /// centre vector, ȧ its rate, P = e_x e_xᵀ + e_r e_rᵀ the ball's plane, d the ring's
+    /// displacement relative to the pedestal):
+    ///
+    /// ```text
+    ///   ∂δ/∂d = nᵀ,   ∂δ̇/∂d = (ȧ − (n·ȧ) n)ᵀ/|a| + cos α θ̇ e_θᵀ,   ∂δ̇/∂v = nᵀ,
+    ///   ∂Q/∂d = 1.5 K δ^½ nᵀ + c_b ∂δ̇/∂d,   ∂Q/∂v = c_b nᵀ,
+    ///   ∂f/∂d = −n ∂Q/∂d − Q/|a| (P − n nᵀ),   ∂f/∂v = −c_b n nᵀ,
+    /// ```
+    ///
+    /// with K the spall's modified series constant (and δ less the drop) for a ball in it.
+    fn reaction_jacobian(&mut self, t: f64, y: &[f64]) -> Option<super::ReactionJacobian> {
+        let mut jac = super::ReactionJacobian::default();
+        let c_b = self.c_b;
+        self.contacts_full(t, y, |_, c| {
+            if c.q <= 0.0 || c.delta <= 0.0 {
+                return;
+            }
+            let n = [c.sa, c.ca * c.ery, c.ca * c.erz];
+            let er = [0.0, c.ery, c.erz];
+            let ex = [1.0, 0.0, 0.0];
+            let eth = [0.0, -c.erz, c.ery];
+            let adot = [c.dax, c.dar * c.ery, c.dar * c.erz];
+            let n_adot = n[0] * adot[0] + n[1] * adot[1] + n[2] * adot[2];
+            let stiff = 1.5 * c.k * c.delta.sqrt();
+            let geo = c.q / c.len;
+            for col in 0..3 {
+                let ddr_dd = (adot[col] - n_adot * n[col]) / c.len + c.ca * c.theta_rate * eth[col];
+                let dq_dd = stiff * n[col] + c_b * ddr_dd;
+                let dq_dv = c_b * n[col];
+                for row in 0..3 {
+                    let p = ex[row] * ex[col] + er[row] * er[col];
+                    jac.dfdx[row][col] -= n[row] * dq_dd + geo * (p - n[row] * n[col]);
+                    jac.dfdv[row][col] -= n[row] * dq_dv;
+                }
+            }
+        });
+        Some(jac)
     }
 }

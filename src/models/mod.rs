@@ -9,6 +9,7 @@
 pub mod full;
 pub mod kinematic;
 pub mod lumped;
+pub mod motion;
 pub mod quasi_static_level;
 
 use crate::geometry::Bearing;
@@ -67,7 +68,36 @@ pub fn build(
     }
 }
 
+/// Where a level keeps the inner ring's translation in its state vector (coupling mode
+/// "motion", see [`crate::simulation::Journal`]): `pos[k]`, `vel[k]` are the indices of the
+/// ring's displacement and velocity along x, y, z, in the frame and from the origin of the
+/// `ring.x/y/z` outputs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RingStates {
+    pub pos: [usize; 3],
+    pub vel: [usize; 3],
+}
+
+/// Linearization of the bearing's reaction on the journal (`bearing.F`, the force of the
+/// bearing on the shaft) about the current state: `dfdx[i][k] = ∂F_i/∂x_k`, `dfdv[i][k] =
+/// ∂F_i/∂v_k` with x, v the journal (inner-ring centre) displacement and velocity [N/m, N s/m].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ReactionJacobian {
+    pub dfdx: [[f64; 3]; 3],
+    pub dfdv: [[f64; 3]; 3],
+}
+
 /// One dynamic model of the ladder.
+///
+/// Motion coupling (the journal's motion prescribed, spec issue 6). A level with a dynamic
+/// inner ring needs only two things: [`Model::ring_states`] (where its ring translation lives in
+/// the state) and to honour [`Model::set_prescribed_ring`] in its right-hand side (ring
+/// translational accelerations zero, so that the states follow x_k + v_k (t − t_k) exactly; the
+/// [`Simulation`](crate::simulation::Simulation) writes x_k, v_k into the state at every
+/// communication point). `bearing.F` must then be the sum of the contact forces on the inner
+/// ring. [`Model::reaction_jacobian`] is optional (the simulation falls back to central
+/// differences of the model's own outputs). Levels without ring states (L0, L1) get the
+/// quasi-static displacement-controlled reaction from [`motion`] through the simulation.
 pub trait Model: Send {
     /// Number of first-order states.
     fn dim(&self) -> usize;
@@ -116,4 +146,20 @@ pub trait Model: Send {
 
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
+
+    /// The inner ring's translation states, if the ring is a dynamic body of this level.
+    fn ring_states(&self) -> Option<RingStates> {
+        None
+    }
+
+    /// Motion coupling on/off: when on, the right-hand side must set the ring's translational
+    /// accelerations to zero (the ring velocity is then constant over a communication step).
+    fn set_prescribed_ring(&mut self, _on: bool) {}
+
+    /// Analytic linearization of `bearing.F` with respect to the ring's displacement and
+    /// velocity at state `y` (everything else held: pedestal, balls, cage). `None` = not
+    /// implemented (the simulation uses central differences of [`Model::outputs`]).
+    fn reaction_jacobian(&mut self, _t: f64, _y: &[f64]) -> Option<ReactionJacobian> {
+        None
+    }
 }

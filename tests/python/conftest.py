@@ -45,13 +45,16 @@ def fmu_dir(fmu, tmp_path_factory):
     return d
 
 
-def run_probe(fmu_dir, name, *args, timeout=600):
-    """Runs one probe in a fresh Python process; a crash or a missing result fails the test."""
+def run_probe(fmu_dir, name, *args, timeout=600, coupling=0):
+    """Runs one probe in a fresh Python process; a crash or a missing result fails the test.
+    `coupling` (0 force, 1 motion) is the FMU parameter the probe's instances get."""
+    env = dict(os.environ, RACEWAY_PROBE_COUPLING=str(int(coupling)))
     proc = subprocess.run(
         [sys.executable, str(PROBES), name, str(fmu_dir), *map(str, args)],
         capture_output=True,
         text=True,
         timeout=timeout,
+        env=env,
     )
     for line in proc.stdout.splitlines():
         if line.startswith("RESULT "):

@@ -52,6 +52,9 @@ def make_callbacks(logger=True):
 class Ctx:
     def __init__(self, fmu_dir):
         self.dir = fmu_dir
+        # Coupling mode of the probes (0 force, 1 motion): RACEWAY_PROBE_COUPLING, set by the
+        # tests parametrized over both modes.
+        self.coupling = int(os.environ.get("RACEWAY_PROBE_COUPLING", "0"))
         self.md = read_model_description(os.path.join(fmu_dir, "modelDescription.xml"))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
         self.var = {v.name: v for v in self.md.modelVariables}
@@ -68,7 +71,13 @@ class Ctx:
     def new(self, name="probe", logging=True, guid=None):
         s = self.slave(name, guid)
         s.instantiate(callbacks=self.callbacks, loggingOn=logging)
+        self.configure(s)
         return s
+
+    def configure(self, s):
+        """Sets the probe's coupling mode (again after fmi2Reset, which restores the starts)."""
+        if self.coupling:
+            s.setInteger([self.vr["coupling"]], [self.coupling])
 
     def ready(self, name="probe", params=None, ints=None, stop=None, tol=1e-6):
         s = self.new(name, logging=False)
@@ -220,6 +229,7 @@ def probe_reset_rerun(ctx, n=300):
     _, a = run(ctx, s, 0.0, 1e-4, n)
     s.terminate()
     s.reset()
+    ctx.configure(s)
     s.setupExperiment(tolerance=1e-6, startTime=0.0)
     s.enterInitializationMode()
     s.exitInitializationMode()
@@ -227,6 +237,7 @@ def probe_reset_rerun(ctx, n=300):
     # reset after an error too
     st = status_of(s.doStep, 5.0, 1e-4)
     s.reset()
+    ctx.configure(s)
     s.setupExperiment(tolerance=1e-6, startTime=0.0)
     s.enterInitializationMode()
     s.exitInitializationMode()
@@ -270,13 +281,16 @@ def probe_state_restore(ctx, blob_path):
     return {"equal": c == saved["a"]}
 
 
-def _scenario(i):
+def _scenario(i, ctx=None):
+    if ctx is not None and ctx.coupling:
+        # motion mode ignores the loads after the start: move the journal instead
+        return {"journal.v.z": -1e-4 * (i + 1), "journal.v.y": 5e-5 * i}
     return {"load.Fz": -1000.0 - 100.0 * i, "load.Fx": 4000.0 + 50.0 * i}
 
 
 def _solo(ctx, i, n, name):
     s = ctx.ready(name=name)
-    s.setReal([ctx.vr[k] for k in _scenario(i)], list(_scenario(i).values()))
+    s.setReal([ctx.vr[k] for k in _scenario(i, ctx)], list(_scenario(i, ctx).values()))
     _, r = run(ctx, s, 0.0, 1e-4, n)
     s.terminate()
     s.fmi2FreeInstance(s.component)
@@ -288,7 +302,7 @@ def probe_interleaved(ctx, n=200):
     insts = []
     for i in range(2):
         s = ctx.ready(name=f"inter{i}")
-        s.setReal([ctx.vr[k] for k in _scenario(i)], list(_scenario(i).values()))
+        s.setReal([ctx.vr[k] for k in _scenario(i, ctx)], list(_scenario(i, ctx).values()))
         insts.append(s)
     rows = [[], []]
     for k in range(n):
@@ -310,7 +324,7 @@ def probe_threads(ctx, n=200, nthreads=4):
             s.setupExperiment(tolerance=1e-6, startTime=0.0)
             s.enterInitializationMode()
             s.exitInitializationMode()
-            s.setReal([ctx.vr[k] for k in _scenario(i)], list(_scenario(i).values()))
+            s.setReal([ctx.vr[k] for k in _scenario(i, ctx)], list(_scenario(i, ctx).values()))
             _, results[i] = run(ctx, s, 0.0, 1e-4, n)
         except Exception as e:  # pragma: no cover - reported
             errors.append(repr(e))
@@ -401,6 +415,97 @@ def probe_step_invariance(ctx, t_end=0.02):
     # irregular: each millisecond split as 0.1 + 0.25 + 0.05 + 0.6 ms
     irregular = sample_run([1e-4, 2.5e-4, 5e-5, 6e-4] * int(round(t_end / 1e-3)))
     return {"names": names, "fine": fine, "coarse": coarse, "irregular": irregular}
+
+
+def _journal_vrs(ctx):
+    return [ctx.vr[n] for n in ["journal.x", "journal.y", "journal.z",
+                                "journal.v.x", "journal.v.y", "journal.v.z"]]
+
+
+def probe_motion_basics(ctx, fidelity=2):
+    """Motion mode: the start is the static equilibrium under the loads; the ring follows the
+    journal; the loads are ignored after the start; a NaN journal input is rejected."""
+    fidelity = int(fidelity)
+    s = ctx.new(logging=True)
+    s.setInteger([ctx.vr["coupling"], ctx.vr["fidelity"]], [1, fidelity])
+    s.setupExperiment(tolerance=1e-6, startTime=0.0)
+    s.enterInitializationMode()
+    f_vr = [ctx.vr[n] for n in ["bearing.F.x", "bearing.F.y", "bearing.F.z"]]
+    r_vr = [ctx.vr[n] for n in ["ring.x", "ring.y", "ring.z"]]
+    load = list(s.getReal([ctx.vr[n] for n in ["load.Fx", "load.Fy", "load.Fz"]]))
+    ring_init = list(s.getReal(r_vr))
+    force_init = list(s.getReal(f_vr))
+    s.exitInitializationMode()
+    journal0 = list(s.getReal(_journal_vrs(ctx)))
+    ring0 = list(s.getReal(r_vr))
+    # hold the journal: move it by a velocity over one step
+    v = [0.0, 1e-4, -2e-4]
+    s.setReal(_journal_vrs(ctx)[3:], v)
+    h = 1e-4
+    s.doStep(currentCommunicationPoint=0.0, communicationStepSize=h)
+    ring1 = list(s.getReal(r_vr))
+    f1 = list(s.getReal(f_vr))
+    st_load = status_of(s.setReal, [ctx.vr["load.Fz"]], [-3000.0])
+    f1b = list(s.getReal(f_vr))
+    st_nan = status_of(s.setReal, [ctx.vr["journal.z"]], [float("nan")])
+    nan_msg = last_message()
+    return {"load": load, "ring_init": ring_init, "force_init": force_init,
+            "journal0": journal0, "ring0": ring0, "ring1": ring1, "v": v, "h": h,
+            "f1": f1, "f1_after_load": f1b, "load_status": st_load,
+            "nan_status": st_nan, "nan_message": nan_msg}
+
+
+def probe_directional(ctx, fidelity=2, steps=30):
+    """fmi2GetDirectionalDerivative of bearing.F.* w.r.t. journal.* against central
+    differences of bearing.F (journal moved and restored at the same communication point)."""
+    fidelity = int(fidelity)
+    s = ctx.new(logging=True)
+    s.setInteger([ctx.vr["coupling"], ctx.vr["fidelity"]], [1, fidelity])
+    s.setupExperiment(tolerance=1e-6, startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    jv = _journal_vrs(ctx)
+    f_vr = [ctx.vr[n] for n in ["bearing.F.x", "bearing.F.y", "bearing.F.z"]]
+    t = 0.0
+    h = 2e-5
+    s.setReal(jv[3:], [1e-4, -1e-4, 2e-4])
+    for _ in range(int(steps)):
+        s.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        t += h
+    # at t: set the journal to where the ring is now (x_k + v_k h), keeping the velocity, so
+    # that the linearization point is the finite differences' centre
+    r_vr = [ctx.vr[n] for n in ["ring.x", "ring.y", "ring.z"]]
+    s.setReal(jv[:3], list(s.getReal(r_vr)))
+    j0 = list(s.getReal(jv))
+    analytic = []
+    for k in range(6):
+        seed = [0.0] * 6
+        seed[k] = 1.0
+        analytic.append(list(s.getDirectionalDerivative(f_vr, jv, seed)))
+    fd = []
+    for k in range(6):
+        step = 1e-9 if k < 3 else 1e-4
+        cols = []
+        for sign in (1.0, -1.0):
+            j = list(j0)
+            j[k] += sign * step
+            s.setReal(jv, j)
+            cols.append(list(s.getReal(f_vr)))
+        s.setReal(jv, j0)
+        fd.append([(cols[0][i] - cols[1][i]) / (2 * step) for i in range(3)])
+    q = [ctx.vr[f"contact.inner.Q[{j}]"] for j in range(1, 15)]
+    qmin = min(s.getReal(q))
+    ring = list(s.getReal([ctx.vr[n] for n in ["ring.x", "ring.y", "ring.z"]]))
+    d_ring = list(s.getDirectionalDerivative([ctx.vr["ring.z"]], jv, [0, 0, 1, 0, 0, 0]))
+    # force mode refuses
+    s2 = ctx.new(name="force", logging=True)
+    s2.setInteger([ctx.vr["coupling"]], [0])
+    s2.setupExperiment(tolerance=1e-6, startTime=0.0)
+    s2.enterInitializationMode()
+    s2.exitInitializationMode()
+    st_force = status_of(s2.getDirectionalDerivative, f_vr, jv, [1, 0, 0, 0, 0, 0])
+    return {"analytic": analytic, "fd": fd, "qmin": qmin, "ring": ring, "journal": j0,
+            "d_ring": d_ring, "force_status": st_force, "force_message": last_message()}
 
 
 def main():

@@ -190,8 +190,9 @@ def test_invalid_parameter_combination_names_the_variable(probe):
     assert "traction.kappa_max" in r["message"], r
 
 
-def test_fidelity_levels(probe):
-    r = probe("unsupported_fidelity")
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_fidelity_levels(probe, coupling):
+    r = probe("unsupported_fidelity", coupling=coupling)
     assert r["2"][0] == STATUS["ok"], r
     for code in "01234":
         status, message = r[code]
@@ -217,23 +218,26 @@ def test_memory_instantiate_free_cycles(probe):
     assert r["growth_kib"] < 4096, r
 
 
-def test_reset_rerun_bit_identical(probe, dynamics):
-    r = probe("reset_rerun")
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_reset_rerun_bit_identical(probe, dynamics, coupling):
+    r = probe("reset_rerun", coupling=coupling)
     assert r["equal"] and r["equal_after_error"], r
 
 
-def test_state_serialize_new_process(probe, dynamics, tmp_path):
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_state_serialize_new_process(probe, dynamics, tmp_path, coupling):
     blob = tmp_path / "state.bin"
-    r = probe("state_getset", blob)
+    r = probe("state_getset", blob, coupling=coupling)
     assert r["equal"], r
     for k in ["truncated", "corrupt", "foreign"]:
         assert r[k] == STATUS["error"], (k, r)
-    r2 = probe("state_restore", blob)
+    r2 = probe("state_restore", blob, coupling=coupling)
     assert r2["equal"], r2
 
 
-def test_interleaved_instances(probe, dynamics):
-    r = probe("interleaved")
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_interleaved_instances(probe, dynamics, coupling):
+    r = probe("interleaved", coupling=coupling)
     assert r["differ"]
     assert all(r["equal"]), r
 
@@ -244,8 +248,9 @@ def test_threads_equal_serial(probe, dynamics):
     assert all(r["equal"]), r
 
 
-def test_forced_integrator_failure(probe, dynamics):
-    r = probe("forced_failure")
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_forced_integrator_failure(probe, dynamics, coupling):
+    r = probe("forced_failure", coupling=coupling)
     assert r["status"] == STATUS["discard"], r
     assert r["terminated"] is True
     assert r["last"] == pytest.approx(r["t_before"], abs=1e-15) or r["last"] <= r["t_before"] + 1e-3
@@ -254,14 +259,58 @@ def test_forced_integrator_failure(probe, dynamics):
     assert r["finite"]
 
 
-def test_communication_step_invariance(probe, dynamics):
-    r = probe("step_invariance")
+@pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
+def test_communication_step_invariance(probe, dynamics, coupling):
+    r = probe("step_invariance", coupling=coupling)
     fine = np.array(r["fine"])
     scale = np.maximum(np.max(np.abs(fine), axis=0), 1e-12)
     for other in ["coarse", "irregular"]:
         err = np.max(np.abs(np.array(r[other]) - fine), axis=0) / scale
         for name, e in zip(r["names"], err):
             assert e < 1e-4, f"h={other}: {name} differs by {e:.2e} of its range"
+
+
+# --- coupling mode motion (issue 6) ----------------------------------------------------------------
+
+@pytest.mark.parametrize("fidelity", [0, 1, 2, 4])
+def test_motion_mode_start_and_journal(probe, dynamics, fidelity):
+    r = probe("motion_basics", fidelity)
+    load = r["load"]
+    # the start is the static equilibrium under the loads: the reaction balances them and the
+    # journal starts at the ring's equilibrium position, readable in initialization mode
+    # (full level: its L1 start is not in equilibrium with the traction forces of the balls'
+    # not-yet-settled spins, a few percent of the load)
+    tol = 0.1 if fidelity == 4 else 1e-2
+    for k in range(3):
+        assert abs(r["force_init"][k] + load[k]) <= tol * max(abs(x) for x in load), r
+    assert r["journal0"][:3] == pytest.approx(r["ring_init"], abs=1e-12)
+    assert r["journal0"][3:] == [0.0, 0.0, 0.0]
+    assert r["ring0"] == pytest.approx(r["ring_init"], abs=1e-12)
+    # the ring follows x_k + v_k h
+    for k in range(3):
+        expect = r["journal0"][k] + r["v"][k] * r["h"]
+        assert abs(r["ring1"][k] - expect) <= 1e-14, (k, r["ring1"], expect)
+    # loads are ignored after the start; a NaN journal is rejected naming it
+    assert r["load_status"] == STATUS["ok"]
+    assert r["f1_after_load"] == r["f1"]
+    assert r["nan_status"] == STATUS["error"] and "journal.z" in r["nan_message"], r
+
+
+@pytest.mark.parametrize("fidelity", [1, 2, 4])
+def test_directional_derivatives_match_finite_differences(probe, dynamics, fidelity):
+    r = probe("directional", fidelity)
+    assert r["qmin"] > 0.0, "all contacts closed"
+    a = np.array(r["analytic"])  # rows: known journal.*, columns: F.x, F.y, F.z
+    fd = np.array(r["fd"])
+    for block, name in [(slice(0, 3), "dF/dx"), (slice(3, 6), "dF/dv")]:
+        scale = np.max(np.abs(fd[block]))
+        if scale == 0.0:  # L1: no velocity dependence
+            assert np.max(np.abs(a[block])) == 0.0
+            continue
+        err = np.max(np.abs(a[block] - fd[block])) / scale
+        assert err < 1e-4, f"{name}: relative error {err:.2e}\n{a[block]}\n{fd[block]}"
+    assert r["d_ring"] == [1.0]
+    assert r["force_status"] == STATUS["error"] and "coupling mode motion" in r["force_message"]
 
 
 # --- libcosim (Open Simulation Platform) ----------------------------------------------------------

@@ -89,6 +89,9 @@ pub struct FullModel {
     /// Force of the bearing on the inner ring and its moment (last RHS) [N], [N m].
     ring_force: V3,
     ring_moment: V3,
+    /// Coupling mode "motion": the ring translation is prescribed (zero translational
+    /// acceleration); the tilt stays a free degree of freedom (or held by `lock_tilt`).
+    prescribed: bool,
 }
 
 /// Per-race constants from the bearing (spec §2.1, §2.3, C7).
@@ -185,6 +188,7 @@ impl FullModel {
             scratch: vec![0.0; lay.dim()],
             ring_force: [0.0; 3],
             ring_moment: [0.0; 3],
+            prescribed: false,
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
         init::initial_state(&mut m, bearing)?;
@@ -479,7 +483,11 @@ impl Model for FullModel {
         let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
         for k in 0..3 {
             dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = (ext[k] + f_ring[k]) / self.m_ir;
+            dydt[r + RV + k] = if self.prescribed {
+                0.0
+            } else {
+                (ext[k] + f_ring[k]) / self.m_ir
+            };
         }
         dydt[r + RBY] = y[r + RWY];
         dydt[r + RBZ] = y[r + RWZ];
@@ -559,5 +567,17 @@ impl Model for FullModel {
 
     fn cage_speed(&self) -> f64 {
         self.cage_ratio * self.inputs.shaft_speed
+    }
+
+    fn ring_states(&self) -> Option<super::RingStates> {
+        let r = self.lay.ring();
+        Some(super::RingStates {
+            pos: [r + RX, r + RX + 1, r + RX + 2],
+            vel: [r + RV, r + RV + 1, r + RV + 2],
+        })
+    }
+
+    fn set_prescribed_ring(&mut self, on: bool) {
+        self.prescribed = on;
     }
 }

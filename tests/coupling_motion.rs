@@ -1,0 +1,206 @@
+//! Coupling mode "motion" (issue 6): the journal's motion in, the bearing's reaction out, at
+//! every level; the reaction Jacobian against central finite differences of the reaction itself
+//! (the journal moved through the public API, an independent path from the analytic formulas).
+#![allow(clippy::needless_range_loop)] // 3×3 index arithmetic reads best with indices
+
+use raceway::models::ReactionJacobian;
+use raceway::scene::{CouplingMode, Fidelity, Scene};
+use raceway::simulation::{out, Journal, Simulation};
+
+fn scene(fidelity: Fidelity, spall: bool) -> Scene {
+    let mut s = Scene::default_scene();
+    s.fidelity = fidelity;
+    s.coupling = CouplingMode::Motion;
+    if !spall {
+        s.defect = None;
+    }
+    s
+}
+
+fn outputs(sim: &mut Simulation) -> Vec<f64> {
+    let mut o = vec![0.0; sim.output_table().len()];
+    sim.try_outputs(&mut o).expect("outputs");
+    o
+}
+
+fn force(sim: &mut Simulation) -> [f64; 3] {
+    let o = outputs(sim);
+    [
+        o[out::BEARING_F_X],
+        o[out::BEARING_F_Y],
+        o[out::BEARING_F_Z],
+    ]
+}
+
+/// Central differences of bearing.F in the journal's displacement (h_x) and velocity (h_v),
+/// moving the journal at the current time (no integration).
+fn fd_jacobian(sim: &mut Simulation, h_x: f64, h_v: f64) -> ReactionJacobian {
+    let j0 = sim.journal();
+    let mut jac = ReactionJacobian::default();
+    for k in 0..3 {
+        for (h, is_x) in [(h_x, true), (h_v, false)] {
+            let mut f = [[0.0; 3]; 2];
+            for (s, sign) in [1.0, -1.0].into_iter().enumerate() {
+                let mut j = j0;
+                if is_x {
+                    j.x[k] += sign * h;
+                } else {
+                    j.v[k] += sign * h;
+                }
+                sim.set_journal(j).unwrap();
+                f[s] = force(sim);
+            }
+            for i in 0..3 {
+                let d = (f[0][i] - f[1][i]) / (2.0 * h);
+                if is_x {
+                    jac.dfdx[i][k] = d;
+                } else {
+                    jac.dfdv[i][k] = d;
+                }
+            }
+        }
+    }
+    sim.set_journal(j0).unwrap();
+    jac
+}
+
+fn max_abs(m: &[[f64; 3]; 3]) -> f64 {
+    m.iter().flatten().fold(0.0_f64, |a, v| a.max(v.abs()))
+}
+
+/// Largest entry difference relative to the largest entry, for ∂F/∂x and ∂F/∂v.
+fn rel_diff(a: &ReactionJacobian, b: &ReactionJacobian) -> (f64, f64) {
+    let d = |p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]| {
+        let mut m = 0.0_f64;
+        for i in 0..3 {
+            for k in 0..3 {
+                m = m.max((p[i][k] - q[i][k]).abs());
+            }
+        }
+        m / max_abs(q).max(1e-300)
+    };
+    (d(&a.dfdx, &b.dfdx), d(&a.dfdv, &b.dfdv))
+}
+
+#[test]
+fn lumped_motion_starts_in_equilibrium_and_follows_the_journal() {
+    let sc = scene(Fidelity::Lumped, true);
+    let mut sim = Simulation::new(&sc).unwrap();
+    let o = outputs(&mut sim);
+    // The start: the ring at the static equilibrium under the scene's loads (L1 start), so the
+    // reaction balances the load.
+    let load = [sc.operating.fa, sc.operating.fy, -sc.operating.fr];
+    for k in 0..3 {
+        assert!(
+            (o[out::BEARING_F_X + k] + load[k]).abs() < 1e-3 * 4000.0,
+            "F[{k}] = {} vs load {}",
+            o[out::BEARING_F_X + k],
+            load[k]
+        );
+    }
+    let j0 = sim.journal();
+    assert_eq!(
+        [o[out::RING_X], o[out::RING_Y], o[out::RING_Z]],
+        j0.x,
+        "ring.* is the journal"
+    );
+    // A velocity over a step: the ring ends at x + v H exactly (linear motion integrated).
+    let v = [1e-4, -2e-4, 3e-4];
+    let h = 1e-4;
+    sim.set_journal(Journal { x: j0.x, v }).unwrap();
+    sim.advance(h).unwrap();
+    let o = outputs(&mut sim);
+    for k in 0..3 {
+        let expect = j0.x[k] + v[k] * h;
+        assert!(
+            (o[out::RING_X + k] - expect).abs() < 1e-15,
+            "ring[{k}] {} vs {expect}",
+            o[out::RING_X + k]
+        );
+    }
+    // Load inputs are ignored after the start: same reaction with a different load.
+    let f1 = force(&mut sim);
+    let mut inp = sim.inputs();
+    inp.fz -= 500.0;
+    sim.set_inputs(inp).unwrap();
+    let f2 = force(&mut sim);
+    assert_eq!(f1, f2);
+}
+
+/// Sets the journal where the ring is now (keeping its velocity), so that the linearization
+/// point and the finite differences' centre coincide.
+fn anchor(sim: &mut Simulation) {
+    let o = outputs(sim);
+    let mut j = sim.journal();
+    j.x = [o[out::RING_X], o[out::RING_Y], o[out::RING_Z]];
+    sim.set_journal(j).unwrap();
+}
+
+/// Checks the Jacobian against finite differences along a run with the journal moving; returns
+/// the largest relative errors (∂F/∂x, ∂F/∂v) and how many checks had a ball in the spall.
+fn check_along_run(fidelity: Fidelity, spall: bool, checks: usize) -> (f64, f64, usize) {
+    let sc = scene(fidelity, spall);
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut healthy = Simulation::new(&scene(fidelity, false)).unwrap();
+    let z = sim.bearing().z;
+    let (mut ex_max, mut ev_max, mut in_spall) = (0.0_f64, 0.0_f64, 0);
+    for step in 0..checks * 10 {
+        let v = [
+            2e-4 * (0.3 * step as f64).sin(),
+            1e-4,
+            -1e-4 * (0.2 * step as f64).cos(),
+        ];
+        for s in [&mut sim, &mut healthy] {
+            let mut j = s.journal();
+            let dt = s.time() - 0.0;
+            let _ = dt;
+            j.v = v;
+            s.set_journal(j).unwrap();
+            let t = s.time();
+            s.advance(t + 2e-5).unwrap();
+            anchor(s);
+        }
+        if step % 10 != 9 {
+            continue;
+        }
+        let a = sim.reaction_jacobian().unwrap();
+        let fd = fd_jacobian(&mut sim, 1e-9, 1e-4);
+        let (ex, ev) = rel_diff(&a, &fd);
+        assert!(
+            ex < 1e-4 && ev < 1e-4,
+            "{fidelity:?} spall {spall}, t = {}: ∂F/∂x rel. error {ex:e}, ∂F/∂v {ev:e}\nanalytic {a:?}\nfd {fd:?}",
+            sim.time()
+        );
+        ex_max = ex_max.max(ex);
+        ev_max = ev_max.max(ev);
+        let o = outputs(&mut sim);
+        let oh = outputs(&mut healthy);
+        let q = &o[out::CONTACT_START..out::CONTACT_START + z];
+        let qh = &oh[out::CONTACT_START..out::CONTACT_START + z];
+        assert!(
+            q.iter().all(|&v| v > 0.0),
+            "every contact closed at the checks: {q:?}"
+        );
+        // A ball in the spall carries clearly less than the same ball without the spall.
+        if q.iter().zip(qh).any(|(a, b)| *a < 0.8 * b) {
+            in_spall += 1;
+        }
+    }
+    (ex_max, ev_max, in_spall)
+}
+
+#[test]
+fn lumped_reaction_jacobian_matches_finite_differences() {
+    // Along a run with the journal moving (so that the damping terms, ȧ ≠ 0, count), healthy
+    // and with the spall (the spall's modified Hertz constant while a ball is in it).
+    let (ex, ev, _) = check_along_run(Fidelity::Lumped, false, 10);
+    eprintln!("lumped healthy: max rel. error dF/dx {ex:.1e}, dF/dv {ev:.1e}");
+    let (ex, ev, in_spall) = check_along_run(Fidelity::Lumped, true, 60);
+    eprintln!(
+        "lumped spall: max rel. error dF/dx {ex:.1e}, dF/dv {ev:.1e}, {in_spall} checks with a ball in the spall"
+    );
+    assert!(
+        in_spall >= 3,
+        "only {in_spall} checks had a ball in the spall"
+    );
+}
