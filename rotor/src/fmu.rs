@@ -319,6 +319,7 @@ pub fn model_info() -> xml::ModelInfo {
         stop_time: DEFAULT_STOP_TIME,
         tolerance: DEFAULT_TOLERANCE,
         step_size: DEFAULT_STEP_SIZE,
+        provides_directional_derivative: false,
     }
 }
 
