@@ -37,10 +37,18 @@ def parameters_from_ssd():
     return out
 
 
+def quiet():
+    """libcosim logs every FMU message at trace level by default: warnings and up only."""
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+
+    log_output_level(CosimLogLevel.WARNING)
+
+
 def build(step):
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimSlave import CosimLocalSlave
 
+    quiet()
     ex = CosimExecution.from_step_size(step_size=int(round(step * 1e9)))
     idx, names = {}, {}
     for comp, fmu in (("rotor", "JeffcottRotor"), ("bearing", "BallBearing")):
@@ -73,7 +81,8 @@ def record(ex, idx, names, stop, step, signals):
     for comp, var in signals:
         vals, steps, times = [], [], []
         start = 0
-        while True:
+        while start < n:
+            # (libcosimpy drops samples whose step number is 0 from what it returns)
             t, s, v = obs.time_series_real_samples(idx[comp], names[comp][var], from_step=start,
                                                   sample_count=min(50000, n + 1))
             if not s:
@@ -82,8 +91,6 @@ def record(ex, idx, names, stop, step, signals):
             steps += s
             vals += v
             start = s[-1] + 1
-            if len(s) < min(50000, n + 1):
-                break
         out[f"{comp}.{var}"] = np.array(vals)
         out["time"] = np.array(times) * 1e-9
     return out

@@ -45,6 +45,7 @@ def run_libcosim_ssp(stop, step):
     from libcosimpy.CosimExecution import CosimExecution
 
     # libcosim reads an SSP directory (SystemStructure.ssd + the FMUs it names)
+    api.quiet()
     d = pathlib.Path(tempfile.mkdtemp(prefix="rotor-bearing-ssp-"))
     with zipfile.ZipFile(SSP) as z:
         z.extractall(d)
