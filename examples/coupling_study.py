@@ -281,14 +281,16 @@ def part_b():
     for label, extra in (("default bearing", {}), ("grounded outer ring", GROUNDED)):
         r, bb, x0 = coupled_pair({}, bearing_start(10.0, 9900.0, extra), B_OFFSET)
         try:
-            res = cm.run_coupled(r, bb, 1e-3, 0.2, "jacobian", feedthrough=True, blowup=1e-3)
+            res = cm.run_coupled(r, bb, 1e-3, 0.5, "jacobian", feedthrough=True, blowup=1e-3)
         finally:
             r.free()
             bb.free()
         dev = np.max(np.abs(res["x"] - x0), axis=1)
-        n = len(dev)
-        bounded = bool(res["ok"] and np.max(dev[3 * n // 4:]) <= 1.5 * np.max(dev[: n // 2]))
-        dr[label] = {"ok": bounded, "error": res["error"],
+        t = res["t"]
+        windows = [float(np.max(dev[(t >= a) & (t < a + 0.1)]) * 1e6)
+                   for a in np.arange(0, 0.5, 0.1) if np.any((t >= a) & (t < a + 0.1))]
+        bounded = bool(res["ok"] and windows[-1] <= 1.2 * max(windows[:2]))
+        dr[label] = {"ok": bounded, "error": res["error"], "windows_um": windows,
                      "max_dev_um": float(np.max(dev) * 1e6)}
         print(f"B: default rotor, {label}, interface Jacobian, H = 1 ms: {dr[label]}", flush=True)
 
@@ -422,7 +424,7 @@ def fig_c(res):
         pts = [(r["H"], r["error"]) for r in res["rows"] if r["scheme"] == scheme and r["error"]]
         if pts:
             ax[0].loglog([p[0] for p in pts], [p[1] for p in pts], m + "-", mfc="none",
-                         label=f"{scheme} (order {res.get('order_' + scheme, float('nan')):.2f})")
+                         label=scheme)
     ax[0].axhline(res["ref_self_error"], color="k", ls=":", lw=0.8, label="reference h=2µs vs 1µs")
     ax[0].set_xlabel("macro step H [s]")
     ax[0].set_ylabel("max |journal − monolithic| [m]")
@@ -765,19 +767,24 @@ def document(results):
                      f"{'stable' if c['jacobian_1ms_stable'] else 'UNSTABLE'} |")
         d = b["default_rotor_jacobian_1ms"]
         L += ["", "Default rotor (2 kg journal, 8 kg disk on the 2 MN/m shaft, no journal damper) at "
-              "9900 rpm with the spalled default bearing, interface Jacobian, 0.2 s:", ""]
+              "9900 rpm with the spalled default bearing, interface Jacobian:", ""]
         for label in ("default bearing", "grounded outer ring"):
             x = d[label]
-            L.append(f"- {label}, H = 1 ms: " + ("stable" if x["ok"] else f"UNSTABLE ({x['error']})")
-                     + f", largest journal excursion {x['max_dev_um']:.1f} µm (stable: no growth over the last quarter of the run)")
+            L.append(f"- {label}, H = 1 ms, 0.5 s: " + ("bounded" if x["ok"] else "NOT stable")
+                     + (f" ({x['error']})" if x["error"] else "")
+                     + ", largest journal excursion per 0.1 s: "
+                     + ", ".join(f"{v:.1f}" for v in x["windows_um"]) + " µm")
         L += [f"- default bearing: largest stable H (bisection, 10 %, 20 ms runs) = "
               f"{d['largest_stable_H_default_bearing'] * 1e6:.1f} µs", "",
               "The instantaneous interface Jacobian linearises the reaction with respect to the "
               "journal only. The default bearing has a pedestal (0.77 kg on 15 MN/m) inside it: the "
               "journal–pedestal mode through the bearing stiffness (≈ 3–4 kHz, damped only by the "
               "contacts) stays explicitly coupled, because the rotor sees the pedestal frozen over the "
-              "step. With a grounded outer ring the Jacobian scheme is stable at 1 ms; with the default "
-              "pedestal it is limited to the step above. Removing that limit needs the bearing's *step* "
+              "step: on the default bearing the Jacobian scheme is limited to the step above. With a "
+              "grounded outer ring it no longer blows up at 1 ms but still grows slowly: at 9900 rpm a 1 ms "
+              "step is one ball-pass period (BPFO ≈ 986 Hz), so the Jacobian, sampled once per step, "
+              "aliases the ball-passage stiffness variation and the spall impacts. The single-mass "
+              "case above (shaft at rest) is stable at 1 ms. Removing that limit needs the bearing's *step* "
               "sensitivity (finite differences over a rolled-back step, or the pedestal in the "
               "rotor model), not its instantaneous derivatives.",
               "", "![growth rates](img/coupling_bearing_growth.png)", ""]
@@ -795,8 +802,23 @@ def document(results):
         for r in c["rows"]:
             L.append(f"| {r['scheme']} | {r['H']:.0e} | {fmt(r['error'], '.3e')} | "
                      f"{fmt(r.get('rel'), '.2e') if r['error'] else 'unstable'} |")
-        L += ["", "Observed order (least-squares slope of log error against log H): "
-              + ", ".join(f"{s} {c['order_' + s]:.2f}" for s in ("jacobian", "constant") if f"order_{s}" in c),
+        orders = {}
+        for sch in ("jacobian", "constant"):
+            pts = [(r["H"], r["error"]) for r in c["rows"]
+                   if r["scheme"] == sch and r["error"] and r["H"] <= 1e-5]
+            if len(pts) >= 3:
+                orders[sch] = float(np.polyfit(np.log([p[0] for p in pts]), np.log([p[1] for p in pts]), 1)[0])
+        L += ["", "Observed order over H ≤ 10 µs (least-squares slope of log error against log H): "
+              + ", ".join(f"{k} {v:.2f}" for k, v in orders.items()) + ".", "",
+              "The errors do not go to zero: the constant-input error levels off at ≈ 0.7 µm "
+              "(2.6 % of the amplitude) for H = 10 … 2 µs, and the interface-Jacobian error falls "
+              "with order ≈ 0.8 towards the same level. A step response (a 200 N radial load step, "
+              "no unbalance, constant input at H = 4 µs and 1 µs: both ≈ 2 % faster than the force-mode "
+              "run, identically) shows the residual is a difference between the bearing's force mode "
+              "and motion mode at the same state, not a coupling error; the start states agree to "
+              "round-off. It is reported to the owners of the motion mode. The interface-Jacobian "
+              "scheme is the less accurate here because the default bearing's pedestal, frozen over "
+              "the step for the rotor, is what limits it (part B).",
               "", "![convergence](img/coupling_convergence.png)", ""]
     if "D" in results:
         d = results["D"]
@@ -823,8 +845,9 @@ def document(results):
               "healthy bearing.", "",
               f"- BPFO from the cage speed: {e['spall']['bpfo']:.1f} Hz; journal z peak at "
               f"{e['spall']['peak_f']:.1f} Hz: {e['spall']['peak'] * 1e9:.3g} nm "
-              f"({e['spall']['peak'] / e['spall']['floor']:.0f} × the local median), healthy bearing "
-              f"{e['healthy']['peak'] * 1e9:.3g} nm: ratio {e['ratio_spall_healthy']:.0f}.", "",
+              f"({e['spall']['peak'] / e['spall']['floor']:.0f} × the local median); with the healthy "
+              f"bearing the largest value within ±3 % of BPFO is {e['healthy']['peak'] * 1e9:.2g} nm "
+              "(round-off level: no line).", "",
               "![BPFO](img/coupling_bpfo_spectrum.png)", ""]
     ssp = CACHE / "ssp.json"
     if ssp.is_file():

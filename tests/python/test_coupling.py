@@ -117,16 +117,19 @@ def test_ssp_system_same_outputs_in_libcosim_and_fmpy(fmus, tmp_path, monkeypatc
     subprocess.run([sys.executable, str(REPO / "examples/systems/build_ssp.py"), "--out", str(ssp)],
                    check=True, capture_output=True)
     monkeypatch.setattr(run_system, "SSP", ssp)
-    stop, step = 0.03, build_ssp.STEP
+    stop, step = 0.25, build_ssp.STEP
     a = run_system.run_libcosim_ssp(stop, step)
     b = run_system.run_fmpy_ssp(stop, step)
     c = run_system.run_libcosim_api(stop, step)
-    for key in ("rotor.journal.z", "rotor.disk.z", "bearing.bearing.F.z"):
-        t = a["time"]
-        late = t > 0.015
-        rng = np.ptp(a[key][late]) + 1e-12
+    t = a["time"]
+    late = t > 0.2  # after fmpy's start transient (its connections start at 0.0)
+    for key, tol in (("rotor.journal.z", 0.05), ("rotor.disk.z", 0.02), ("bearing.bearing.F.z", None)):
         yb = np.interp(t, b["time"], b[key])
         yc = np.interp(t, c["time"], c[key])
         assert np.all(np.isfinite(a[key])) and np.all(np.isfinite(b[key]))
-        assert np.max(np.abs(yc[late] - a[key][late])) <= 1e-9 * max(1.0, np.max(np.abs(a[key])))
-        assert np.max(np.abs(yb[late] - a[key][late])) < 0.05 * rng + 1e-3 * np.max(np.abs(a[key]))
+        # the SSP file and the programmatic build are the same system for libcosim
+        assert np.max(np.abs(yc - a[key])) <= 1e-12 * np.max(np.abs(a[key]))
+        if tol is not None:  # pointwise, relative to the dynamic range
+            assert np.max(np.abs(yb[late] - a[key][late])) < tol * np.ptp(a[key][late]), key
+        # the spall's force impulses make pointwise F sensitive to sub-step history: the mean
+        assert abs(np.mean(yb[late]) / np.mean(a[key][late]) - 1) < 1e-3, key
