@@ -14,8 +14,10 @@ fn advancing_the_rotor_does_not_allocate() {
         ..RotorParams::default()
     };
     let mut r = Rotor::new(&p, 0.0, 1e-8).unwrap();
-    let mut iface = InterfaceForce::default();
-    iface.f = [-4000.0, 0.0, 1098.0];
+    let mut iface = InterfaceForce {
+        f: [-4000.0, 0.0, 1098.0],
+        ..Default::default()
+    };
     iface.k[1][1] = -1e8;
     iface.k[2][2] = -1e8;
     iface.c[2][2] = -100.0;
