@@ -535,7 +535,9 @@ impl Simulation {
     }
 
     /// The inputs the model runs on: the given ones in force mode; in motion mode with the
-    /// start's loads (L2, L4) or the load the displaced ring needs (L0, L1).
+    /// load the ring currently carries, minus the bearing's reaction (L2, L4: it only feeds the
+    /// L1 cage-speed update when the speed changes; the prescribed ring ignores loads), or the
+    /// load the displaced ring needs in quasi-static equilibrium (L0, L1).
     fn effective_inputs(&mut self, inputs: &Inputs, t: f64) -> Result<Inputs, SimError> {
         let mut eff = *inputs;
         if self.scene.coupling == CouplingMode::Motion {
@@ -546,7 +548,20 @@ impl Simulation {
                     qs.applied_load = load;
                     load
                 }
-                None => self.start_loads,
+                None => {
+                    let o = &mut self.out_scratch;
+                    self.model.outputs(t, self.integrator.y(), o);
+                    let f = [
+                        -o[out::BEARING_F_X],
+                        -o[out::BEARING_F_Y],
+                        -o[out::BEARING_F_Z],
+                    ];
+                    if f.iter().all(|v| v.is_finite()) {
+                        f
+                    } else {
+                        self.start_loads
+                    }
+                }
             };
             eff.fx = load[0];
             eff.fy = load[1];

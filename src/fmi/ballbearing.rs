@@ -309,7 +309,17 @@ impl FmuModel for BallBearing {
     fn get_real(&mut self, index: usize) -> Result<f64, String> {
         match self.roles[index] {
             Role::Input(i) => Ok(i.get(&self.inputs)),
-            Role::Journal(j) => Ok(j.get(&self.journal_now())),
+            Role::Journal(j) => {
+                // Motion mode, none set yet: the start's equilibrium (builds the provisional
+                // simulation in initialization mode, like an output query).
+                if !self.journal_set
+                    && self.cfg.scene.coupling == CouplingMode::Motion
+                    && self.live.is_none()
+                {
+                    self.ensure_live()?;
+                }
+                Ok(j.get(&self.journal_now()))
+            }
             Role::Param(p) => Ok(self.cfg.get(p)),
             Role::Output(i) => {
                 self.refresh_outputs()?;

@@ -247,6 +247,9 @@ def probe_reset_rerun(ctx, n=300):
 
 def probe_state_getset(ctx, blob_path, n=200):
     s = ctx.ready()
+    if ctx.coupling:
+        # a moving journal: its position, velocity and set time are part of the state
+        s.setReal([ctx.vr["journal.v.z"], ctx.vr["journal.v.x"]], [-1e-4, 5e-5])
     t, _ = run(ctx, s, 0.0, 1e-4, n, record=False)
     state = s.getFMUstate()
     _, a = run(ctx, s, t, 1e-4, n)
@@ -504,8 +507,17 @@ def probe_directional(ctx, fidelity=2, steps=30):
     s2.enterInitializationMode()
     s2.exitInitializationMode()
     st_force = status_of(s2.getDirectionalDerivative, f_vr, jv, [1, 0, 0, 0, 0, 0])
-    return {"analytic": analytic, "fd": fd, "qmin": qmin, "ring": ring, "journal": j0,
-            "d_ring": d_ring, "force_status": st_force, "force_message": last_message()}
+    force_msg = last_message()
+    # wrong causalities and pairs that are not provided are errors naming the variables
+    st_in = status_of(s.getDirectionalDerivative, [jv[0]], jv, [1, 0, 0, 0, 0, 0])
+    msg_in = last_message()
+    st_out = status_of(s.getDirectionalDerivative, f_vr, [f_vr[0]], [1.0])
+    msg_out = last_message()
+    st_pair = status_of(s.getDirectionalDerivative, [ctx.vr["contact.inner.Q[1]"]], jv[:1], [1.0])
+    msg_pair = last_message()
+    return {"in_status": st_in, "in_message": msg_in, "out_status": st_out,
+            "out_message": msg_out, "pair_status": st_pair, "pair_message": msg_pair,"analytic": analytic, "fd": fd, "qmin": qmin, "ring": ring, "journal": j0,
+            "d_ring": d_ring, "force_status": st_force, "force_message": force_msg}
 
 
 def main():

@@ -311,6 +311,9 @@ def test_directional_derivatives_match_finite_differences(probe, dynamics, fidel
         assert err < 1e-4, f"{name}: relative error {err:.2e}\n{a[block]}\n{fd[block]}"
     assert r["d_ring"] == [1.0]
     assert r["force_status"] == STATUS["error"] and "coupling mode motion" in r["force_message"]
+    assert r["in_status"] == STATUS["error"] and "journal.x" in r["in_message"], r["in_message"]
+    assert r["out_status"] == STATUS["error"] and "bearing.F.x" in r["out_message"]
+    assert r["pair_status"] == STATUS["error"] and "contact.inner.Q[1]" in r["pair_message"]
 
 
 # --- libcosim (Open Simulation Platform) ----------------------------------------------------------

@@ -293,3 +293,110 @@ pub fn evaluate(
     out.m = add(scale(n, mxi2), sub(scale(c2, mze1), scale(c1, mze2)));
     out
 }
+
+/// A 3×3 matrix, rows first.
+pub type M3 = [[f64; 3]; 3];
+
+/// Linearization of the normal force Q n that the contact puts on the ring, with respect to the
+/// ring's centre position and velocity (ball, tilt and tilt rate held), for an intact contact
+/// (`None` when the spall alters it: the caller differentiates that one numerically).
+/// Traction is not included. With rr = T(r_b − r_r), n_r the ring-frame normal, N = ∂n_r/∂rr =
+/// (Π − n_r n_rᵀ)/l + (n₃/ρ) e_φ e_φᵀ (Π the ball's axial–radial plane, e_φ the azimuthal
+/// direction: the normal turns with the groove) and w = v_b − v_gc:
+///
+/// ```text
+///   ∂δ/∂r_r = −nᵀ,  ∂δ̇/∂r_r = −[wᵀ Tᵀ N − nᵀ [β̇×] Tᵀ (R_g/ρ) e_φ e_φᵀ] T,  ∂δ̇/∂v_r = −nᵀ,
+///   ∂(Q n)/∂r_r = n (1.5 K δ^½ ∂δ/∂r_r + c ∂δ̇/∂r_r) − Q Tᵀ N T,  ∂(Q n)/∂v_r = −c n nᵀ.
+/// ```
+pub fn ring_translation_jacobian(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    defect: Option<DefectView<'_>>,
+) -> Option<(M3, M3)> {
+    let c = evaluate(ball, ring, race, ball_radius, damping, None, defect);
+    if c.in_defect {
+        return None;
+    }
+    let zero = [[0.0; 3]; 3];
+    if c.q <= 0.0 || c.delta <= 0.0 {
+        return Some((zero, zero));
+    }
+    let rbr = sub(ball.p, ring.p);
+    let rr = ring.to_ring(rbr);
+    let rho = (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
+    let (ey, ez) = (rr[1] / rho, rr[2] / rho);
+    let (bx, br) = (rr[0] - race.xg, rho - race.rg);
+    let l = (bx * bx + br * br).sqrt();
+    let n_r = [bx / l, br / l * ey, br / l * ez];
+    let n = ring.to_inertial(n_r);
+    let e_rho = [0.0, ey, ez];
+    let e_phi = [0.0, -ez, ey];
+    let ex = [1.0, 0.0, 0.0];
+    // N = ∂n_r/∂rr.
+    let mut nm = zero;
+    for i in 0..3 {
+        for j in 0..3 {
+            let pi = ex[i] * ex[j] + e_rho[i] * e_rho[j];
+            nm[i][j] = (pi - n_r[i] * n_r[j]) / l + br / l / rho * e_phi[i] * e_phi[j];
+        }
+    }
+    // T and Tᵀ as matrices: T v = v − β × v.
+    let tmat = |transpose: bool| {
+        let mut m = zero;
+        for (j, col) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            .into_iter()
+            .enumerate()
+        {
+            let v = if transpose {
+                ring.to_inertial(col)
+            } else {
+                ring.to_ring(col)
+            };
+            for i in 0..3 {
+                m[i][j] = v[i];
+            }
+        }
+        m
+    };
+    let (t, tt) = (tmat(false), tmat(true));
+    let mul = |a: &M3, b: &M3| {
+        let mut r = zero;
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+            }
+        }
+        r
+    };
+    let ttn = mul(&tt, &nm); // ∂n/∂rr
+    let gc = ring.to_inertial([race.xg, race.rg * ey, race.rg * ez]);
+    let v_gc = add(ring.v, cross(ring.beta_rate, gc));
+    let w = sub(ball.v, v_gc);
+    // Row vector ∂δ̇/∂rr = wᵀ Tᵀ N + nᵀ ∂w/∂rr, ∂w/∂rr = −[β̇×] Tᵀ (R_g/ρ) e_φ e_φᵀ.
+    let tt_ephi = ring.to_inertial(e_phi);
+    let bxe = cross(ring.beta_rate, tt_ephi);
+    let n_bxe = dot(n, bxe);
+    let mut dd_rr = [0.0; 3];
+    for (j, d) in dd_rr.iter_mut().enumerate() {
+        *d = (0..3).map(|i| w[i] * ttn[i][j]).sum::<f64>() - n_bxe * race.rg / rho * e_phi[j];
+    }
+    let k = c.k;
+    let stiff = 1.5 * k * c.delta.sqrt();
+    // Chain to the ring position: ∂rr/∂r_r = −T.
+    let mut dfdx = zero;
+    let mut dfdv = zero;
+    let q_ttnt = mul(&ttn, &t);
+    for j in 0..3 {
+        let dd_p = -(0..3).map(|m| dd_rr[m] * t[m][j]).sum::<f64>();
+        let ddelta_p = -n[j];
+        let dq = stiff * ddelta_p + damping * dd_p;
+        for i in 0..3 {
+            dfdx[i][j] = n[i] * dq - c.q * q_ttnt[i][j];
+            dfdv[i][j] = -damping * n[i] * n[j];
+        }
+    }
+    Some((dfdx, dfdv))
+}

@@ -580,4 +580,75 @@ impl Model for FullModel {
     fn set_prescribed_ring(&mut self, on: bool) {
         self.prescribed = on;
     }
+
+    /// Analytic for frictionless contacts ([`contact::ring_translation_jacobian`] per intact
+    /// inner contact; a contact the spall alters by central differences of its normal force).
+    /// With traction on, `None`: the simulation then differentiates the full reaction (traction
+    /// included) by central differences.
+    fn reaction_jacobian(&mut self, _t: f64, y: &[f64]) -> Option<super::ReactionJacobian> {
+        if self.traction.is_some() {
+            return None;
+        }
+        let inner = self.inner_pose(y);
+        let mut jac = super::ReactionJacobian::default();
+        for j in 0..self.z {
+            let (kin, _, _, _, w) = self.ball_kin(y, j);
+            let dv = self.defect_view(y, j, Race::Inner, w);
+            let (dfdx, dfdv) = match contact::ring_translation_jacobian(
+                &kin,
+                &inner,
+                &self.inner,
+                self.ball_radius,
+                self.c_br,
+                dv,
+            ) {
+                Some(m) => m,
+                None => {
+                    // Central differences of this contact's force on the ring.
+                    let f = |pose: &RingPose| {
+                        let c = contact::evaluate(
+                            &kin,
+                            pose,
+                            &self.inner,
+                            self.ball_radius,
+                            self.c_br,
+                            None,
+                            dv,
+                        );
+                        c.qn
+                    };
+                    let mut m = ([[0.0; 3]; 3], [[0.0; 3]; 3]);
+                    for k in 0..3 {
+                        for (h, vel) in [(1e-10, false), (1e-5, true)] {
+                            let (mut pp, mut pm) = (inner, inner);
+                            if vel {
+                                pp.v[k] += h;
+                                pm.v[k] -= h;
+                            } else {
+                                pp.p[k] += h;
+                                pm.p[k] -= h;
+                            }
+                            let (fp, fm) = (f(&pp), f(&pm));
+                            for i in 0..3 {
+                                let d = (fp[i] - fm[i]) / (2.0 * h);
+                                if vel {
+                                    m.1[i][k] = d;
+                                } else {
+                                    m.0[i][k] = d;
+                                }
+                            }
+                        }
+                    }
+                    m
+                }
+            };
+            for i in 0..3 {
+                for k in 0..3 {
+                    jac.dfdx[i][k] += dfdx[i][k];
+                    jac.dfdv[i][k] += dfdv[i][k];
+                }
+            }
+        }
+        Some(jac)
+    }
 }
