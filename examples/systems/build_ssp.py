@@ -123,6 +123,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(fmu_path("BallBearing").parent / "RotorBearing.ssp"))
     ap.add_argument("--write-ssd", action="store_true")
+    ap.add_argument("--ssd", default=str(SSD), help="pack this SystemStructure.ssd instead")
     a = ap.parse_args()
     if a.write_ssd:
         from statics import journal_equilibrium
@@ -134,7 +135,7 @@ def main():
     out = pathlib.Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
-        z.write(SSD, "SystemStructure.ssd")
+        z.write(SSD if a.write_ssd else a.ssd, "SystemStructure.ssd")
         for name in ("JeffcottRotor", "BallBearing"):
             p = fmu_path(name)
             if not p.is_file():
