@@ -92,6 +92,21 @@ def test_interface_jacobian_is_stable_at_1ms_for_the_default_rotor_on_a_grounded
     assert np.max(dev[-25:]) <= 1.5 * np.max(dev[:50])
 
 
+def test_step_sensitivity_coupling_is_stable_at_1ms_for_the_default_rotor(fmus):
+    # default rotor, default (spalled) bearing with its pedestal, 9900 rpm: the instantaneous
+    # Jacobian blows up at 1 ms (docs/coupling.md, part B); the rolled-back step sensitivity not
+    r, b, x0 = cs.coupled_pair({}, cs.bearing_start(10.0, 9900.0), cs.B_OFFSET)
+    try:
+        res = cm.run_coupled(r, b, 1e-3, 0.1, "implicit", feedthrough=True, blowup=1e-3)
+    finally:
+        r.free()
+        b.free()
+    assert res["ok"], res["error"]
+    dev = np.max(np.abs(res["x"] - x0), axis=1)
+    assert np.max(dev[-25:]) <= 1.5 * np.max(dev[:50])
+    assert np.max(dev) < 2e-5  # the unbalance/spall response is a few µm
+
+
 def test_cosimulation_converges_towards_the_monolithic_reference(fmus, monkeypatch):
     # force mode with the rotor mass in the inner ring and the unbalance as a rotating load,
     # against the two-way co-simulation with the interface Jacobian (docs/coupling.md, part C)
