@@ -1,8 +1,11 @@
-//! Packs the raceway cdylib into `target/fmu/BallBearing.fmu`.
+//! Packs the raceway cdylib into `target/fmu/BallBearing.fmu` and the rotor cdylib into
+//! `target/fmu/JeffcottRotor.fmu`.
 //!
 //! ```text
 //! cargo run --release -p fmu-build -- [--bearing <preset|file.toml>] [--out target/fmu/BallBearing.fmu]
 //! cargo run -p fmu-build -- --write-model-description     # refresh modelDescription/modelDescription.xml
+//!                                                         # and rotor/modelDescription/modelDescription.xml
+//! cargo run --release -p fmu-build -- --only rotor         # only target/fmu/JeffcottRotor.fmu
 //! ```
 //!
 //! Steps: build the release cdylib (`cargo build --release --lib -p raceway`, honouring
@@ -40,6 +43,9 @@ struct Args {
     /// Skip the reference run (documentation/BallBearing_ref.csv gets only its header).
     #[arg(long)]
     no_reference: bool,
+    /// Which FMUs to build: `all`, `bearing` (BallBearing.fmu) or `rotor` (JeffcottRotor.fmu).
+    #[arg(long, default_value = "all", value_parser = ["all", "bearing", "rotor"])]
+    only: String,
 }
 
 fn workspace_root() -> PathBuf {
@@ -70,9 +76,17 @@ fn fail(msg: impl AsRef<str>) -> ! {
 
 fn build_cdylib() -> PathBuf {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!("fmu-build: cargo build --release --lib -p raceway");
+    eprintln!("fmu-build: cargo build --release --lib -p raceway --features ballbearing-fmu");
     let status = Command::new(cargo)
-        .args(["build", "--release", "--lib", "-p", "raceway"])
+        .args([
+            "build",
+            "--release",
+            "--lib",
+            "-p",
+            "raceway",
+            "--features",
+            "ballbearing-fmu",
+        ])
         .current_dir(workspace_root())
         .status()
         .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
@@ -423,12 +437,12 @@ fn quoted(names: &[String]) -> String {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Copies the library to `<target>/fmu/stage/BallBearing.so`, without debug info when
+/// Copies the library to `<target>/fmu/stage/<name>`, without debug info when
 /// `strip` is available (the release profile keeps line tables for backtraces).
-fn stage_library(lib: &Path) -> PathBuf {
+fn stage_library(lib: &Path, name: &str) -> PathBuf {
     let dir = target_dir().join("fmu").join("stage");
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
-    let out = dir.join("BallBearing.so");
+    let out = dir.join(name);
     let _ = std::fs::remove_file(&out);
     let stripped = Command::new("strip")
         .arg("--strip-debug")
@@ -445,10 +459,72 @@ fn stage_library(lib: &Path) -> PathBuf {
     out
 }
 
+/// Builds `<target>/fmu/JeffcottRotor.fmu`: the rotor cdylib (raceway without the
+/// `ballbearing-fmu` feature, so it exports the rotor's fmi2* symbols only), its model
+/// description and documentation.
+fn build_rotor_fmu() {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    eprintln!("fmu-build: cargo build --release --lib -p raceway-rotor");
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--lib", "-p", "raceway-rotor"])
+        .current_dir(workspace_root())
+        .status()
+        .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
+    if !status.success() {
+        fail("cargo build of the rotor cdylib failed");
+    }
+    let lib = target_dir().join("release").join("libraceway_rotor.so");
+    if !lib.is_file() {
+        fail(format!("{} was not produced", lib.display()));
+    }
+    let staged = stage_library(&lib, "JeffcottRotor.so");
+    let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
+    let out = target_dir().join("fmu").join("JeffcottRotor.fmu");
+    let tmp = out.with_extension("fmu.part");
+    let file =
+        std::fs::File::create(&tmp).unwrap_or_else(|e| fail(format!("{}: {e}", tmp.display())));
+    let mut zip = zip::ZipWriter::new(file);
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .unix_permissions(0o644);
+    let mut add = |name: &str, data: &[u8], mode: u32| {
+        zip.start_file(name, opts.unix_permissions(mode))
+            .and_then(|_| zip.write_all(data).map_err(Into::into))
+            .unwrap_or_else(|e| fail(format!("zip {name}: {e}")));
+    };
+    add(
+        "modelDescription.xml",
+        raceway_rotor::fmu::model_description_xml().as_bytes(),
+        0o644,
+    );
+    add("binaries/linux64/JeffcottRotor.so", &so, 0o755);
+    add(
+        "documentation/index.html",
+        raceway_rotor::fmu::documentation_html().as_bytes(),
+        0o644,
+    );
+    zip.finish().unwrap_or_else(|e| fail(format!("zip: {e}")));
+    std::fs::rename(&tmp, &out).unwrap_or_else(|e| fail(format!("{}: {e}", out.display())));
+    println!(
+        "fmu-build: wrote {} (GUID {})",
+        out.display(),
+        raceway_rotor::fmu::guid()
+    );
+}
+
 fn main() {
     let args = Args::parse();
 
     if args.write_model_description {
+        let rotor_path = workspace_root()
+            .join("rotor")
+            .join("modelDescription")
+            .join("modelDescription.xml");
+        std::fs::create_dir_all(rotor_path.parent().expect("has a parent"))
+            .unwrap_or_else(|e| fail(format!("{e}")));
+        std::fs::write(&rotor_path, raceway_rotor::fmu::model_description_xml())
+            .unwrap_or_else(|e| fail(format!("{}: {e}", rotor_path.display())));
+        eprintln!("fmu-build: wrote {}", rotor_path.display());
         let b = BearingFile::default_preset();
         let path = workspace_root()
             .join("modelDescription")
@@ -459,6 +535,13 @@ fn main() {
             .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
         eprintln!("fmu-build: wrote {}", path.display());
         return;
+    }
+
+    if args.only != "bearing" {
+        build_rotor_fmu();
+        if args.only == "rotor" {
+            return;
+        }
     }
 
     // The bearing and its file text (shipped as resources/bearing.toml).
@@ -477,7 +560,7 @@ fn main() {
     };
 
     let lib = args.lib.clone().unwrap_or_else(build_cdylib);
-    let staged = stage_library(&lib);
+    let staged = stage_library(&lib, "BallBearing.so");
     let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
 
     let xml = raceway::fmi::model_description_xml(&bearing);

@@ -30,6 +30,9 @@ mod toy;
 
 use crate::config::BearingFile;
 
+// Only with the `ballbearing-fmu` feature (fmu-build enables it): a dependent cdylib such as
+// the rotor FMU must not inherit these #[no_mangle] symbols.
+#[cfg(feature = "ballbearing-fmu")]
 crate::export_fmi2!(ballbearing::BallBearing);
 
 /// `modelIdentifier` of the FMU.

@@ -49,6 +49,9 @@ fn unit_definition(unit: &str) -> Option<([i32; 4], DisplayUnits)> {
         "N/m" => ([1, 0, -2, 0], vec![]),
         "N.s/m" => ([1, 0, -1, 0], vec![]),
         "s" => ([0, 0, 1, 0], vec![]),
+        "N/s" => ([1, 1, -3, 0], vec![]),
+        "rad/s2" => ([0, 0, -2, 1], vec![]),
+        "kg.m" => ([1, 1, 0, 0], vec![("g.mm", 1e6, 0.0)]),
         _ => return None,
     })
 }

@@ -1,0 +1,686 @@
+//! Jeffcott rotor with one bearing station: plain Rust physics, no FMI.
+//!
+//! Two lumped masses in the bearing's frame (x axial, y and z radial, shaft rotation about +x):
+//! the **journal** (mass `m_j`, the inner-ring centre, displacement `x_j = (x, y, z)`) and the
+//! **disk** (mass `m_d`, lateral displacement `(y_d, z_d)`) on a massless shaft of lateral
+//! stiffness `k_s` and damping `c_s`. Axially the disk rides with the journal. With `m_d = 0`
+//! the rotor is rigid: one mass `m_j` carrying the unbalance.
+//!
+//! ```text
+//!   (m_j + m_d) ẍ_j   = F_x + L_x − c_j ẋ_j
+//!   m_j ÿ_j           = F_y + L_y − c_j ẏ_j + k_s (y_d − y_j) + c_s (ẏ_d − ẏ_j)
+//!   m_j z̈_j           = F_z + L_z − c_j ż_j + k_s (z_d − z_j) + c_s (ż_d − ż_j) − m_j g
+//!   m_d ÿ_d           = −k_s (y_d − y_j) − c_s (ẏ_d − ẏ_j) + U_y
+//!   m_d z̈_d           = −k_s (z_d − z_j) − c_s (ż_d − ż_j) − m_d g + U_z
+//! ```
+//!
+//! `F` is the force of the bearing on the shaft (the coupling input), `L` a constant external
+//! load, `g` gravity along −z, and `U` the unbalance force of `m_u e` at the shaft angle φ
+//! (φ̇ = Ω): `U = m_u e (Ω² cos φ + Ω̇ sin φ, Ω² sin φ − Ω̇ cos φ)`.
+//!
+//! Shaft speed: `Ω(t) = Ω₀` ramping at `|α|` towards `Ω_f` from the start time (a run-up), in
+//! closed form, so φ is exact.
+//!
+//! Bearing force inside a communication step `[t_k, t_k + H]` (what a co-simulation master
+//! hands over): `F(t) = F_k + Ḟ_k (t − t_k) + K (x_j(t) − x_j(t_k)) + C (ẋ_j(t) − ẋ_j(t_k))`.
+//! `Ḟ_k = 0, K = C = 0` is the constant-input (zero-order hold) coupling, `Ḟ_k ≠ 0` linear
+//! extrapolation, and `K = ∂F/∂x`, `C = ∂F/∂v` of the bearing (its directional derivatives) the
+//! interface-Jacobian coupling, where the rotor integrates the linearised bearing reaction
+//! inside the step.
+
+use raceway::solver::{Integrator, IntegratorState, Method, Options, SolverError, System};
+
+/// Parameters of the rotor (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RotorParams {
+    /// Journal (bearing-station) mass [kg] (> 0).
+    pub journal_mass: f64,
+    /// Disk mass [kg] (>= 0; 0: rigid rotor).
+    pub disk_mass: f64,
+    /// Shaft lateral stiffness journal–disk [N/m] (> 0 if `disk_mass > 0`).
+    pub shaft_k: f64,
+    /// Shaft lateral damping [N·s/m].
+    pub shaft_c: f64,
+    /// Damping of the journal to ground, all three directions [N·s/m] (a damper, seal, ...).
+    pub journal_c: f64,
+    /// Unbalance m_u·e [kg·m] on the disk (on the journal if rigid).
+    pub unbalance: f64,
+    /// Gravity [m/s²], acting along −z.
+    pub gravity: f64,
+    /// Constant external load on the journal [N].
+    pub load: [f64; 3],
+    /// Initial journal displacement [m]; the disk starts at its static sag below it.
+    pub journal0: [f64; 3],
+    /// Shaft speed at the start [rad/s] (>= 0).
+    pub speed_initial: f64,
+    /// Shaft speed at the end of the ramp [rad/s] (>= 0).
+    pub speed_final: f64,
+    /// Ramp rate magnitude [rad/s²] (0: constant speed `speed_initial`).
+    pub speed_rate: f64,
+}
+
+impl Default for RotorParams {
+    /// The default rotor: 2 kg journal, 8 kg disk on a 2 MN/m shaft (first critical speed
+    /// ≈ 500 rad/s ≈ 4770 rpm on a rigid bearing), 2 % shaft damping, 100 g·mm unbalance,
+    /// the default bearing scene's loads (Fa = 4000 N, Fr = 1000 N), at 9900 rpm.
+    fn default() -> Self {
+        RotorParams {
+            journal_mass: 2.0,
+            disk_mass: 8.0,
+            shaft_k: 2.0e6,
+            shaft_c: 160.0,
+            journal_c: 0.0,
+            unbalance: 1.0e-4,
+            gravity: 9.81,
+            load: [4000.0, 0.0, -1000.0],
+            journal0: [0.0; 3],
+            speed_initial: 9900.0 * std::f64::consts::PI / 30.0,
+            speed_final: 9900.0 * std::f64::consts::PI / 30.0,
+            speed_rate: 0.0,
+        }
+    }
+}
+
+/// A parameter error, naming the parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError(pub String);
+
+impl std::fmt::Display for ParamError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl RotorParams {
+    /// Checks ranges; the error names the offending field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let fields: [(&str, f64); 12] = [
+            ("journal.mass", self.journal_mass),
+            ("disk.mass", self.disk_mass),
+            ("shaft.k", self.shaft_k),
+            ("shaft.c", self.shaft_c),
+            ("journal.c", self.journal_c),
+            ("unbalance", self.unbalance),
+            ("gravity", self.gravity),
+            ("speed.initial", self.speed_initial),
+            ("speed.final", self.speed_final),
+            ("speed.rate", self.speed_rate),
+            ("load.Fx", self.load[0]),
+            ("journal.x0", self.journal0[0]),
+        ];
+        for (name, v) in fields {
+            if !v.is_finite() {
+                return Err(ParamError(format!("{name} = {v} is not finite")));
+            }
+        }
+        for (name, v) in [
+            ("load.Fy", self.load[1]),
+            ("load.Fz", self.load[2]),
+            ("journal.y0", self.journal0[1]),
+            ("journal.z0", self.journal0[2]),
+        ] {
+            if !v.is_finite() {
+                return Err(ParamError(format!("{name} = {v} is not finite")));
+            }
+        }
+        if self.journal_mass <= 0.0 {
+            return Err(ParamError(format!(
+                "journal.mass = {} kg must be > 0",
+                self.journal_mass
+            )));
+        }
+        for (name, v) in [
+            ("disk.mass", self.disk_mass),
+            ("shaft.c", self.shaft_c),
+            ("journal.c", self.journal_c),
+            ("unbalance", self.unbalance),
+            ("speed.initial", self.speed_initial),
+            ("speed.final", self.speed_final),
+            ("speed.rate", self.speed_rate),
+        ] {
+            if v < 0.0 {
+                return Err(ParamError(format!("{name} = {v} must be >= 0")));
+            }
+        }
+        if self.disk_mass > 0.0 && self.shaft_k <= 0.0 {
+            return Err(ParamError(format!(
+                "shaft.k = {} N/m must be > 0 when disk.mass > 0",
+                self.shaft_k
+            )));
+        }
+        Ok(())
+    }
+
+    /// Whether the rotor is a single rigid mass (no disk).
+    pub fn rigid(&self) -> bool {
+        self.disk_mass == 0.0
+    }
+
+    /// Static sag of the disk below the journal under gravity [m] (0 if rigid).
+    pub fn disk_sag(&self) -> f64 {
+        if self.rigid() {
+            0.0
+        } else {
+            self.disk_mass * self.gravity / self.shaft_k
+        }
+    }
+
+    /// Duration of the speed ramp [s] (0 without a ramp).
+    pub fn ramp_time(&self) -> f64 {
+        if self.speed_rate > 0.0 {
+            (self.speed_final - self.speed_initial).abs() / self.speed_rate
+        } else {
+            0.0
+        }
+    }
+
+    /// Shaft speed Ω, its rate Ω̇ and angle φ at time `tau` after the start.
+    pub fn speed(&self, tau: f64) -> (f64, f64, f64) {
+        let tau = tau.max(0.0);
+        let tr = self.ramp_time();
+        if tr == 0.0 {
+            return (self.speed_initial, 0.0, self.speed_initial * tau);
+        }
+        let a = self.speed_rate * (self.speed_final - self.speed_initial).signum();
+        if tau < tr {
+            (
+                self.speed_initial + a * tau,
+                a,
+                self.speed_initial * tau + 0.5 * a * tau * tau,
+            )
+        } else {
+            let phi_r = self.speed_initial * tr + 0.5 * a * tr * tr;
+            (self.speed_final, 0.0, phi_r + self.speed_final * (tau - tr))
+        }
+    }
+}
+
+/// The bearing force law over one communication step (see the module docs).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InterfaceForce {
+    /// Force of the bearing on the shaft at the step start [N].
+    pub f: [f64; 3],
+    /// Its rate over the step [N/s] (linear extrapolation; 0: held constant).
+    pub df: [f64; 3],
+    /// ∂F/∂x_j [N/m], row i = force component i.
+    pub k: [[f64; 3]; 3],
+    /// ∂F/∂ẋ_j [N·s/m].
+    pub c: [[f64; 3]; 3],
+}
+
+/// State layout: journal x, y, z, ẋ, ẏ, ż; disk y, z, ẏ, ż.
+pub const DIM: usize = 10;
+
+/// The right-hand side (a [`System`]); knows the step's interface force and its start state.
+#[derive(Debug, Clone)]
+struct Rhs {
+    p: RotorParams,
+    t0: f64,
+    iface: InterfaceForce,
+    tk: f64,
+    xk: [f64; 6],
+}
+
+impl Rhs {
+    fn bearing_force(&self, t: f64, y: &[f64]) -> [f64; 3] {
+        let mut f = [0.0; 3];
+        for (i, fi) in f.iter_mut().enumerate() {
+            let mut v = self.iface.f[i] + self.iface.df[i] * (t - self.tk);
+            for j in 0..3 {
+                v += self.iface.k[i][j] * (y[j] - self.xk[j])
+                    + self.iface.c[i][j] * (y[3 + j] - self.xk[3 + j]);
+            }
+            *fi = v;
+        }
+        f
+    }
+
+    fn unbalance(&self, t: f64) -> [f64; 2] {
+        let (w, wd, phi) = self.p.speed(t - self.t0);
+        let (s, c) = phi.sin_cos();
+        let u = self.p.unbalance;
+        [u * (w * w * c + wd * s), u * (w * w * s - wd * c)]
+    }
+}
+
+impl System for Rhs {
+    fn dim(&self) -> usize {
+        DIM
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], d: &mut [f64]) {
+        let p = &self.p;
+        let f = self.bearing_force(t, y);
+        let u = self.unbalance(t);
+        let (mj, md) = (p.journal_mass, p.disk_mass);
+        // journal velocities
+        d[0] = y[3];
+        d[1] = y[4];
+        d[2] = y[5];
+        let ext = [
+            f[0] + p.load[0] - p.journal_c * y[3],
+            f[1] + p.load[1] - p.journal_c * y[4],
+            f[2] + p.load[2] - p.journal_c * y[5] - mj * p.gravity,
+        ];
+        if p.rigid() {
+            d[3] = ext[0] / mj;
+            d[4] = (ext[1] + u[0]) / mj;
+            d[5] = (ext[2] + u[1]) / mj;
+            // the (absent) disk moves with the journal
+            d[6] = y[4];
+            d[7] = y[5];
+            d[8] = d[4];
+            d[9] = d[5];
+        } else {
+            let sy = p.shaft_k * (y[6] - y[1]) + p.shaft_c * (y[8] - y[4]);
+            let sz = p.shaft_k * (y[7] - y[2]) + p.shaft_c * (y[9] - y[5]);
+            d[3] = ext[0] / (mj + md);
+            d[4] = (ext[1] + sy) / mj;
+            d[5] = (ext[2] + sz) / mj;
+            d[6] = y[8];
+            d[7] = y[9];
+            d[8] = (-sy + u[0]) / md;
+            d[9] = (-sz - md * p.gravity + u[1]) / md;
+        }
+    }
+}
+
+/// A running rotor: parameters, interface force of the current step, integrator.
+#[derive(Debug, Clone)]
+pub struct Rotor {
+    rhs: Rhs,
+    integ: Integrator,
+}
+
+/// Integrator failure inside [`Rotor::advance`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RotorError {
+    /// Time of the last accepted state.
+    pub t: f64,
+    pub message: String,
+}
+
+impl std::fmt::Display for RotorError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "rotor integration failed at t = {}: {}",
+            self.t, self.message
+        )
+    }
+}
+
+/// What the rotor reports.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RotorOutputs {
+    pub journal_x: [f64; 3],
+    pub journal_v: [f64; 3],
+    pub journal_a: [f64; 3],
+    pub disk: [f64; 2],
+    pub disk_v: [f64; 2],
+    pub speed: f64,
+    /// Shaft angle wrapped to [0, 2π).
+    pub angle: f64,
+    /// Unbalance force [N] (y, z).
+    pub unbalance: [f64; 2],
+    /// Bearing force acting now [N] (as integrated).
+    pub bearing_force: [f64; 3],
+}
+
+impl Rotor {
+    /// A rotor at `t0` in its initial state (journal at `journal0`, disk at its static sag,
+    /// at rest), integrated by DOPRI5 with relative tolerance `rtol`.
+    pub fn new(p: &RotorParams, t0: f64, rtol: f64) -> Result<Self, ParamError> {
+        p.validate()?;
+        if !(rtol > 0.0 && rtol < 0.1) {
+            return Err(ParamError(format!("tolerance {rtol} must lie in (0, 0.1)")));
+        }
+        let mut y0 = [0.0; DIM];
+        y0[..3].copy_from_slice(&p.journal0);
+        y0[6] = p.journal0[1];
+        y0[7] = p.journal0[2] - p.disk_sag();
+        // displacements to 1e-12 m, velocities to 1e-9 m/s
+        let atol = vec![
+            1e-12, 1e-12, 1e-12, 1e-9, 1e-9, 1e-9, 1e-12, 1e-12, 1e-9, 1e-9,
+        ];
+        let opts = Options::new(Method::Dopri5, rtol, atol);
+        let integ = Integrator::new(opts, t0, &y0).map_err(|e| ParamError(e.to_string()))?;
+        let mut xk = [0.0; 6];
+        xk.copy_from_slice(&y0[..6]);
+        Ok(Rotor {
+            rhs: Rhs {
+                p: p.clone(),
+                t0,
+                iface: InterfaceForce::default(),
+                tk: t0,
+                xk,
+            },
+            integ,
+        })
+    }
+
+    pub fn params(&self) -> &RotorParams {
+        &self.rhs.p
+    }
+
+    pub fn t(&self) -> f64 {
+        self.integ.t()
+    }
+
+    pub fn state(&self) -> &[f64] {
+        self.integ.y()
+    }
+
+    /// Sets the bearing force law for the steps from now on (applies from the current time).
+    pub fn set_interface(&mut self, iface: InterfaceForce) {
+        self.rhs.iface = iface;
+        self.rhs.tk = self.integ.t();
+        self.rhs.xk.copy_from_slice(&self.integ.y()[..6]);
+        self.integ.discontinuity();
+    }
+
+    pub fn interface(&self) -> &InterfaceForce {
+        &self.rhs.iface
+    }
+
+    /// Integrates to `t_end` (>= the current time).
+    pub fn advance(&mut self, t_end: f64) -> Result<(), RotorError> {
+        // the interface law is anchored at the start of each call (a communication step)
+        self.rhs.tk = self.integ.t();
+        self.rhs.xk.copy_from_slice(&self.integ.y()[..6]);
+        self.integ
+            .advance(&mut self.rhs, t_end, None)
+            .map_err(|e: SolverError| RotorError {
+                t: self.integ.t(),
+                message: e.to_string(),
+            })
+    }
+
+    /// Integrator work counters (steps, rejected, rhs evaluations).
+    pub fn stats(&self) -> (u64, u64, u64) {
+        let s = self.integ.stats();
+        (s.steps, s.rejected, s.rhs_evals)
+    }
+
+    /// The outputs at the current time.
+    pub fn outputs(&mut self) -> RotorOutputs {
+        let t = self.integ.t();
+        let mut y = [0.0; DIM];
+        y.copy_from_slice(self.integ.y());
+        let mut d = [0.0; DIM];
+        self.rhs.rhs(t, &y, &mut d);
+        let (w, _, phi) = self.rhs.p.speed(t - self.rhs.t0);
+        RotorOutputs {
+            journal_x: [y[0], y[1], y[2]],
+            journal_v: [y[3], y[4], y[5]],
+            journal_a: [d[3], d[4], d[5]],
+            disk: [y[6], y[7]],
+            disk_v: [y[8], y[9]],
+            speed: w,
+            angle: phi.rem_euclid(std::f64::consts::TAU),
+            unbalance: self.rhs.unbalance(t),
+            bearing_force: self.rhs.bearing_force(t, &y),
+        }
+    }
+
+    /// Serializable solver and interface state (the parameters are not included).
+    pub fn snapshot(&self) -> (IntegratorState, InterfaceForce, f64, [f64; 6]) {
+        (
+            self.integ.snapshot(),
+            self.rhs.iface,
+            self.rhs.tk,
+            self.rhs.xk,
+        )
+    }
+
+    /// Restores a [`Rotor::snapshot`] taken from a rotor with the same parameters.
+    pub fn restore(
+        &mut self,
+        s: &IntegratorState,
+        iface: InterfaceForce,
+        tk: f64,
+        xk: [f64; 6],
+    ) -> Result<(), String> {
+        self.integ.restore(s).map_err(|e| e.to_string())?;
+        self.rhs.iface = iface;
+        self.rhs.tk = tk;
+        self.rhs.xk = xk;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rotor without gravity and external load on a linear bearing given through the
+    /// interface Jacobian (F = −k x − c v exactly, since F_k = −k x_k − c v_k at every step).
+    fn on_spring(p: &RotorParams, k: f64, c: f64, t_end: f64, h: f64) -> (Rotor, Vec<[f64; 3]>) {
+        let mut r = Rotor::new(p, 0.0, 1e-10).unwrap();
+        let mut hist = Vec::new();
+        let n = (t_end / h).round() as usize;
+        for i in 0..n {
+            let y = r.state().to_vec();
+            let mut iface = InterfaceForce::default();
+            for a in 0..3 {
+                iface.f[a] = -k * y[a] - c * y[3 + a];
+                iface.k[a][a] = -k;
+                iface.c[a][a] = -c;
+            }
+            r.set_interface(iface);
+            r.advance((i + 1) as f64 * h).unwrap();
+            let y = r.state();
+            hist.push([r.t(), y[1], y[2]]);
+        }
+        (r, hist)
+    }
+
+    fn quiet(p: &mut RotorParams) {
+        p.gravity = 0.0;
+        p.load = [0.0; 3];
+        p.unbalance = 0.0;
+    }
+
+    #[test]
+    fn free_vibration_matches_the_damped_oscillator() {
+        let mut p = RotorParams {
+            disk_mass: 0.0,
+            journal_mass: 2.0,
+            journal0: [0.0, 1e-5, -2e-5],
+            ..RotorParams::default()
+        };
+        quiet(&mut p);
+        let (k, zeta) = (1.0e8, 0.02);
+        let m: f64 = 2.0;
+        let w = (k / m).sqrt();
+        let c = 2.0 * zeta * m * w;
+        let (r, hist) = on_spring(&p, k, c, 0.005, 1e-4);
+        let wd = w * (1.0 - zeta * zeta).sqrt();
+        for (x0, col) in [(1e-5, 1), (-2e-5, 2)] {
+            for row in &hist {
+                let t = row[0];
+                let exact =
+                    x0 * (-zeta * w * t).exp() * ((wd * t).cos() + zeta * w / wd * (wd * t).sin());
+                assert!(
+                    (row[col] - exact).abs() < 1e-6 * x0.abs(),
+                    "t = {t}: {} vs closed form {exact}",
+                    row[col]
+                );
+            }
+        }
+        // axial: no spring force was applied except the interface law along x (x0 = 0): stays 0
+        assert_eq!(r.state()[0], 0.0);
+    }
+
+    /// Steady unbalance response of the two-mass rotor on a linear isotropic bearing
+    /// (k_b, c_b), solved as a complex 2×2 system: the independent reference.
+    fn two_mass_amplitudes(p: &RotorParams, kb: f64, cb: f64, w: f64) -> (f64, f64) {
+        #[derive(Clone, Copy)]
+        struct C(f64, f64);
+        let mul = |a: C, b: C| C(a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
+        let sub = |a: C, b: C| C(a.0 - b.0, a.1 - b.1);
+        let div = |a: C, b: C| {
+            let d = b.0 * b.0 + b.1 * b.1;
+            C((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
+        };
+        let ks = C(p.shaft_k, w * p.shaft_c);
+        // [kb + ks − mj w² + i w (cb+cj), −ks; −ks, ks − md w²] [xj; xd] = [0; mu e w²]
+        let a11 = C(
+            kb + p.shaft_k - p.journal_mass * w * w,
+            w * (cb + p.journal_c + p.shaft_c),
+        );
+        let a12 = C(-ks.0, -ks.1);
+        let a22 = C(p.shaft_k - p.disk_mass * w * w, w * p.shaft_c);
+        let f = C(p.unbalance * w * w, 0.0);
+        let det = sub(mul(a11, a22), mul(a12, a12));
+        let xj = div(mul(C(-a12.0, -a12.1), f), det);
+        let xd = div(mul(a11, f), det);
+        (xj.0.hypot(xj.1), xd.0.hypot(xd.1))
+    }
+
+    #[test]
+    fn unbalance_response_matches_the_linear_two_mass_rotor() {
+        let (kb, cb) = (5.0e7, 2000.0);
+        for rpm in [3000.0, 4800.0, 7000.0] {
+            let w = rpm * std::f64::consts::PI / 30.0;
+            let mut p = RotorParams {
+                speed_initial: w,
+                speed_final: w,
+                shaft_c: 800.0, // ζ ≈ 0.1 for a quick decay of the transient
+                ..RotorParams::default()
+            };
+            p.gravity = 0.0;
+            p.load = [0.0; 3];
+            let (r, hist) = on_spring(&p, kb, cb, 0.25, 2e-4);
+            let _ = r;
+            // amplitude of the journal orbit over the last 0.05 s (circular orbit)
+            let tail: Vec<_> = hist.iter().filter(|h| h[0] > 0.2).collect();
+            let amp_j = tail
+                .iter()
+                .map(|h| h[1].hypot(h[2]))
+                .fold(0.0_f64, f64::max);
+            let (aj, _) = two_mass_amplitudes(&p, kb, cb, w);
+            assert!(
+                (amp_j / aj - 1.0).abs() < 2e-3,
+                "{rpm} rpm: journal amplitude {amp_j:e} vs linear rotor {aj:e}"
+            );
+        }
+    }
+
+    #[test]
+    fn disk_resonance_of_the_default_rotor_is_near_the_shaft_critical_speed() {
+        // On a rigid bearing the disk's critical speed is sqrt(k_s/m_d); the two-mass reference
+        // on a very stiff bearing must peak there (checks the reference's algebra, too).
+        let p = RotorParams::default();
+        let wc = (p.shaft_k / p.disk_mass).sqrt();
+        let peak = (0..2000)
+            .map(|i| 0.5 * wc + i as f64 * wc / 2000.0)
+            .max_by(|a, b| {
+                let fa = two_mass_amplitudes(&p, 1e12, 0.0, *a).1;
+                let fb = two_mass_amplitudes(&p, 1e12, 0.0, *b).1;
+                fa.total_cmp(&fb)
+            })
+            .unwrap();
+        assert!((peak / wc - 1.0).abs() < 2e-3, "peak {peak} vs {wc}");
+    }
+
+    #[test]
+    fn speed_ramp_angle_is_the_integral_of_the_speed() {
+        let p = RotorParams {
+            speed_initial: 100.0,
+            speed_final: 600.0,
+            speed_rate: 2000.0,
+            ..RotorParams::default()
+        };
+        assert!((p.ramp_time() - 0.25).abs() < 1e-15);
+        let n = 100_000;
+        let t_end = 0.4;
+        let mut phi = 0.0;
+        for i in 0..n {
+            let (a, b) = (
+                i as f64 * t_end / n as f64,
+                (i + 1) as f64 * t_end / n as f64,
+            );
+            phi += 0.5 * (p.speed(a).0 + p.speed(b).0) * (b - a);
+        }
+        let (w, wd, phi_c) = p.speed(t_end);
+        assert_eq!(w, 600.0);
+        assert_eq!(wd, 0.0);
+        assert!((phi - phi_c).abs() < 1e-6, "{phi} vs {phi_c}");
+        assert_eq!(p.speed(0.1).1, 2000.0);
+        // a run-down ramps the other way
+        let q = RotorParams {
+            speed_initial: 600.0,
+            speed_final: 100.0,
+            speed_rate: 1000.0,
+            ..RotorParams::default()
+        };
+        assert!((q.speed(0.1).0 - 500.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn gravity_and_load_give_the_static_equilibrium_on_a_spring() {
+        // rigid 2 kg rotor on k = 1e8 N/m: static deflection (L − m g ẑ)/k
+        let mut p = RotorParams {
+            disk_mass: 0.0,
+            unbalance: 0.0,
+            journal_c: 4000.0,
+            ..RotorParams::default()
+        };
+        p.load = [400.0, 100.0, -200.0];
+        let k = 1e8;
+        let (r, _) = on_spring(&p, k, 0.0, 0.05, 1e-4);
+        let y = r.state();
+        let expect = [400.0 / k, 100.0 / k, (-200.0 - 2.0 * 9.81) / k];
+        for a in 0..3 {
+            assert!(
+                (y[a] - expect[a]).abs() < 1e-6 * expect[a].abs(),
+                "axis {a}: {} vs {}",
+                y[a],
+                expect[a]
+            );
+        }
+    }
+
+    #[test]
+    fn linear_extrapolated_force_is_integrated_exactly() {
+        // rigid rotor, F = F0 + dF t along y, no spring: y = F0 t²/2m + dF t³/6m
+        let mut p = RotorParams {
+            disk_mass: 0.0,
+            ..RotorParams::default()
+        };
+        quiet(&mut p);
+        let mut r = Rotor::new(&p, 0.0, 1e-10).unwrap();
+        r.set_interface(InterfaceForce {
+            f: [0.0, 10.0, 0.0],
+            df: [0.0, 3000.0, 0.0],
+            ..Default::default()
+        });
+        r.advance(0.01).unwrap();
+        let t: f64 = 0.01;
+        let exact = (10.0 * t * t / 2.0 + 3000.0 * t.powi(3) / 6.0) / 2.0;
+        assert!((r.state()[1] - exact).abs() < 1e-9 * exact);
+    }
+
+    #[test]
+    fn invalid_parameters_are_named() {
+        let p = RotorParams {
+            journal_mass: 0.0,
+            ..RotorParams::default()
+        };
+        assert!(p.validate().unwrap_err().0.contains("journal.mass"));
+        let p = RotorParams {
+            shaft_k: 0.0,
+            ..RotorParams::default()
+        };
+        assert!(p.validate().unwrap_err().0.contains("shaft.k"));
+        let p = RotorParams {
+            unbalance: f64::NAN,
+            ..RotorParams::default()
+        };
+        assert!(p.validate().unwrap_err().0.contains("unbalance"));
+        let mut p = RotorParams::default();
+        p.load[2] = f64::INFINITY;
+        assert!(p.validate().unwrap_err().0.contains("load.Fz"));
+    }
+}
