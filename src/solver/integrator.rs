@@ -208,8 +208,34 @@ impl Integrator {
 
     /// The right-hand side changed discontinuously (inputs changed, mode switched): drop the
     /// FSAL stage so the next step re-evaluates `f(t, y)`.
+    /// With [`Options::restart_after_discontinuity`] the controller also restarts.
     pub fn discontinuity(&mut self) {
         self.fsal_valid = false;
+        if self.opts.restart_after_discontinuity && self.opts.fixed_step.is_none() {
+            self.restart_controller();
+        }
+    }
+
+    /// Forget the proposed step and the PI memory: the next step starts with a fresh automatic
+    /// initial step (one extra RHS evaluation, plus `f(t, y)` if not yet known).
+    pub(super) fn restart_controller(&mut self) {
+        self.h_next = 0.0;
+        self.ctrl = Controller::default();
+    }
+
+    /// Change the step-size controller settings (`safety`, `fac_min`, `fac_max`, `pi_beta`,
+    /// `restart_after_discontinuity` of `c`; its other fields are ignored). Validated like
+    /// [`Integrator::new`]; takes effect on the next step.
+    pub fn set_step_control(&mut self, c: &Options) -> Result<(), SolverError> {
+        let mut o = self.opts.clone();
+        o.safety = c.safety;
+        o.fac_min = c.fac_min;
+        o.fac_max = c.fac_max;
+        o.pi_beta = c.pi_beta;
+        o.restart_after_discontinuity = c.restart_after_discontinuity;
+        o.validate(self.n)?;
+        self.opts = o;
+        Ok(())
     }
 
     /// Replace the state (drops the FSAL stage and the event memory; keeps the proposed step).

@@ -40,6 +40,11 @@ pub struct Options {
     pub fixed_step: Option<f64>,
     /// Absolute time tolerance of event location (default `1e-13`; never below a few ulps of t).
     pub event_tol: f64,
+    /// After a discontinuity (a located event, a stop, [`crate::solver::Integrator::discontinuity`])
+    /// restart the controller: fresh automatic initial step (Hairer's `hinit`) and cleared PI
+    /// memory, instead of continuing with the step proposed before the discontinuity
+    /// (default `false`).
+    pub restart_after_discontinuity: bool,
 }
 
 impl Options {
@@ -60,6 +65,7 @@ impl Options {
             pi_beta: 0.0,
             fixed_step: None,
             event_tol: 1e-13,
+            restart_after_discontinuity: false,
         }
     }
 
