@@ -548,6 +548,12 @@ impl Simulation {
         }
     }
 
+    /// The integrator's full work counters (events handled, steps flagged by the stiffness
+    /// detection, step-size range) since the start.
+    pub fn solver_stats(&self) -> crate::solver::Stats {
+        self.integrator.stats()
+    }
+
     /// A pointer-free snapshot from which [`Simulation::restore_state`] continues bit-identically.
     pub fn save_state(&self) -> Vec<u8> {
         let snap = Snapshot {
