@@ -483,7 +483,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         write!(md, "---:|")?;
     }
     writeln!(md)?;
-    let measures: [(&str, fn(&Row) -> f64); 2] = [("E1", |r| r.e1), ("E2", |r| r.e2)];
+    type Measure = (&'static str, fn(&Row) -> f64);
+    let measures: [Measure; 2] = [("E1", |r| r.e1), ("E2", |r| r.e2)];
     for (lv, _, _, _) in &levels {
         for m in &methods {
             let m = format!("{m:?}");
