@@ -79,6 +79,11 @@ fn controllers() -> Vec<Ctrl> {
             set: |_, o| o.restart_after_discontinuity = true,
         },
         Ctrl {
+            name: "obs-p",
+            what: "I-controller; after two rejections in a row the retry uses the local order observed from them",
+            set: |_, o| o.observed_order_on_reject = true,
+        },
+        Ctrl {
             name: "PI.04+rs",
             what: "PI beta 0.04 and restart after discontinuities",
             set: |_, o| {
@@ -354,7 +359,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 }
                 for c in &ctrls {
                     // ... and the baseline and the main candidates only.
-                    if is_full && !matches!(c.name, "I" | "PI.04" | "s0.8" | "restart") {
+                    if is_full && !matches!(c.name, "I" | "PI.04" | "s0.8" | "restart" | "obs-p") {
                         continue;
                     }
                     let r = match run(scene, m, rtol, c, *dur, *skip) {

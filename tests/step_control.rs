@@ -93,3 +93,31 @@ fn set_step_control_validates() {
     it.set_step_control(&c).unwrap();
     assert_eq!((it.options().pi_beta, it.options().safety), (0.04, 0.8));
 }
+
+#[test]
+fn observed_order_sizes_the_retry_after_two_rejections() {
+    use raceway::solver::controller::Controller;
+    let tab = Method::Dop853.tableau();
+    let mut o = Options::new(Method::Dop853, 1e-6, vec![1e-9]);
+    o.observed_order_on_reject = true;
+    let mut c = Controller::default();
+    // First rejection: nominal exponent 1/8, limited by fac_min = 0.2.
+    let h1 = c.reject(tab, &o, 1.0, 3.0);
+    assert!((h1 - 0.9 * 3f64.powf(-1.0 / 8.0)).abs() < 1e-12, "{h1}");
+    // The error fell only like h^2 (a kink): err2 = 3 h1^2. The retry must use p = 2:
+    // h2 = h1 * (0.9 / err2)^(1/2), instead of the nominal h1 * 0.9 * err2^(-1/8).
+    let e2 = 3.0 * h1 * h1;
+    let h2 = c.reject(tab, &o, h1, e2);
+    let want = h1 * 0.9 / e2.sqrt();
+    assert!((h2 - want).abs() < 1e-12 * want, "{h2} vs {want}");
+    // Acceptance clears the memory: the next rejection is nominal again.
+    c.accept(tab, &o, h2, 0.5);
+    let h3 = c.reject(tab, &o, 1.0, 3.0);
+    assert!((h3 - h1).abs() < 1e-12);
+    // Without the option the second retry is nominal.
+    let mut c = Controller::default();
+    o.observed_order_on_reject = false;
+    c.reject(tab, &o, 1.0, 3.0);
+    let h2n = c.reject(tab, &o, h1, e2);
+    assert!((h2n - h1 * 0.9 * e2.powf(-1.0 / 8.0)).abs() < 1e-12);
+}

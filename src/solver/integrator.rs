@@ -239,7 +239,8 @@ impl Integrator {
     }
 
     /// Change the step-size controller settings (`safety`, `fac_min`, `fac_max`, `pi_beta`,
-    /// `restart_after_discontinuity` of `c`; its other fields are ignored). Validated like
+    /// `restart_after_discontinuity`, `observed_order_on_reject` of `c`; its other fields are
+    /// ignored). Validated like
     /// [`Integrator::new`]; takes effect on the next step.
     pub fn set_step_control(&mut self, c: &Options) -> Result<(), SolverError> {
         let mut o = self.opts.clone();
@@ -248,6 +249,7 @@ impl Integrator {
         o.fac_max = c.fac_max;
         o.pi_beta = c.pi_beta;
         o.restart_after_discontinuity = c.restart_after_discontinuity;
+        o.observed_order_on_reject = c.observed_order_on_reject;
         o.validate(self.n)?;
         self.opts = o;
         Ok(())

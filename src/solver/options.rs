@@ -45,6 +45,12 @@ pub struct Options {
     /// memory, instead of continuing with the step proposed before the discontinuity
     /// (default `false`).
     pub restart_after_discontinuity: bool,
+    /// After two rejections in a row, size the next attempt with the local order observed from
+    /// the two rejected attempts (`p = ln(err1/err2) / ln(h1/h2)`, clamped to `[1, q+1]`)
+    /// instead of the method's nominal `q+1`: near a kink of the right-hand side the error
+    /// falls more slowly than `h^{q+1}` and the nominal exponent shrinks too little
+    /// (default `false`).
+    pub observed_order_on_reject: bool,
 }
 
 impl Options {
@@ -66,6 +72,7 @@ impl Options {
             fixed_step: None,
             event_tol: 1e-13,
             restart_after_discontinuity: false,
+            observed_order_on_reject: false,
         }
     }
 
