@@ -639,6 +639,15 @@ impl Simulation {
         Ok(())
     }
 
+    /// Changes the integrator's step-size controller (safety, factor limits, PI β, restart after
+    /// discontinuities; see [`crate::solver::Integrator::set_step_control`]). For studies of
+    /// the controller (`examples/controller_study.rs`); scenes use the defaults.
+    pub fn set_step_control(&mut self, c: &Options) -> Result<(), SimError> {
+        self.integrator
+            .set_step_control(c)
+            .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))
+    }
+
     /// Advances to exactly `t_end`, landing on every known discontinuity of the model on the way.
     /// On failure the simulation stays at its last good time ([`SimError::Solver`]).
     pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
@@ -828,6 +837,12 @@ impl Simulation {
             rejected: s.rejected,
             rhs_evals: s.rhs_evals,
         }
+    }
+
+    /// The integrator's full work counters (events handled, steps flagged by the stiffness
+    /// detection, step-size range) since the start.
+    pub fn solver_stats(&self) -> crate::solver::Stats {
+        self.integrator.stats()
     }
 
     /// A pointer-free snapshot from which [`Simulation::restore_state`] continues bit-identically.

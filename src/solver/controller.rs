@@ -45,6 +45,10 @@ pub struct Controller {
     pub err_old: f64,
     /// The previous attempt was rejected (then the step may not grow on the next acceptance).
     pub last_rejected: bool,
+    /// Step size and error of the previous rejected attempt of the current step (only with
+    /// [`Options::observed_order_on_reject`]; cleared on acceptance, so never part of a snapshot
+    /// taken between steps).
+    pub rej_prev: Option<(f64, f64)>,
 }
 
 impl Default for Controller {
@@ -52,6 +56,7 @@ impl Default for Controller {
         Controller {
             err_old: 1e-4,
             last_rejected: false,
+            rej_prev: None,
         }
     }
 }
@@ -72,16 +77,28 @@ impl Controller {
             h_new = h_new.min(h);
         }
         self.last_rejected = false;
+        self.rej_prev = None;
         h_new
     }
 
     /// Step size after rejecting a step of size `h` with error `err > 1` (or non-finite).
     pub fn reject(&mut self, tab: &Tableau, o: &Options, h: f64, err: f64) -> f64 {
         self.last_rejected = true;
+        let prev = self.rej_prev.take();
         if !err.is_finite() {
             return h * o.fac_min;
         }
-        let fac11 = err.powf(1.0 / (tab.err_order as f64 + 1.0));
+        let q1 = tab.err_order as f64 + 1.0;
+        let mut p = q1;
+        if o.observed_order_on_reject {
+            if let Some((h0, e0)) = prev {
+                if h < h0 && e0.is_finite() && e0 > err {
+                    p = ((e0 / err).ln() / (h0 / h).ln()).clamp(1.0, q1);
+                }
+            }
+            self.rej_prev = Some((h, err));
+        }
+        let fac11 = err.powf(1.0 / p);
         h / (1.0 / o.fac_min).min(fac11 / o.safety)
     }
 }

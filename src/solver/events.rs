@@ -212,7 +212,7 @@ impl Integrator {
                     }
                 }
             }
-            self.fsal_valid = false;
+            self.discontinuity();
             sys.events(self.t, &self.y, &mut self.g_old);
             self.event_mask.clear();
             self.event_mask.extend_from_slice(&self.fired);

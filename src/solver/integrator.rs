@@ -70,6 +70,21 @@ fn combine(y: &[f64], h: f64, coef: &[f64], k: &[f64], out: &mut [f64]) {
     }
 }
 
+/// Hairer's `h·ρ`: `h |f(t+h, y1) - f(t+h, ys)| / |y1 - ys|` (Euclidean norms); 0 when `y1 = ys`.
+fn h_rho(h: f64, f1: &[f64], fs: &[f64], y1: &[f64], ys: &[f64]) -> f64 {
+    let mut num = 0.0;
+    let mut den = 0.0;
+    for i in 0..y1.len() {
+        num += (f1[i] - fs[i]).powi(2);
+        den += (y1[i] - ys[i]).powi(2);
+    }
+    if den > 0.0 {
+        h.abs() * (num / den).sqrt()
+    } else {
+        0.0
+    }
+}
+
 /// `out = h * Σ_j coef_j k_j`.
 fn weighted(h: f64, coef: &[f64], k: &[f64], out: &mut [f64]) {
     let n = out.len();
@@ -213,8 +228,36 @@ impl Integrator {
 
     /// The right-hand side changed discontinuously (inputs changed, mode switched): drop the
     /// FSAL stage so the next step re-evaluates `f(t, y)`.
+    /// With [`Options::restart_after_discontinuity`] the controller also restarts.
     pub fn discontinuity(&mut self) {
         self.fsal_valid = false;
+        if self.opts.restart_after_discontinuity && self.opts.fixed_step.is_none() {
+            self.restart_controller();
+        }
+    }
+
+    /// Forget the proposed step and the PI memory: the next step starts with a fresh automatic
+    /// initial step (one extra RHS evaluation, plus `f(t, y)` if not yet known).
+    pub(super) fn restart_controller(&mut self) {
+        self.h_next = 0.0;
+        self.ctrl = Controller::default();
+    }
+
+    /// Change the step-size controller settings (`safety`, `fac_min`, `fac_max`, `pi_beta`,
+    /// `restart_after_discontinuity`, `observed_order_on_reject` of `c`; its other fields are
+    /// ignored). Validated like
+    /// [`Integrator::new`]; takes effect on the next step.
+    pub fn set_step_control(&mut self, c: &Options) -> Result<(), SolverError> {
+        let mut o = self.opts.clone();
+        o.safety = c.safety;
+        o.fac_min = c.fac_min;
+        o.fac_max = c.fac_max;
+        o.pi_beta = c.pi_beta;
+        o.restart_after_discontinuity = c.restart_after_discontinuity;
+        o.observed_order_on_reject = c.observed_order_on_reject;
+        o.validate(self.n)?;
+        self.opts = o;
+        Ok(())
     }
 
     /// Replace the state (drops the FSAL stage and the event memory; keeps the proposed step).
@@ -427,6 +470,20 @@ impl Integrator {
         if !tab.fsal {
             sys.rhs(t_new, &self.y_new, &mut self.k[end * n..(end + 1) * n]);
             self.stats.rhs_evals += 1;
+            // `ytmp` still holds the input of the last main stage (c = 1).
+            let last = tab.stages - 1;
+            if tab.stiff_bound > 0.0 && tab.c[last] == 1.0 {
+                let r = h_rho(
+                    h,
+                    &self.k[end * n..(end + 1) * n],
+                    &self.k[last * n..(last + 1) * n],
+                    &self.y_new,
+                    &self.ytmp,
+                );
+                if r > tab.stiff_bound {
+                    self.stats.stiff_steps += 1;
+                }
+            }
         }
         for s in end + 1..tab.slots() {
             let (done, rest) = self.k.split_at_mut(s * n);
@@ -512,6 +569,23 @@ impl Integrator {
                 };
             }
             self.stats.record_accepted(h);
+            if fixed.is_none() && self.tab.fsal && self.tab.stiff_bound > 0.0 {
+                // FSAL: slot `stages-1` is f(t+h, y_new), slot `stages-2` the last main stage
+                // (c = 1) evaluated at `ytmp`.
+                let (n, s) = (self.n, self.tab.stages);
+                if self.tab.c[s - 2] == 1.0 {
+                    let r = h_rho(
+                        h,
+                        &self.k[(s - 1) * n..s * n],
+                        &self.k[(s - 2) * n..(s - 1) * n],
+                        &self.y_new,
+                        &self.ytmp,
+                    );
+                    if r > self.tab.stiff_bound {
+                        self.stats.stiff_steps += 1;
+                    }
+                }
+            }
             let t_old = self.t;
             if want_dense {
                 self.prepare_dense(sys, h, t_new);

@@ -40,6 +40,17 @@ pub struct Options {
     pub fixed_step: Option<f64>,
     /// Absolute time tolerance of event location (default `1e-13`; never below a few ulps of t).
     pub event_tol: f64,
+    /// After a discontinuity (a located event, a stop, [`crate::solver::Integrator::discontinuity`])
+    /// restart the controller: fresh automatic initial step (Hairer's `hinit`) and cleared PI
+    /// memory, instead of continuing with the step proposed before the discontinuity
+    /// (default `false`).
+    pub restart_after_discontinuity: bool,
+    /// After two rejections in a row, size the next attempt with the local order observed from
+    /// the two rejected attempts (`p = ln(err1/err2) / ln(h1/h2)`, clamped to `[1, q+1]`)
+    /// instead of the method's nominal `q+1`: near a kink of the right-hand side the error
+    /// falls more slowly than `h^{q+1}` and the nominal exponent shrinks too little
+    /// (default `false`).
+    pub observed_order_on_reject: bool,
 }
 
 impl Options {
@@ -60,6 +71,8 @@ impl Options {
             pi_beta: 0.0,
             fixed_step: None,
             event_tol: 1e-13,
+            restart_after_discontinuity: false,
+            observed_order_on_reject: false,
         }
     }
 

@@ -16,6 +16,11 @@ pub struct Stats {
     pub rhs_evals: u64,
     /// Events handled.
     pub events: u64,
+    /// Accepted steps that Hairer's stiffness detection flags as limited by stability
+    /// (`h·ρ` above the method's boundary; DOPRI5 always, DOP853 when the dense output is
+    /// built; 0 for methods without detection). A diagnostic, it does not change the stepping.
+    #[serde(default)]
+    pub stiff_steps: u64,
     /// Size of the last accepted step.
     pub h_last: f64,
     /// Smallest accepted step (0 before the first step).
@@ -103,6 +108,8 @@ mod stats_bits {
         rejected: u64,
         rhs_evals: u64,
         events: u64,
+        #[serde(default)]
+        stiff_steps: u64,
         h_last: u64,
         h_min_used: u64,
         h_max_used: u64,
@@ -114,6 +121,7 @@ mod stats_bits {
             rejected: x.rejected,
             rhs_evals: x.rhs_evals,
             events: x.events,
+            stiff_steps: x.stiff_steps,
             h_last: x.h_last.to_bits(),
             h_min_used: x.h_min_used.to_bits(),
             h_max_used: x.h_max_used.to_bits(),
@@ -128,6 +136,7 @@ mod stats_bits {
             rejected: r.rejected,
             rhs_evals: r.rhs_evals,
             events: r.events,
+            stiff_steps: r.stiff_steps,
             h_last: f64::from_bits(r.h_last),
             h_min_used: f64::from_bits(r.h_min_used),
             h_max_used: f64::from_bits(r.h_max_used),

@@ -31,6 +31,10 @@ pub struct Tableau {
     pub err_order: u32,
     /// PI coefficient scaling: the exponent is `1/(q+1) - beta_scale * beta` (Hairer).
     pub beta_scale: f64,
+    /// Hairer's stiffness detection: boundary of `h·ρ` (ρ estimated from the last two
+    /// evaluations at `t + h`, the last main stage with `c = 1` and the end derivative) above
+    /// which a step counts as limited by stability (DOPRI5 3.25, DOP853 6.1); 0: no detection.
+    pub stiff_bound: f64,
     /// Dense-output rows `d` over slots (beyond the cubic Hermite base; see [`crate::solver::dense`]).
     pub dense: &'static [&'static [f64]],
 }

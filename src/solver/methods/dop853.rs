@@ -292,5 +292,6 @@ pub static DOP853: Tableau = Tableau {
     ],
     err_order: 7,
     beta_scale: 0.2,
+    stiff_bound: 6.1,
     dense: &D,
 };

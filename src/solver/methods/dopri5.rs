@@ -58,6 +58,7 @@ pub static DOPRI5: Tableau = Tableau {
     e3: &[],
     err_order: 4,
     beta_scale: 0.75,
+    stiff_bound: 3.25,
     dense: &[&[
         -12715105075.0 / 11282082432.0,
         0.0,

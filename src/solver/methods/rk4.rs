@@ -15,5 +15,6 @@ pub static RK4: Tableau = Tableau {
     e3: &[],
     err_order: 3,
     beta_scale: 0.75,
+    stiff_bound: 0.0,
     dense: &[],
 };

@@ -54,5 +54,6 @@ pub static RKF45: Tableau = Tableau {
     e3: &[],
     err_order: 4,
     beta_scale: 0.75,
+    stiff_bound: 0.0,
     dense: &[],
 };
