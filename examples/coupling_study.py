@@ -947,13 +947,14 @@ def document(results):
         for k, v in sp["compare"].items():
             L.append(f"| {k} | {v['max_diff']:.3e} | {v['max_diff_after_0.2s']:.3e} | {fmt(v['rel_after_0.2s'], '.2e')} |")
         L += ["", "Wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in sp["wall_s"].items()) + ".", "",
-              "The SSP file and the programmatic libcosimpy build are the same system: at constant "
-              "speed they agree bitwise (tests/python/test_coupling.py). During the speed ramp they "
-              "differ slightly (table): since the BallBearing updates its L1 cage speed whenever "
-              "`shaft.speed` changes, using the load the ring then carries, the result depends on "
-              "whether the master sets `shaft.speed` before or after `journal.*` within a "
-              "communication point, and the two libcosim set-ups order them differently. The same "
-              "update made this run-up about 9× slower than before it (14 s for libcosim-ssp).", "",
+              "The SSP file and the programmatic libcosimpy build are the same system and agree "
+              "bitwise, also during the speed ramp, although the two libcosim set-ups set "
+              "`shaft.speed` and `journal.*` in different orders: the BallBearing moves its L1 cage-speed "
+              "point (lumped level, motion mode) at the start of the next step, from the state after "
+              "all inputs are set, and only once per 2 % of speed. (Between a98d909 and that fix the "
+              "update was made on every `shaft.speed` change from the reaction at that moment: the "
+              "two set-ups differed by 3 % of the journal's range and the run-up took 128 s instead "
+              "of 14 s.)", "",
               "fmpy's `simulate_ssp` (0.3.x) can run the file, with these limits, worked around in "
               "`run_system.py`: it ignores the SSD's ParameterBindings (the script reads them with "
               "`fmpy.ssp.ssd.read_ssd` and passes them as `parameter_set`, names prefixed with the "
