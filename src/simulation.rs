@@ -308,6 +308,9 @@ pub struct Simulation {
     journal: Journal,
     journal_t: f64,
     start_loads: [f64; 3],
+    /// Motion coupling, levels with ring states: the shaft speed of the last L1 operating-point
+    /// update ([`Model::update_operating_point`], made at the start of a step).
+    l1_speed: f64,
     /// Motion coupling at levels without ring states (L0, L1).
     qs_motion: Option<QsMotion>,
 }
@@ -351,7 +354,14 @@ struct Snapshot {
     integrator: IntegratorState,
     #[serde(default)]
     journal: Option<(Journal, f64)>,
+    #[serde(default)]
+    l1_speed: Option<f64>,
 }
+
+/// Motion coupling (levels with ring states): the L1 operating point behind the cage speed is
+/// moved when the shaft speed has changed by more than this fraction since the last move (the
+/// same threshold as the lumped level's own re-solve in force mode).
+pub const L1_SPEED_STEP: f64 = 0.02;
 
 const SNAPSHOT_FORMAT: &str = "raceway-simulation";
 const SNAPSHOT_VERSION: u32 = 1;
@@ -392,6 +402,7 @@ impl Simulation {
             journal: Journal::default(),
             journal_t: 0.0,
             start_loads: [inputs.fx, inputs.fy, inputs.fz],
+            l1_speed: inputs.shaft_speed,
             qs_motion: None,
         };
         if scene.coupling == CouplingMode::Motion {
@@ -581,9 +592,9 @@ impl Simulation {
     }
 
     /// The inputs the model runs on: the given ones in force mode; in motion mode with the
-    /// load the ring currently carries, minus the bearing's reaction (L2, L4: it only feeds the
-    /// L1 cage-speed update when the speed changes; the prescribed ring ignores loads), or the
-    /// load the displaced ring needs in quasi-static equilibrium (L0, L1).
+    /// start's loads (L2, L4: the prescribed ring ignores loads; the L1 cage-speed update on a
+    /// speed change is [`Simulation::update_l1_point`]), or the load the displaced ring needs in
+    /// quasi-static equilibrium (L0, L1).
     fn effective_inputs(&mut self, inputs: &Inputs, t: f64) -> Result<Inputs, SimError> {
         let mut eff = *inputs;
         if self.scene.coupling == CouplingMode::Motion {
@@ -594,26 +605,52 @@ impl Simulation {
                     qs.applied_load = load;
                     load
                 }
-                None => {
-                    let o = &mut self.out_scratch;
-                    self.model.outputs(t, self.integrator.y(), o);
-                    let f = [
-                        -o[out::BEARING_F_X],
-                        -o[out::BEARING_F_Y],
-                        -o[out::BEARING_F_Z],
-                    ];
-                    if f.iter().all(|v| v.is_finite()) {
-                        f
-                    } else {
-                        self.start_loads
-                    }
-                }
+                None => self.start_loads,
             };
             eff.fx = load[0];
             eff.fy = load[1];
             eff.fz = load[2];
         }
         Ok(eff)
+    }
+
+    /// Motion coupling, levels with ring states (L2, L4): when the shaft speed has moved by more
+    /// than [`L1_SPEED_STEP`] since the last update, moves the level's L1 operating point (its
+    /// cage speed) to the current speed and the load the ring carries now (minus `bearing.F`).
+    /// Called at the start of every advance, so it sees the state after all inputs of the
+    /// communication point are set, whatever their order, and a speed ramp re-solves L1 once
+    /// per [`L1_SPEED_STEP`] of speed, not once per step.
+    fn update_l1_point(&mut self) {
+        if self.scene.coupling != CouplingMode::Motion || self.qs_motion.is_some() {
+            return;
+        }
+        let speed = self.inputs.shaft_speed;
+        if (speed - self.l1_speed).abs() <= L1_SPEED_STEP * self.l1_speed.abs().max(1.0) {
+            return;
+        }
+        let t = self.integrator.t();
+        let o = &mut self.out_scratch;
+        self.model.outputs(t, self.integrator.y(), o);
+        let f = [
+            -o[out::BEARING_F_X],
+            -o[out::BEARING_F_Y],
+            -o[out::BEARING_F_Z],
+        ];
+        let [fx, fy, fz] = if f.iter().all(|v| v.is_finite()) {
+            f
+        } else {
+            self.start_loads
+        };
+        let point = Inputs {
+            fx,
+            fy,
+            fz,
+            ..self.inputs
+        };
+        self.model.update_operating_point(&point);
+        self.l1_speed = speed;
+        self.model.update_mode(t, self.integrator.y());
+        self.integrator.discontinuity();
     }
 
     /// Changes the relative tolerance (absolute tolerances follow: rtol × nominal).
@@ -691,6 +728,7 @@ impl Simulation {
                 "cannot advance backwards from t = {t0} s to {t_end} s"
             )));
         }
+        self.update_l1_point();
         let n = self.model.dim();
         // The step budget (solver.max_steps) holds for the whole advance (one communication
         // step), not for each integrator call between two stops or events.
@@ -856,6 +894,7 @@ impl Simulation {
             model: self.model.discrete_state(),
             integrator: self.integrator.snapshot(),
             journal: Some((self.journal, self.journal_t)),
+            l1_speed: Some(self.l1_speed),
         };
         serde_json::to_vec(&snap).expect("a snapshot serializes")
     }
@@ -889,6 +928,9 @@ impl Simulation {
             j.check()?;
             self.journal = j;
             self.journal_t = tj;
+        }
+        if let Some(s) = snap.l1_speed {
+            self.l1_speed = s;
         }
         let eff = self.effective_inputs(&snap.inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y());

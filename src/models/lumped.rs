@@ -577,6 +577,10 @@ impl Model for LumpedModel {
 
     fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
         self.inputs = *inputs;
+        if self.prescribed {
+            // Motion coupling: the simulation moves the L1 point (update_operating_point).
+            return;
+        }
         // Re-solve L1 for the cage-speed ratio when the operating point has moved by more than
         // 2 % since the last solve; if L1 cannot solve there (e.g. no load), keep the last ratio.
         let old = self.l1_inputs;
@@ -775,6 +779,12 @@ impl Model for LumpedModel {
             pos: [X, Y, Z],
             vel: [VX, VY, VZ],
         })
+    }
+
+    fn update_operating_point(&mut self, inputs: &Inputs) {
+        // If L1 cannot solve there (e.g. no load), keep the last ratio.
+        let bearing = self.bearing.clone();
+        let _ = self.solve_l1(&bearing, inputs);
     }
 
     fn set_prescribed_ring(&mut self, on: bool) {

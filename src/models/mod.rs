@@ -160,6 +160,13 @@ pub trait Model: Send {
     /// accelerations to zero (the ring velocity is then constant over a communication step).
     fn set_prescribed_ring(&mut self, _on: bool) {}
 
+    /// Motion coupling: the simulation moves the level's quasi-static (L1) operating point
+    /// (speed and the load the ring carries) from which the level takes its cage speed. Called
+    /// at the start of a communication step when the speed has moved by more than
+    /// [`crate::simulation::L1_SPEED_STEP`] since the last call; levels without an L1 cage speed
+    /// ignore it. (In force mode the level follows its own inputs.)
+    fn update_operating_point(&mut self, _inputs: &Inputs) {}
+
     /// Analytic linearization of `bearing.F` with respect to the ring's displacement and
     /// velocity at state `y` (everything else held: pedestal, balls, cage). `None` = not
     /// implemented (the simulation uses central differences of [`Model::outputs`]).
