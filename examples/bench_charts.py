@@ -250,20 +250,33 @@ def main():
           "median of 3 runs, release, one thread.\n")
         targets = {"kinematic": 0.005, "lumped": 0.02, "reduced": 1.0, "full": 5.0}
         w("| level | rtol | simulated s | steps | RHS evals | wall s | wall s per simulated s | "
-          "thread CPU s per simulated s | target | status |")
-        w("|---|---|---|---|---|---|---|---|---|---|")
+          "thread CPU s per simulated s | set-up s | advance wall s per simulated s | target | status |")
+        w("|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in thr:
             t = targets.get(r["level"]) if (r["level"] != "lumped" or abs(r["rtol"] - 1e-6) < 1e-12) else targets.get("lumped")
             v = num(r["wall_per_simulated_s"])
             c = num(r.get("cpu_per_simulated_s"))
-            verdict = "" if t is None or math.isnan(v) else (" (met)" if v <= t else " (missed)")
+            su = num(r.get("setup_s"))
+            adv = num(r.get("advance_per_simulated_s"))
+            if t is None or math.isnan(v):
+                verdict = ""
+            elif v <= t:
+                verdict = " (met)"
+            elif not math.isnan(adv) and adv <= t:
+                verdict = " (met by the advance; missed with the set-up)"
+            else:
+                verdict = " (missed)"
             w(f"| {r['level']} | {fmt(r['rtol'], '.0e')} | {r['simulated_s']} | {fmt(r['steps'], '.0f')} | "
               f"{fmt(r['rhs_evals'], '.0f')} | {fmt(num(r['wall_s']), '.4f')} | {fmt(v, '.4f')} | "
-              f"{fmt(c, '.4f')} | {('≤ ' + str(t) + verdict) if t else '–'} | {r['status']} |")
+              f"{fmt(c, '.4f')} | {fmt(su, '.4f')} | {fmt(adv, '.4f')} | "
+              f"{('≤ ' + str(t) + verdict) if t else '–'} | {r['status']} |")
         w("")
-        w("Wall time is taken on a shared machine (other jobs running); the thread CPU time is the "
-          "fairer measure of one thread's work, the verdict uses the wall time as the target is "
-          "stated.\n")
+        w("Wall time is taken on one thread of a 2-core machine; the thread CPU time is the "
+          "measure of one thread's work when others share the machine, the verdict uses the wall "
+          "time as the target is stated. \"wall s per simulated s\" is a whole 1-s run "
+          "(`Simulation::new` plus the advance); \"set-up s\" is `Simulation::new` alone (the L1 "
+          "solve and, with a spall, its 2001-node drop table: a fixed cost per run) and \"advance\" "
+          "the rest per simulated second, the cost of every further simulated second.\n")
         lum = next((r for r in thr if r["level"] == "lumped" and r["status"] == "ok"
                     and abs(r["rtol"] - 1e-6) < 1e-12), None)
         if lum and num(lum["rhs_evals"]) > 0:
@@ -584,9 +597,18 @@ def main():
         if t is None or (r["level"] == "lumped" and abs(r["rtol"] - 1e-6) > 1e-12):
             continue
         v = num(r["wall_per_simulated_s"])
+        adv = num(r.get("advance_per_simulated_s"))
+        if math.isnan(v):
+            verdict = r["status"]
+        elif v <= t:
+            verdict = "met"
+        elif not math.isnan(adv) and adv <= t:
+            verdict = (f"**met by the advance** ({fmt(adv, '.4f')} per further simulated s); "
+                       f"**not met** by a 1-s run with its {fmt(num(r.get('setup_s')) * 1e3, '.1f')} ms set-up")
+        else:
+            verdict = "**not met**"
         w(f"| {r['level']} ≤ {t} wall s per simulated s (default scene, rtol {fmt(r['rtol'], '.0e')}) | "
-          f"{fmt(v, '.4f')} ({fmt(num(r.get('cpu_per_simulated_s')), '.4f')} CPU) | "
-          f"{r['status'] if math.isnan(v) else ('met' if v <= t else '**not met**')} |")
+          f"{fmt(v, '.4f')} ({fmt(num(r.get('cpu_per_simulated_s')), '.4f')} CPU) | {verdict} |")
     if full_rows or lv_thr:
         for r in lv_thr:
             if r["level"] == "full":

@@ -80,6 +80,30 @@ pub struct KinematicModel {
     t_ref: f64,
     /// Load lost by the ball of the current pass (set at the entry, undone at the exit).
     dip: f64,
+    /// Fault phases of the next entry and exit (cached: the slip jitter costs a log and a cos).
+    entry_thr: f64,
+    exit_thr: f64,
+    /// The modal amplitudes at the last output time, for equally spaced outputs.
+    memo: Memo,
+}
+
+/// Outputs usually come at equally spaced times t_k: the superposed response then advances by
+/// one complex multiplication per mode, C(t_k) = C(t_{k−1}) e^{λh} (1 + λδ) with δ the
+/// difference between this spacing and the cached h (|δ| ≤ 1e-9 h, so the neglected (λδ)²/2 is
+/// below 1e-18), instead of an exp and a sin_cos per mode. Any force step or state change
+/// invalidates it, and it is rebuilt from the exact expression every 1024 reuses so that
+/// rounding cannot accumulate beyond about 1e-13 relative.
+#[derive(Debug, Clone, Copy, Default)]
+struct Memo {
+    valid: bool,
+    /// Time of `c` [s].
+    t: f64,
+    /// Cached spacing h [s] and e^{λh} per mode (re, im).
+    h: f64,
+    f: [(f64, f64); 2],
+    /// Per mode C(t) (re, im): the response without the exact-expression rotation.
+    c: [(f64, f64); 2],
+    reuses: u32,
 }
 
 impl KinematicModel {
@@ -113,6 +137,9 @@ impl KinematicModel {
             acc: [(0.0, 0.0, 0.0); 2],
             t_ref: 0.0,
             dip: 0.0,
+            entry_thr: 0.0,
+            exit_thr: 0.0,
+            memo: Memo::default(),
         };
         m.theta_start = m.choose_theta_start();
         m.modes = m.compute_modes();
@@ -124,6 +151,7 @@ impl KinematicModel {
         }
         // A pass already inside the spall at the start is skipped (its entry was not seen).
         m.next_exit = m.next_entry;
+        m.refresh_thresholds();
         Ok(m)
     }
 
@@ -241,6 +269,12 @@ impl KinematicModel {
         (self.jitter * (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos()).clamp(-0.45, 0.45)
     }
 
+    /// Re-computes the cached thresholds of `next_entry` and `next_exit`.
+    fn refresh_thresholds(&mut self) {
+        self.entry_thr = self.entry_threshold(self.next_entry);
+        self.exit_thr = self.exit_threshold(self.next_exit);
+    }
+
     fn entry_threshold(&self, n: i64) -> f64 {
         n as f64 + self.jitter_of(n) - self.half_width()
     }
@@ -302,8 +336,7 @@ impl KinematicModel {
         let ring_inner = d.ring() == Race::Inner;
         let (theta0, cos_a) = (d.theta0(), self.table.alpha.cos());
         loop {
-            let entry = self.entry_threshold(self.next_entry);
-            let exit = self.exit_threshold(self.next_exit);
+            let (entry, exit) = (self.entry_thr, self.exit_thr);
             let is_exit = self.next_exit < self.next_entry && exit <= entry;
             let thr = if is_exit { exit } else { entry };
             if thr > psi {
@@ -321,12 +354,14 @@ impl KinematicModel {
                 // The ball regains its load: the pedestal is pushed again.
                 self.push_event(tk, self.dip * e_rz);
                 self.next_exit += 1;
+                self.exit_thr = self.exit_threshold(self.next_exit);
             } else {
                 // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
                 let Some(d) = &self.defect else { return };
                 self.dip = self.load_loss(d, theta);
                 self.push_event(tk, -self.dip * e_rz);
                 self.next_entry += 1;
+                self.entry_thr = self.entry_threshold(self.next_entry);
             }
         }
     }
@@ -343,26 +378,62 @@ impl KinematicModel {
             acc.2 += m.gain * f;
         }
         self.t_ref = t;
+        self.memo.valid = false;
     }
 
     /// Pedestal-z (displacement, velocity, acceleration) of the superposed modal step responses
     /// at t. With λ = −σ + iω_d and C(t) = C_ref e^{λ(t − t_ref)}: a = Re[C(1 + iσ/ω_d)],
     /// v = Re[−iC]/ω_d, x = (S − Re[C(1 − iσ/ω_d)])/ω².
-    fn response(&self, t: f64) -> (f64, f64, f64) {
+    fn response(&mut self, t: f64) -> (f64, f64, f64) {
         let dt = t - self.t_ref;
+        let memo = &mut self.memo;
+        let step = t - memo.t;
+        let reuse = memo.valid && memo.reuses < 1024 && (step - memo.h).abs() <= 1e-9 * memo.h;
         let (mut x, mut v, mut a) = (0.0, 0.0, 0.0);
-        for (m, acc) in self.modes.iter().zip(self.acc.iter()) {
+        for (k, (m, acc)) in self.modes.iter().zip(self.acc.iter()).enumerate() {
+            let (re, im) = if reuse {
+                // C(t) = C(t_prev) e^{λh} (1 + λδ), λ = −σ + iω_d.
+                let d = step - memo.h;
+                let (fr, fi) = memo.f[k];
+                let (gr, gi) = (
+                    fr * (1.0 - m.sigma * d) - fi * m.omega_d * d,
+                    fi * (1.0 - m.sigma * d) + fr * m.omega_d * d,
+                );
+                let (cr, ci) = memo.c[k];
+                (cr * gr - ci * gi, cr * gi + ci * gr)
+            } else {
+                let e = (-m.sigma * dt).exp();
+                let (sn, cs) = (m.omega_d * dt).sin_cos();
+                if memo.valid && step > 0.0 {
+                    // Cache e^{λ·step} for the next output at the same spacing.
+                    let e = (-m.sigma * step).exp();
+                    let (sn, cs) = (m.omega_d * step).sin_cos();
+                    memo.f[k] = (e * cs, e * sn);
+                }
+                (e * (acc.0 * cs - acc.1 * sn), e * (acc.0 * sn + acc.1 * cs))
+            };
+            memo.c[k] = (re, im);
             if m.omega_d <= 0.0 || (acc.0 == 0.0 && acc.1 == 0.0 && acc.2 == 0.0) {
                 continue;
             }
-            let e = (-m.sigma * dt).exp();
-            let (sn, cs) = (m.omega_d * dt).sin_cos();
-            let (re, im) = (e * (acc.0 * cs - acc.1 * sn), e * (acc.0 * sn + acc.1 * cs));
             let r = m.sigma / m.omega_d;
             a += re - r * im;
             v += im / m.omega_d;
             x += (acc.2 - (re + r * im)) / (m.omega * m.omega);
         }
+        if reuse {
+            memo.reuses += 1;
+        } else {
+            if memo.valid && step > 0.0 {
+                memo.h = step;
+            } else {
+                // First output after a change: the next one caches the spacing.
+                memo.h = f64::NAN;
+            }
+            memo.reuses = 0;
+        }
+        memo.t = t;
+        memo.valid = true;
         (x, v, a)
     }
 }
@@ -405,6 +476,7 @@ impl Model for KinematicModel {
             if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
                 self.table = t;
                 self.modes = self.compute_modes();
+                self.memo.valid = false;
             }
         }
     }
@@ -495,6 +567,8 @@ impl Model for KinematicModel {
         for (k, acc) in self.acc.iter_mut().enumerate() {
             *acc = (s[8 + 3 * k], s[9 + 3 * k], s[10 + 3 * k]);
         }
+        self.refresh_thresholds();
+        self.memo.valid = false;
         Ok(())
     }
 
