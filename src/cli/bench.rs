@@ -739,26 +739,9 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
                 }
             }
         }
-        let wall = if walls.is_empty() {
-            f64::NAN
-        } else {
-            median(walls)
-        };
-        let cpu = if cpus.is_empty() {
-            f64::NAN
-        } else {
-            median(cpus)
-        };
-        let setup = if setups.is_empty() {
-            f64::NAN
-        } else {
-            median(setups)
-        };
-        let advance = if advances.is_empty() {
-            f64::NAN
-        } else {
-            median(advances)
-        };
+        // Medians of the timed runs (NaN when none finished).
+        let med = |v: Vec<f64>| if v.is_empty() { f64::NAN } else { median(v) };
+        let (wall, cpu, setup, advance) = (med(walls), med(cpus), med(setups), med(advances));
         let (steps, evals) = stats.map_or((String::new(), String::new()), |s| {
             (s.steps.to_string(), s.rhs_evals.to_string())
         });
