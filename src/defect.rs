@@ -174,6 +174,37 @@ pub struct DropNode {
     c: f64,
 }
 
+/// A spall's azimuthal position and extent and its largest drop ([`Defect::summary`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpallSummary {
+    ring: Race,
+    theta0: f64,
+    theta_e: f64,
+    max_drop: f64,
+}
+
+impl SpallSummary {
+    /// The defective ring.
+    pub fn ring(&self) -> Race {
+        self.ring
+    }
+
+    /// Spall centre azimuth θ_d0 [rad], wrapped to (−π, π].
+    pub fn theta0(&self) -> f64 {
+        self.theta0
+    }
+
+    /// Half angle θ_e of the spall on the track [rad].
+    pub fn half_angle(&self) -> f64 {
+        self.theta_e
+    }
+
+    /// Largest drop of the ball centre over the spall [m].
+    pub fn max_drop(&self) -> f64 {
+        self.max_drop
+    }
+}
+
 /// A spall precomputed for one bearing: geometry, the drop table and the edge Hertz constants.
 #[derive(Debug, Clone)]
 pub struct Defect {
@@ -213,6 +244,35 @@ impl Defect {
         spec: &DefectSpec,
         bearing: &Bearing,
         reference_load: f64,
+    ) -> Result<Defect, ConfigError> {
+        Self::build(spec, bearing, reference_load, true)
+    }
+
+    /// The spall's azimuthal extent and largest drop without the drop table (the kinematic
+    /// level needs nothing else, and the table is most of a short run's set-up). Validates and
+    /// fails like [`Defect::new`]; the drop is the rolling-ball filter at the spall centre,
+    /// where the symmetric profile lets the ball sink deepest (a test checks it against the
+    /// table's largest drop).
+    pub fn summary(
+        spec: &DefectSpec,
+        bearing: &Bearing,
+        reference_load: f64,
+    ) -> Result<SpallSummary, ConfigError> {
+        let d = Self::build(spec, bearing, reference_load, false)?;
+        Ok(SpallSummary {
+            ring: d.ring,
+            theta0: d.theta0,
+            theta_e: d.theta_e,
+            max_drop: d.max_drop,
+        })
+    }
+
+    /// [`Defect::new`]; without `table` the drop table stays empty (only for [`Defect::summary`]).
+    fn build(
+        spec: &DefectSpec,
+        bearing: &Bearing,
+        reference_load: f64,
+        table: bool,
     ) -> Result<Defect, ConfigError> {
         spec.validate()?;
         let d_ball = bearing.d;
@@ -304,8 +364,8 @@ impl Defect {
         };
         let n = TABLE_POINTS;
         let dy = spec.width / (n - 1) as f64;
-        let mut nodes: Vec<DropNode> = Vec::with_capacity(n);
-        for i in 0..n {
+        let mut nodes: Vec<DropNode> = Vec::with_capacity(if table { n } else { 0 });
+        for i in 0..if table { n } else { 0 } {
             let y_b = if i == n - 1 {
                 half_width
             } else {
@@ -364,7 +424,14 @@ impl Defect {
             };
             nodes.push(node);
         }
-        let max_drop = nodes.iter().map(|n| n.g).fold(0.0, f64::max);
+        let max_drop = if table {
+            nodes.iter().map(|n| n.g).fold(0.0, f64::max)
+        } else {
+            match defaults.mode {
+                DefectMode::Finite => geo.rolling_ball(0.0).0,
+                DefectMode::Point => geo.depth_at(0.0),
+            }
+        };
         Ok(Defect {
             ring: spec.ring,
             width: spec.width,
@@ -824,6 +891,54 @@ mod tests {
             }
             assert_eq!(floors > 0, width > 2.0e-3, "floor contacts: {floors}");
         }
+    }
+
+    #[test]
+    fn summary_matches_the_full_table() {
+        // The summary's drop (rolling-ball filter at the centre) is the table's largest drop, for
+        // corner-only and floor spalls, both rings, both modes; the extent is the same.
+        let b = Bearing::load("niu2014-table1").unwrap();
+        let mut point = b.clone();
+        point.file.defect.mode = DefectMode::Point;
+        for bearing in [&b, &point] {
+            for ring in [Race::Outer, Race::Inner] {
+                for (width, depth) in [
+                    (0.3e-3, 0.1e-3),
+                    (1.0e-3, 0.2e-3),
+                    (4.0e-3, 0.05e-3),
+                    (8.0e-3, 0.5e-3),
+                ] {
+                    let spec = DefectSpec {
+                        ring,
+                        width,
+                        depth,
+                        theta0: 1.0,
+                    };
+                    let d = Defect::new(&spec, bearing, 400.0).unwrap();
+                    let s = Defect::summary(&spec, bearing, 400.0).unwrap();
+                    assert!(
+                        (s.max_drop() - d.max_drop()).abs() <= 1e-9 * d.max_drop(),
+                        "{ring:?} {width} x {depth}: {} vs {}",
+                        s.max_drop(),
+                        d.max_drop()
+                    );
+                    assert_eq!(
+                        (s.ring(), s.theta0(), s.half_angle()),
+                        (d.ring(), d.theta0(), d.half_angle())
+                    );
+                }
+            }
+        }
+        let bad = DefectSpec {
+            ring: Race::Outer,
+            width: 20e-3,
+            depth: 0.1e-3,
+            theta0: 0.0,
+        };
+        assert_eq!(
+            Defect::summary(&bad, &b, 400.0).unwrap_err().field,
+            Defect::new(&bad, &b, 400.0).unwrap_err().field
+        );
     }
 
     #[test]

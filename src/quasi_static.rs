@@ -48,7 +48,7 @@ use std::fmt;
 pub const MAX_DEFLECTION_OVER_D: f64 = 0.01;
 /// Largest loaded contact angle magnitude accepted [deg] ("reaching 90°").
 pub const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
-/// Finite-difference step of the reported stiffness matrix [m] (spec §6 L1).
+/// Finite-difference step of the stiffness matrix's fallback (spec §6 L1) [m].
 pub const STIFFNESS_STEP: f64 = 1e-8;
 /// Convergence tolerance on ring displacements [m].
 pub const TOL_DISPLACEMENT: f64 = 1e-10;
@@ -140,8 +140,10 @@ pub struct QuasiStatic {
     pub cage_speed: f64,
     /// Mean ω_R over the loaded balls [rad/s].
     pub spin_speed: f64,
-    /// Stiffness ∂F_i/∂δ_j of the ball set acting on the inner ring, in (x, y, z) [N/m]
-    /// (central differences, h = 1e-8 m, balls re-equilibrated).
+    /// Stiffness ∂F_i/∂δ_j of the ball set acting on the inner ring, in (x, y, z) [N/m], balls
+    /// re-equilibrated: analytic (implicit-function theorem over the ball equilibria), equal to
+    /// the central difference with h = 1e-8 m to 1e-5 (unit test); that difference is the
+    /// fallback where a ball's equilibrium is singular.
     pub stiffness: [[f64; 3]; 3],
     /// Ring Newton iterations (convex start + full problem).
     pub iterations: usize,
@@ -968,7 +970,10 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
         xs = re.balls.iter().map(|e| e.eq.x).collect();
         let any_loaded = re.balls.iter().any(|e| e.eq.q_inner > 0.0);
         let p = if any_loaded {
-            let jac = fd_jacobian(&g, omega, &u, &xs, FD_JACOBIAN_STEP, active)?;
+            let jac = match analytic_jacobian(&g, omega, &u, &re.balls) {
+                Some(j) => j,
+                None => fd_jacobian(&g, omega, &u, &xs, FD_JACOBIAN_STEP, active)?,
+            };
             solve3(jac, [-r[0], -r[1], -r[2]], active)
         } else {
             None
@@ -1052,7 +1057,10 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
     let cage_speed = loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n;
     let spin_speed = loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n;
     xs = re.balls.iter().map(|e| e.eq.x).collect();
-    let stiffness = fd_jacobian(&g, omega, &u, &xs, STIFFNESS_STEP, [true; 3])?;
+    let stiffness = match analytic_jacobian(&g, omega, &u, &re.balls) {
+        Some(j) => j,
+        None => fd_jacobian(&g, omega, &u, &xs, STIFFNESS_STEP, [true; 3])?,
+    };
     Ok(QuasiStatic {
         speed: omega,
         delta_axial: u[0],
@@ -1103,6 +1111,81 @@ fn check_limits(b: &Bearing, re: &RingEval) -> Result<(), QuasiStaticError> {
 }
 
 /// Central-difference Jacobian ∂F_ring/∂u (columns of inactive DOFs are zero).
+/// Jacobian ∂F/∂u of the ring force at the converged ball equilibria `balls` (from
+/// [`eval_ring`] at `u`), analytic by the implicit-function theorem: each ball's inner contact
+/// force f(y), y = a − x, with the ball centre x following a through its equilibrium
+/// R(x, a) = 0, so df/da = J_i (I + R_x⁻¹ R_a), J_i = ∂f/∂y the Hertz Jacobian and R_a = J_i plus
+/// the speed forces' derivative in a (central differences, as in [`eval_ball`]). Mapped to the
+/// ring's (axial, y, z) through a(u) and the radial direction e_r of the ball. This is what the
+/// central difference of [`eval_ring`] approximates, at one ring evaluation instead of six.
+/// None when a ball's R_x is singular or a ball did not converge (the caller then differences).
+fn analytic_jacobian(
+    g: &Geometry,
+    omega: f64,
+    u: &[f64; 3],
+    balls: &[BallEval],
+) -> Option<[[f64; 3]; 3]> {
+    let b = g.b;
+    let mut jac = [[0.0; 3]; 3];
+    for (j, ev) in balls.iter().enumerate() {
+        if norm2(ev.residual) > BALL_TOL_FORCE {
+            return None;
+        }
+        let d_i = ev.eq.delta_inner;
+        if d_i <= 0.0 {
+            continue;
+        }
+        let a = g.a(j, u);
+        let x = ev.eq.x;
+        let y = [a[0] - x[0], a[1] - x[1]];
+        let ji = hertz_jacobian(b.k_inner, d_i, y, norm2(y));
+        // R_a = ∂R/∂a: the inner contact force q_i e_i(y) and the speed forces.
+        let mut ra = ji;
+        if omega != 0.0 {
+            let h = 1e-9;
+            for l in 0..2 {
+                let mut ap = a;
+                let mut am = a;
+                ap[l] += h;
+                am[l] -= h;
+                let (fp, _) = speed_forces(g, omega, ap, x);
+                let (fm, _) = speed_forces(g, omega, am, x);
+                for i in 0..2 {
+                    ra[i][l] += (fp[i] - fm[i]) / (2.0 * h);
+                }
+            }
+        }
+        // dy/da = I + R_x⁻¹ R_a (solve2 returns −R_x⁻¹ r).
+        let mut dyda = [[0.0; 2]; 2];
+        for l in 0..2 {
+            let p = solve2(ev.jac, [ra[0][l], ra[1][l]])?;
+            dyda[0][l] = f64::from(u8::from(l == 0)) - p[0];
+            dyda[1][l] = f64::from(u8::from(l == 1)) - p[1];
+        }
+        let mut dfda = [[0.0; 2]; 2];
+        for i in 0..2 {
+            for l in 0..2 {
+                dfda[i][l] = ji[i][0] * dyda[0][l] + ji[i][1] * dyda[1][l];
+            }
+        }
+        // F = P f with P = [[1, 0], [0, e_r0], [0, e_r1]]; a = a0 + D u, D = Pᵀ.
+        let e = g.er[j];
+        let p = [[1.0, 0.0], [0.0, e[0]], [0.0, e[1]]];
+        for r in 0..3 {
+            for c in 0..3 {
+                let mut v = 0.0;
+                for i in 0..2 {
+                    for l in 0..2 {
+                        v += p[r][i] * dfda[i][l] * p[c][l];
+                    }
+                }
+                jac[r][c] += v;
+            }
+        }
+    }
+    jac.iter().flatten().all(|v| v.is_finite()).then_some(jac)
+}
+
 fn fd_jacobian(
     g: &Geometry,
     omega: f64,
@@ -1133,7 +1216,8 @@ fn fd_jacobian(
 /// held at displacement `u` = (δ_a, δ_y, δ_z) relative to the outer ring [m], every ball in its
 /// own equilibrium (contacts, centrifugal and gyroscopic forces) as in [`solve`]. The result's
 /// [`QuasiStatic::ring_force`] is the load the ring needs to stay at `u` (the bearing pushes the
-/// shaft with minus that), `stiffness` its central-difference Jacobian (h = [`STIFFNESS_STEP`]).
+/// shaft with minus that), `stiffness` its Jacobian (analytic, see `analytic_jacobian`; the
+/// central difference with h = [`STIFFNESS_STEP`] where a ball's equilibrium is singular).
 /// `warm` holds the ball centres of a nearby solve (empty: zero-speed start); it is updated.
 pub fn displacement_controlled(
     b: &Bearing,
@@ -1153,7 +1237,10 @@ pub fn displacement_controlled(
     }
     let re = eval_ring(&g, speed, &u, warm)?;
     *warm = re.balls.iter().map(|e| e.eq.x).collect();
-    let stiffness = fd_jacobian(&g, speed, &u, warm, STIFFNESS_STEP, [true; 3])?;
+    let stiffness = match analytic_jacobian(&g, speed, &u, &re.balls) {
+        Some(j) => j,
+        None => fd_jacobian(&g, speed, &u, warm, STIFFNESS_STEP, [true; 3])?,
+    };
     let loaded: Vec<&BallEquilibrium> = re
         .balls
         .iter()
@@ -1173,4 +1260,44 @@ pub fn displacement_controlled(
         iterations: 0,
         residual: 0.0,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn analytic_ring_jacobian_equals_central_differences() {
+        // The implicit-function Jacobian against the central difference of the re-solved ring
+        // (the definition), at converged L1 states: pure axial, combined, speed 0 and 9900 rpm,
+        // and a 9-ball deep-groove-like bearing under pure radial load.
+        for (preset, fa, fr, rpm) in [
+            ("niu2014-table1", 4000.0, 0.0, 0.0),
+            ("niu2014-table1", 4000.0, 1000.0, 9900.0),
+            ("niu2014-table1", 3000.0, 2500.0, 15000.0),
+            ("cwru-6205-de", 0.0, 2000.0, 1797.0),
+            ("cwru-6205-de", 300.0, 1500.0, 1797.0),
+        ] {
+            let b = Bearing::load(preset).unwrap();
+            let case = LoadCase::from_fa_fr_rpm(fa, fr, rpm);
+            let qs = solve(&b, &case).unwrap();
+            let g = Geometry::new(&b);
+            let u = [qs.delta_axial, qs.delta_y, qs.delta_z];
+            let xs: Vec<[f64; 2]> = qs.balls.iter().map(|e| e.x).collect();
+            let re = eval_ring(&g, case.speed, &u, &xs).unwrap();
+            let an = analytic_jacobian(&g, case.speed, &u, &re.balls).expect("analytic");
+            let fd = fd_jacobian(&g, case.speed, &u, &xs, STIFFNESS_STEP, [true; 3]).unwrap();
+            let scale = fd.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for r in 0..3 {
+                for c in 0..3 {
+                    assert!(
+                        (an[r][c] - fd[r][c]).abs() < 1e-5 * scale,
+                        "{preset} Fa {fa} Fr {fr} {rpm} rpm: K[{r}][{c}] {} vs {} (scale {scale:e})",
+                        an[r][c],
+                        fd[r][c]
+                    );
+                }
+            }
+        }
+    }
 }

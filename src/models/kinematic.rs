@@ -35,7 +35,7 @@
 
 use super::quasi_static_level::{static_outputs, L1Table};
 use super::Model;
-use crate::defect::Defect;
+use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};
 use crate::scene::Scene;
 use crate::simulation::{out, Inputs, SimError};
@@ -63,7 +63,7 @@ pub struct KinematicModel {
     bearing: Bearing,
     table: L1Table,
     inputs: Inputs,
-    defect: Option<Defect>,
+    defect: Option<SpallSummary>,
     theta_start: f64,
     /// Series Hertz constant of a ball [N/m^1.5].
     k_series: f64,
@@ -113,7 +113,7 @@ impl KinematicModel {
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);
-                Some(Defect::new(spec, bearing, q_ref)?)
+                Some(Defect::summary(spec, bearing, q_ref)?)
             }
             None => None,
         };
@@ -284,7 +284,7 @@ impl KinematicModel {
     }
 
     /// Azimuth of the spall [rad].
-    fn defect_azimuth(&self, d: &Defect, y: &[f64]) -> f64 {
+    fn defect_azimuth(&self, d: &SpallSummary, y: &[f64]) -> f64 {
         match d.ring() {
             Race::Outer => d.theta0(),
             Race::Inner => d.theta0() + y[SHAFT],
@@ -310,7 +310,7 @@ impl KinematicModel {
     }
 
     /// Load lost by a ball over the spall at spall azimuth θ [N] (≥ 0).
-    fn load_loss(&self, d: &Defect, theta: f64) -> f64 {
+    fn load_loss(&self, d: &SpallSummary, theta: f64) -> f64 {
         let q = Self::load_zone(
             self.table.q_max,
             self.table.epsilon,
