@@ -148,6 +148,9 @@ pub struct DefectView<'a> {
     pub theta_bd_rate: f64,
     /// Semi-major axis factor a* of the edge contact.
     pub a_star: f64,
+    /// Frozen side of the edge-constant blend (see [`Defect::contact_with_blend`]); `None`
+    /// decides by the position.
+    pub blend: Option<bool>,
 }
 
 impl ContactOut {
@@ -182,6 +185,25 @@ pub struct ContactOut {
     pub in_defect: bool,
 }
 
+/// Normal-force law of one contact evaluation.
+///
+/// The physical law is [`Law::Clamped`]: Q = max(0, K δ^{3/2} + c δ̇) for δ > 0, else 0. Its
+/// switches (the damping jump c δ̇ when a contact closes, the clamp when it opens) are not
+/// smooth in the state, so the full model locates them as state events and evaluates a frozen
+/// law inside each step: [`Law::Closed`] (the unclamped force, continued smoothly past the
+/// loss of contact) or [`Law::Open`] (no normal force). Between the located switches the
+/// frozen law equals the clamped one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Law {
+    /// max(0, K δ^{3/2} + c δ̇) for δ > 0, else 0.
+    Clamped,
+    /// In contact: K δ|δ|^{1/2} + c δ̇ (may turn negative past a loss of contact).
+    Closed,
+    /// Out of contact: Q = 0 (the along-track force of a blended edge constant, a potential
+    /// force of the overlap, still acts while δ′ > 0, as under the clamped law).
+    Open,
+}
+
 /// Evaluates one ball–race contact. `damping` is c_br; `traction` None = frictionless.
 #[inline]
 pub fn evaluate(
@@ -192,6 +214,31 @@ pub fn evaluate(
     damping: f64,
     traction: Option<(&TractionCurve, &Strips)>,
     defect: Option<DefectView<'_>>,
+) -> ContactOut {
+    evaluate_law(
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        traction,
+        defect,
+        Law::Clamped,
+    )
+}
+
+/// [`evaluate`] with an explicit normal-force [`Law`].
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn evaluate_law(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    traction: Option<(&TractionCurve, &Strips)>,
+    defect: Option<DefectView<'_>>,
+    law: Law,
 ) -> ContactOut {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
@@ -208,7 +255,9 @@ pub fn evaluate(
         k: race.k,
         ..Default::default()
     };
-    if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    let open =
+        |d: f64| law != Law::Closed && d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+    if open(delta) {
         return out;
     }
     let (n1, n3) = (bx / l, br / l);
@@ -233,7 +282,7 @@ pub fn evaluate(
         if y_b * dv.side <= 0.0 {
             y_b = dv.side * 1e-15;
         }
-        if let Some(c) = dv.defect.contact_at(y_b) {
+        if let Some(c) = dv.defect.contact_with_blend(y_b, dv.blend) {
             let y_rate = dv.defect.along_track_rate(tbd, dv.theta_bd_rate);
             // dy_b per metre of ball-centre travel along the track direction c2.
             track_gain = dv.defect.along_track_rate(tbd, 1.0) / rho;
@@ -252,17 +301,21 @@ pub fn evaluate(
             out.in_defect = true;
             out.delta = delta;
             out.k = k;
-            if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            if open(delta) {
                 return out;
             }
         }
     }
-    let sd = delta.sqrt();
-    let qe = k * delta * sd;
-    let q = (qe + damping * ddelta).max(0.0);
+    // δ > 0 here except under the frozen closed law past a loss of contact (then √ of 0).
+    let sd = delta.max(0.0).sqrt();
+    let q = match law {
+        Law::Clamped => (k * delta * sd + damping * ddelta).max(0.0),
+        Law::Closed => k * delta * delta.abs().sqrt() + damping * ddelta,
+        Law::Open => 0.0,
+    };
     out.q = q;
     out.f = scale(n, -q);
-    if dk_dy != 0.0 {
+    if dk_dy != 0.0 && delta > 0.0 {
         // Along-track force of the blended edge stiffness: −∂/∂y [(2/5) K(y) δ′^{5/2}] (C9),
         // through the ball centre (a potential force), reaction on the ring.
         let f_track = -0.4 * dk_dy * delta * delta * sd * track_gain;

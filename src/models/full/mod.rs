@@ -18,7 +18,7 @@ pub mod init;
 pub mod layout;
 
 use self::contact::{
-    cross, dot, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, Strips, V3,
+    cross, dot, sub, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose, Strips, V3,
 };
 use self::layout::*;
 use super::Model;
@@ -28,6 +28,10 @@ use crate::geometry::{Bearing, Race};
 use crate::scene::{Pulse, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
+
+/// Scale of the force part of the contact event function min(δ′, Q/S) [N/m]: only the sign and
+/// the continuity of the function matter (the same value as the lumped level's).
+const EVENT_FORCE_SCALE: f64 = 1e8;
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +83,21 @@ pub struct FullModel {
     theta_start: f64,
     /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
     sides: Vec<f64>,
+    /// Frozen side of the edge-constant blend per ball (true: within ℓ_b of an edge, C9);
+    /// its boundary is a state event (index 4z + j) like the contact switches.
+    in_blend: Vec<bool>,
+    /// Frozen contact modes per ball, (inner, outer): true = in contact (the unclamped force
+    /// law), false = open (no normal force). Set by [`Model::update_mode`] once `modes_set`;
+    /// before that (the initial state) the clamped law is used.
+    closed: Vec<[bool; 2]>,
+    modes_set: bool,
+    /// Contact events that fired since the last mode update (index 2j inner, 2j + 1 outer):
+    /// those contacts flip their mode.
+    fired: Vec<bool>,
+    /// Time of each contact's last flip: a driver that updates the mode once per fired event
+    /// (several events at one located time) must not re-derive an already flipped contact
+    /// from the sign of its function, which sits within round-off of 0 there.
+    flipped_at: Vec<f64>,
     /// Normal forces of the last RHS evaluation (inner, outer) [N].
     q_inner: Vec<f64>,
     q_outer: Vec<f64>,
@@ -182,6 +201,11 @@ impl FullModel {
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             theta_start: 0.0,
             sides: vec![0.0; z],
+            in_blend: vec![false; z],
+            closed: vec![[true; 2]; z],
+            modes_set: false,
+            fired: vec![false; 5 * z],
+            flipped_at: vec![f64::NAN; 5 * z],
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
             y0: vec![0.0; lay.dim()],
@@ -296,6 +320,11 @@ impl FullModel {
             phi: y[self.lay.phi()],
             theta_bd_rate: rate,
             a_star: self.defect_a_star,
+            blend: if self.modes_set {
+                Some(self.in_blend[j])
+            } else {
+                None
+            },
         })
     }
 
@@ -311,7 +340,7 @@ impl FullModel {
         outer: &RingPose,
     ) -> (ContactOut, ContactOut) {
         let tr = self.traction.as_ref().map(|(c, s)| (c, s));
-        let ci = contact::evaluate(
+        let ci = contact::evaluate_law(
             kin,
             inner,
             &self.inner,
@@ -319,8 +348,9 @@ impl FullModel {
             self.c_br,
             tr,
             self.defect_view(y, j, Race::Inner, w),
+            self.law(j, 0),
         );
-        let co = contact::evaluate(
+        let co = contact::evaluate_law(
             kin,
             outer,
             &self.outer,
@@ -328,8 +358,75 @@ impl FullModel {
             self.c_br,
             tr,
             self.defect_view(y, j, Race::Outer, w),
+            self.law(j, 1),
         );
         (ci, co)
+    }
+
+    /// The normal-force law of ball j's contact `k` (0 inner, 1 outer) in the frozen mode.
+    #[inline(always)]
+    fn law(&self, j: usize, k: usize) -> Law {
+        if !self.modes_set {
+            Law::Clamped
+        } else if self.closed[j][k] {
+            Law::Closed
+        } else {
+            Law::Open
+        }
+    }
+
+    /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
+    /// force K δ′|δ′|^{1/2} + c δ̇′. Positive exactly where the clamped law has a positive force;
+    /// continuous, so the loss of a contact (Q reaching 0) and its return (δ′ reaching 0 with the
+    /// damping jump c δ̇′, or Q rising through 0) are its roots. Also the unclamped forces.
+    #[inline(always)]
+    fn contact_events(
+        &self,
+        y: &[f64],
+        j: usize,
+        inner: &RingPose,
+        outer: &RingPose,
+    ) -> [(f64, f64); 2] {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
+            let c = contact::evaluate_law(
+                &kin,
+                pose,
+                race,
+                self.ball_radius,
+                self.c_br,
+                None,
+                self.defect_view(y, j, ring, w),
+                Law::Closed,
+            );
+            (c.delta.min(c.q / EVENT_FORCE_SCALE), c.q)
+        };
+        [
+            ev(inner, &self.inner, Race::Inner),
+            ev(outer, &self.outer, Race::Outer),
+        ]
+    }
+
+    /// Re-derives the frozen contact modes at state y: a contact whose event just fired flips,
+    /// every other one follows the sign of its event function (on an exact 0 the sign of the
+    /// unclamped force decides).
+    fn update_contact_modes(&mut self, t: f64, y: &[f64]) {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        for j in 0..self.z {
+            let ev = self.contact_events(y, j, &inner, &outer);
+            for (k, (g, q)) in ev.into_iter().enumerate() {
+                let i = 2 * j + k;
+                if self.modes_set && self.fired[i] {
+                    self.closed[j][k] = !self.closed[j][k];
+                    self.flipped_at[i] = t;
+                } else if !(self.modes_set && self.flipped_at[i] == t) {
+                    self.closed[j][k] = g > 0.0 || (g == 0.0 && q > 0.0);
+                }
+            }
+        }
+        self.fired.iter_mut().for_each(|f| *f = false);
+        self.modes_set = true;
     }
 
     /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
@@ -413,6 +510,25 @@ impl FullModel {
             };
         }
     }
+
+    /// Re-derives the frozen blend side of every ball at state y (at time t): a ball whose
+    /// blend event just fired flips, every other one follows the sign of its event function
+    /// (a position a hair ahead along the motion decides at the boundary).
+    fn update_blend(&mut self, t: f64, y: &[f64]) {
+        let Some(d) = &self.defect else { return };
+        let z4 = 4 * self.z;
+        for j in 0..self.z {
+            let i = z4 + j;
+            if self.modes_set && self.fired[i] {
+                self.in_blend[j] = !self.in_blend[j];
+                self.flipped_at[i] = t;
+            } else if !(self.modes_set && self.flipped_at[i] == t) {
+                let (tbd, rate) = self.theta_bd(d, y, j);
+                let a = tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0));
+                self.in_blend[j] = d.blend_margin(a) < 0.0;
+            }
+        }
+    }
 }
 
 impl Model for FullModel {
@@ -473,8 +589,10 @@ impl Model for FullModel {
             let b = self.lay.ball(j);
             let (kin, er, et, r, w) = self.ball_kin(y, j);
             let (ci, co) = self.contacts_of(y, j, &kin, w, &inner, &outer);
-            self.q_inner[j] = ci.q;
-            self.q_outer[j] = co.q;
+            // Inside a step the frozen law may give a round-off-small negative force just
+            // before a located loss of contact: report it as 0.
+            self.q_inner[j] = ci.q.max(0.0);
+            self.q_outer[j] = co.q.max(0.0);
             let f = contact::add(ci.f, co.f);
             let mo = contact::add(ci.m, co.m);
             let vr = y[b + BVR];
@@ -536,26 +654,46 @@ impl Model for FullModel {
             .reduce(f64::min)
     }
 
-    fn update_mode(&mut self, _t: f64, y: &[f64]) {
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
         self.update_sides(y);
+        self.update_blend(t, y);
+        self.update_contact_modes(t, y);
+    }
+
+    fn event_fired(&mut self, index: usize) {
+        if let Some(f) = self.fired.get_mut(index) {
+            *f = true;
+        }
     }
 
     fn n_events(&self) -> usize {
         if self.defect.is_some() {
-            2 * self.z
+            5 * self.z
         } else {
-            0
+            2 * self.z
         }
     }
 
-    /// Per ball: θ_e − |θ_bd| (edge crossings) and θ_bd clipped to ±0.5 rad (the centre, where
-    /// the ball changes corners; the clip keeps the wrap at ±π from looking like a root).
+    /// Per ball (index 2j, 2j + 1): the contact events of the inner and outer contact
+    /// (`contact_events`). With a spall, then per ball (index 2z + 2j, 2z + 2j + 1):
+    /// θ_e − |θ_bd| (edge crossings) and θ_bd clipped to ±0.5 rad (the centre, where the ball
+    /// changes corners; the clip keeps the wrap at ±π from looking like a root); then per ball
+    /// (index 4z + j) the blend boundary (`Defect::blend_margin`).
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        for j in 0..self.z {
+            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+            g[2 * j] = gi;
+            g[2 * j + 1] = go;
+        }
         let Some(d) = &self.defect else { return };
+        let z2 = 2 * self.z;
         for j in 0..self.z {
             let (tbd, _) = self.theta_bd(d, y, j);
-            g[2 * j] = d.zone_margin(tbd);
-            g[2 * j + 1] = tbd.clamp(-0.5, 0.5);
+            g[z2 + 2 * j] = d.zone_margin(tbd);
+            g[z2 + 2 * j + 1] = tbd.clamp(-0.5, 0.5);
+            g[2 * z2 + j] = d.blend_margin(tbd);
         }
     }
 
