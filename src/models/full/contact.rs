@@ -112,17 +112,21 @@ pub struct Strips {
 }
 
 impl Strips {
-    /// `n` equal strips over (−a, a), clamped to 1..=MAX_STRIPS.
+    /// `n` equal strips over (−a, a), clamped to 1..=MAX_STRIPS; exactly symmetric
+    /// (s_{n−1−k} = −s_k, w_{n−1−k} = w_k, the middle strip of an odd n at 0).
     pub fn new(n: usize) -> Self {
         let n = n.clamp(1, MAX_STRIPS);
         let mut s = [0.0; MAX_STRIPS];
         let mut w = [0.0; MAX_STRIPS];
         let prim = |x: f64| 0.75 * (x - x * x * x / 3.0);
-        for k in 0..n {
+        for k in 0..n.div_ceil(2) {
             let lo = -1.0 + 2.0 * k as f64 / n as f64;
             let hi = lo + 2.0 / n as f64;
-            s[k] = 0.5 * (lo + hi);
+            let mid = if 2 * k + 1 == n { 0.0 } else { 0.5 * (lo + hi) };
+            s[k] = mid;
             w[k] = prim(hi) - prim(lo);
+            s[n - 1 - k] = -mid;
+            w[n - 1 - k] = w[k];
         }
         Self { n, s, w }
     }
@@ -338,13 +342,35 @@ pub fn evaluate_law(
     let (a1, a2) = (dot(c1, w0), dot(c2, w0));
     let (b1, b2, s) = (dot(dw, c2), dot(dw, c1), dot(dw, n));
     let z0 = (ball_radius * ball_radius - a * a).sqrt() - (rs * rs - a * a).sqrt();
-    let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for kk in 0..strips.n {
+    // The strips are symmetric (s_{n−1−k} = −s_k), so ζ_k needs half the square roots. The
+    // square roots, the traction law (one exp each) and the sums run in separate passes over
+    // fixed-size arrays, so that the independent strips overlap instead of waiting on the call.
+    let nst = strips.n;
+    let rs2 = rs * rs;
+    let mut zeta = [0.0; MAX_STRIPS];
+    let mut kap = [0.0; MAX_STRIPS];
+    for kk in 0..nst.div_ceil(2) {
         let xi = a * strips.s[kk];
-        let zeta = (rs * rs - xi * xi).sqrt() + z0;
+        let z = (rs2 - xi * xi).sqrt() + z0;
+        zeta[kk] = z;
+        zeta[nst - 1 - kk] = z;
+    }
+    for kk in 0..nst {
+        let xi = a * strips.s[kk];
+        let u1 = a1 + zeta[kk] * b1;
+        let u2 = a2 + xi * s - zeta[kk] * b2;
+        kap[kk] = (u1 * u1 + u2 * u2).sqrt();
+    }
+    for k in kap.iter_mut().take(nst) {
+        *k = curve.kappa_over_u(*k);
+    }
+    let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for kk in 0..nst {
+        let xi = a * strips.s[kk];
+        let zeta = zeta[kk];
         let u1 = a1 + zeta * b1;
         let u2 = a2 + xi * s - zeta * b2;
-        let g = -q * strips.w[kk] * curve.kappa_over_u((u1 * u1 + u2 * u2).sqrt());
+        let g = -q * strips.w[kk] * kap[kk];
         let (g1, g2) = (g * u1, g * u2);
         f1 += g1;
         f2 += g2;
