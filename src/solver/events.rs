@@ -121,9 +121,20 @@ impl Integrator {
             }
         }
         let mut attempts = 0u64;
+        // Without an observer the dense output (3 extra stages per DOP853 step) is built only
+        // for the steps that need it: a function that changed sign at the step end or sits at
+        // 0 at its start. The stepping is the same either way; an FSAL method builds it always
+        // (its stage 0 is gone after the step, and its dense output costs no extra stage).
+        let always_dense = observer.is_some() || self.tab.fsal;
         while self.t < t_end {
-            let t_old = self.step(sys, t_end, true, &mut attempts)?;
+            let t_old = self.step(sys, t_end, always_dense, &mut attempts)?;
             sys.events(self.t, &self.y, &mut self.g_new);
+            if !always_dense
+                && (self.g_old.contains(&0.0)
+                    || (0..m).any(|i| crosses(self.g_old[i], self.g_new[i])))
+            {
+                self.dense_after_step(sys, t_old);
+            }
             // Functions sitting exactly at 0 at the step start (just fired) take their reference
             // sign from a probe just inside the step.
             let h = self.t - t_old;

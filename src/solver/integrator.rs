@@ -495,6 +495,24 @@ impl Integrator {
             .build(tab, self.t, h, &self.y, &self.y_new, &self.k);
     }
 
+    /// Builds the dense output of the step just accepted by [`Integrator::step`] without it
+    /// (`self.y` its end, `self.y_new` its start, the stages still in `self.k`): what a step with
+    /// `want_dense` would have built, and slot 0 then holds `f(t, y)` as after such a step.
+    /// A method whose stage 0 was already overwritten (FSAL) always builds its dense output.
+    pub(super) fn dense_after_step<S: System + ?Sized>(&mut self, sys: &mut S, t_old: f64) {
+        let t_new = self.t;
+        // The step's own size (t_new − t_old may differ from it by round-off).
+        let h = self.stats.h_last;
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t_old;
+        self.prepare_dense(sys, h, t_new);
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t_new;
+        let e = self.tab.end_slot() * self.n;
+        self.k.copy_within(e..e + self.n, 0);
+        self.fsal_valid = true;
+    }
+
     /// Take one accepted step towards `t_end` (retrying rejected attempts). Returns the start time
     /// of the accepted step; `self.t`/`self.y` are its end. With `want_dense` the dense output of
     /// the step is built.
