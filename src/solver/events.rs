@@ -92,6 +92,7 @@ impl Integrator {
             self.g_new = vec![0.0; m];
             self.g_tmp = vec![0.0; m];
             self.g_ref = vec![0.0; m];
+            self.g_sus = vec![0.0; m];
             self.fired = vec![false; m];
         }
         if self.event_mask.capacity() < m {
@@ -129,8 +130,13 @@ impl Integrator {
         while self.t < t_end {
             let t_old = self.step(sys, t_end, always_dense, &mut attempts)?;
             sys.events(self.t, &self.y, &mut self.g_new);
+            // A time inside the step where the system suspects a sign change and back.
+            let suspect = sys
+                .suspect(t_old, self.t)
+                .filter(|&ts| ts > t_old && ts < self.t);
             if !always_dense
-                && (self.g_old.contains(&0.0)
+                && (suspect.is_some()
+                    || self.g_old.contains(&0.0)
                     || (0..m).any(|i| crosses(self.g_old[i], self.g_new[i])))
             {
                 self.dense_after_step(sys, t_old);
@@ -149,6 +155,17 @@ impl Integrator {
                     }
                 }
             }
+            // At a suspect time with a sign change since the start, the roots are located
+            // before it (the end's signs may hide a sign change and back).
+            let mut t_b = self.t;
+            if let Some(ts) = suspect.filter(|&ts| ts > t_probe) {
+                self.dense.eval(ts, &mut self.ytmp);
+                sys.events(ts, &self.ytmp, &mut self.g_sus);
+                if (0..m).any(|i| crosses(self.g_ref[i], self.g_sus[i])) {
+                    t_b = ts;
+                    self.g_new.copy_from_slice(&self.g_sus);
+                }
+            }
             // Earliest root among the functions that changed sign.
             let mut t_ev = f64::INFINITY;
             let mut first = usize::MAX;
@@ -161,7 +178,7 @@ impl Integrator {
                         i,
                         a,
                         self.g_ref[i],
-                        self.t,
+                        t_b,
                         self.g_new[i],
                         self.opts.event_tol,
                         &mut self.ytmp,

@@ -47,6 +47,7 @@ pub struct Integrator {
     pub(super) g_new: Vec<f64>,
     pub(super) g_tmp: Vec<f64>,
     pub(super) g_ref: Vec<f64>,
+    pub(super) g_sus: Vec<f64>,
     pub(super) event_mask: Vec<bool>,
     pub(super) fired: Vec<bool>,
 }
@@ -146,6 +147,7 @@ impl Integrator {
             g_new: Vec::new(),
             g_tmp: Vec::new(),
             g_ref: Vec::new(),
+            g_sus: Vec::new(),
             event_mask: Vec::new(),
             fired: Vec::new(),
             opts: options,
@@ -547,6 +549,7 @@ impl Integrator {
             if t_new == self.t {
                 return Err(SolverError::StepSizeUnderflow { t: self.t, h });
             }
+            sys.begin_step();
             self.stages(sys, h, t_new);
             let bad = first_non_finite(&self.y_new);
             if fixed.is_some() {

@@ -167,8 +167,11 @@ impl ContactOut {
 /// Result of one contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ContactOut {
-    /// Normal force Q ≥ 0 [N].
+    /// Normal force Q [N] (≥ 0 except under [`Law::Closed`] past a loss of contact).
     pub q: f64,
+    /// Unclamped force K δ′|δ′|^{1/2} + c δ̇′ [N] where δ′ > 0 or the law is closed, else 0
+    /// (the contact event function is min(δ′, q_raw/S)).
+    pub q_raw: f64,
     /// Elastic overlap on the (possibly tilted) normal [m] (≤ 0: open).
     pub delta: f64,
     /// Hertz constant used [N/m^1.5].
@@ -312,11 +315,14 @@ pub fn evaluate_law(
     }
     // δ > 0 here except under the frozen closed law past a loss of contact (then √ of 0).
     let sd = delta.max(0.0).sqrt();
+    // (δ|δ|^½ equals δ·√δ bit for bit where δ > 0.)
+    let q_raw = k * delta * delta.abs().sqrt() + damping * ddelta;
     let q = match law {
-        Law::Clamped => (k * delta * sd + damping * ddelta).max(0.0),
-        Law::Closed => k * delta * delta.abs().sqrt() + damping * ddelta,
+        Law::Clamped => q_raw.max(0.0),
+        Law::Closed => q_raw,
         Law::Open => 0.0,
     };
+    out.q_raw = q_raw;
     out.q = q;
     out.f = scale(n, -q);
     if dk_dy != 0.0 && delta > 0.0 {
