@@ -32,7 +32,8 @@ impl EventSystem for Driver<'_> {
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         self.0.events(t, y, g)
     }
-    fn handle_event(&mut self, _index: usize, t: f64, y: &mut [f64]) -> EventAction {
+    fn handle_event(&mut self, index: usize, t: f64, y: &mut [f64]) -> EventAction {
+        self.0.event_fired(index);
         self.0.update_mode(t, y);
         EventAction::Continue
     }

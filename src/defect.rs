@@ -610,6 +610,16 @@ impl Defect {
     /// table cell). Point mode: closed forms of the parabola, K′ interpolated linearly.
     #[inline]
     pub fn contact_at(&self, y_b: f64) -> Option<DefectContact> {
+        self.contact_with_blend(y_b, None)
+    }
+
+    /// [`Defect::contact_at`] with the blend region frozen: `Some(true)` evaluates the C9
+    /// compliance blend (continued linearly past ℓ_b), `Some(false)` the unblended edge
+    /// constant, `None` decides by the position (|y_b| > w_d/2 − ℓ_b: blend). The blend's
+    /// boundary is a kink of K and a jump of dK/dy_b; a model that locates it as a state event
+    /// freezes the side inside each step.
+    #[inline]
+    pub fn contact_with_blend(&self, y_b: f64, blend: Option<bool>) -> Option<DefectContact> {
         let a = y_b.abs();
         if a.is_nan() || a >= self.half_width {
             return None;
@@ -684,9 +694,9 @@ impl Defect {
             theta_dd,
             y_q,
             kind,
-            k_edge: self.blend(y_b, c, self.c_groove, k),
+            k_edge: self.blend(y_b, c, self.c_groove, k, blend),
             k_unblended: k,
-            dk_dy: self.blend_slope(y_b, c, self.c_groove),
+            dk_dy: self.blend_slope(y_b, c, self.c_groove, blend),
         })
     }
 
@@ -702,6 +712,7 @@ impl Defect {
                 c.k_unblended.powf(-2.0 / 3.0),
                 k_groove.powf(-2.0 / 3.0),
                 c.k_unblended,
+                None,
             ),
         }
     }
@@ -710,9 +721,9 @@ impl Defect {
     /// table cell): inside ℓ_b of an edge the compliance c = c_g + (s/ℓ_b)(c_e − c_g), s =
     /// w_d/2 − |y_b|, so dK/dy_b = −(3/2) c^(−5/2) dc/dy_b with dc/dy_b = −sign(y_b)(c_e − c_g)/ℓ_b.
     #[inline]
-    fn blend_slope(&self, y_b: f64, c_edge: f64, c_groove: f64) -> f64 {
+    fn blend_slope(&self, y_b: f64, c_edge: f64, c_groove: f64, frozen: Option<bool>) -> f64 {
         let s = self.half_width - y_b.abs();
-        if !(s < self.blend_length && s > 0.0) {
+        if !(self.in_blend(s, frozen) && s > 0.0) {
             return 0.0;
         }
         let c = c_groove + (s / self.blend_length) * (c_edge - c_groove);
@@ -720,11 +731,44 @@ impl Defect {
         -1.5 * dc / (c * c * c.sqrt())
     }
 
+    /// Whether the compliance blend applies at distance `s` from the nearest edge: s < ℓ_b, or
+    /// the frozen side (never for ℓ_b = 0).
+    #[inline]
+    fn in_blend(&self, s: f64, frozen: Option<bool>) -> bool {
+        match frozen {
+            None => s < self.blend_length,
+            Some(b) => b && self.blend_length > 0.0,
+        }
+    }
+
+    /// Blend-boundary event function of a ball at ball-to-defect angle `theta_bd`:
+    /// (w_d/2 − |y_b|) − ℓ_b inside the zone, −ℓ_b outside it (continuous at the edges, so only
+    /// the blend boundaries are roots); constant 1 for ℓ_b = 0 (no blend region).
+    #[inline]
+    pub fn blend_margin(&self, theta_bd: f64) -> f64 {
+        if self.blend_length <= 0.0 {
+            return 1.0;
+        }
+        let s = if self.zone_margin(theta_bd) > 0.0 {
+            (self.half_width - self.along_track(theta_bd).abs()).max(0.0)
+        } else {
+            0.0
+        };
+        s - self.blend_length
+    }
+
     /// Compliance blend; `c_edge`, `c_groove` are K^(−2/3), `k_edge` = c_edge^(−3/2).
     #[inline]
-    fn blend(&self, y_b: f64, c_edge: f64, c_groove: f64, k_edge: f64) -> f64 {
+    fn blend(
+        &self,
+        y_b: f64,
+        c_edge: f64,
+        c_groove: f64,
+        k_edge: f64,
+        frozen: Option<bool>,
+    ) -> f64 {
         let s = self.half_width - y_b.abs();
-        if s >= self.blend_length {
+        if !self.in_blend(s, frozen) {
             return k_edge;
         }
         let f = (s / self.blend_length).max(0.0);

@@ -325,6 +325,9 @@ impl System for ModelSystem<'_> {
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         self.0.rhs(t, y, dydt)
     }
+    fn begin_step(&mut self) {
+        self.0.begin_step()
+    }
 }
 
 impl EventSystem for ModelSystem<'_> {
@@ -339,6 +342,9 @@ impl EventSystem for ModelSystem<'_> {
     fn handle_event(&mut self, index: usize, _t: f64, _y: &mut [f64]) -> EventAction {
         self.0.event_fired(index);
         EventAction::Stop
+    }
+    fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
+        self.0.suspect(t_old, t_new)
     }
 }
 

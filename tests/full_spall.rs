@@ -225,10 +225,11 @@ impl raceway::solver::EventSystem for Driver<'_> {
     }
     fn handle_event(
         &mut self,
-        _index: usize,
+        index: usize,
         t: f64,
         y: &mut [f64],
     ) -> raceway::solver::EventAction {
+        raceway::models::Model::event_fired(self.0, index);
         raceway::models::Model::update_mode(self.0, t, y);
         raceway::solver::EventAction::Continue
     }

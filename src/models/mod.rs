@@ -130,6 +130,16 @@ pub trait Model: Send {
     /// [`Model::update_mode`] is called at the located time.
     fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
 
+    /// Called before the stages of every integrator step attempt (see
+    /// [`crate::solver::System::begin_step`]).
+    fn begin_step(&mut self) {}
+
+    /// A time inside the step just accepted where an event function may have changed sign and
+    /// back (see [`crate::solver::EventSystem::suspect`]); default none.
+    fn suspect(&mut self, _t_old: f64, _t_new: f64) -> Option<f64> {
+        None
+    }
+
     /// Event `index` fired at the located time (called before [`Model::update_mode`]). At the
     /// located state the function sits within the location tolerance of 0, on either side by
     /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.

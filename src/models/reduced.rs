@@ -372,6 +372,7 @@ impl ReducedModel {
             phi: y[self.lay.phi()],
             theta_bd_rate: rate,
             a_star: self.defect_a_star,
+            blend: None,
         })
     }
 

@@ -92,6 +92,7 @@ impl Integrator {
             self.g_new = vec![0.0; m];
             self.g_tmp = vec![0.0; m];
             self.g_ref = vec![0.0; m];
+            self.g_sus = vec![0.0; m];
             self.fired = vec![false; m];
         }
         if self.event_mask.capacity() < m {
@@ -121,9 +122,25 @@ impl Integrator {
             }
         }
         let mut attempts = 0u64;
+        // Without an observer the dense output (3 extra stages per DOP853 step) is built only
+        // for the steps that need it: a function that changed sign at the step end or sits at
+        // 0 at its start. The stepping is the same either way; an FSAL method builds it always
+        // (its stage 0 is gone after the step, and its dense output costs no extra stage).
+        let always_dense = observer.is_some() || self.tab.fsal;
         while self.t < t_end {
-            let t_old = self.step(sys, t_end, true, &mut attempts)?;
+            let t_old = self.step(sys, t_end, always_dense, &mut attempts)?;
             sys.events(self.t, &self.y, &mut self.g_new);
+            // A time inside the step where the system suspects a sign change and back.
+            let suspect = sys
+                .suspect(t_old, self.t)
+                .filter(|&ts| ts > t_old && ts < self.t);
+            if !always_dense
+                && (suspect.is_some()
+                    || self.g_old.contains(&0.0)
+                    || (0..m).any(|i| crosses(self.g_old[i], self.g_new[i])))
+            {
+                self.dense_after_step(sys, t_old);
+            }
             // Functions sitting exactly at 0 at the step start (just fired) take their reference
             // sign from a probe just inside the step.
             let h = self.t - t_old;
@@ -138,6 +155,17 @@ impl Integrator {
                     }
                 }
             }
+            // At a suspect time with a sign change since the start, the roots are located
+            // before it (the end's signs may hide a sign change and back).
+            let mut t_b = self.t;
+            if let Some(ts) = suspect.filter(|&ts| ts > t_probe) {
+                self.dense.eval(ts, &mut self.ytmp);
+                sys.events(ts, &self.ytmp, &mut self.g_sus);
+                if (0..m).any(|i| crosses(self.g_ref[i], self.g_sus[i])) {
+                    t_b = ts;
+                    self.g_new.copy_from_slice(&self.g_sus);
+                }
+            }
             // Earliest root among the functions that changed sign.
             let mut t_ev = f64::INFINITY;
             let mut first = usize::MAX;
@@ -150,7 +178,7 @@ impl Integrator {
                         i,
                         a,
                         self.g_ref[i],
-                        self.t,
+                        t_b,
                         self.g_new[i],
                         self.opts.event_tol,
                         &mut self.ytmp,

@@ -47,6 +47,7 @@ pub struct Integrator {
     pub(super) g_new: Vec<f64>,
     pub(super) g_tmp: Vec<f64>,
     pub(super) g_ref: Vec<f64>,
+    pub(super) g_sus: Vec<f64>,
     pub(super) event_mask: Vec<bool>,
     pub(super) fired: Vec<bool>,
 }
@@ -146,6 +147,7 @@ impl Integrator {
             g_new: Vec::new(),
             g_tmp: Vec::new(),
             g_ref: Vec::new(),
+            g_sus: Vec::new(),
             event_mask: Vec::new(),
             fired: Vec::new(),
             opts: options,
@@ -495,6 +497,24 @@ impl Integrator {
             .build(tab, self.t, h, &self.y, &self.y_new, &self.k);
     }
 
+    /// Builds the dense output of the step just accepted by [`Integrator::step`] without it
+    /// (`self.y` its end, `self.y_new` its start, the stages still in `self.k`): what a step with
+    /// `want_dense` would have built, and slot 0 then holds `f(t, y)` as after such a step.
+    /// A method whose stage 0 was already overwritten (FSAL) always builds its dense output.
+    pub(super) fn dense_after_step<S: System + ?Sized>(&mut self, sys: &mut S, t_old: f64) {
+        let t_new = self.t;
+        // The step's own size (t_new − t_old may differ from it by round-off).
+        let h = self.stats.h_last;
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t_old;
+        self.prepare_dense(sys, h, t_new);
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t_new;
+        let e = self.tab.end_slot() * self.n;
+        self.k.copy_within(e..e + self.n, 0);
+        self.fsal_valid = true;
+    }
+
     /// Take one accepted step towards `t_end` (retrying rejected attempts). Returns the start time
     /// of the accepted step; `self.t`/`self.y` are its end. With `want_dense` the dense output of
     /// the step is built.
@@ -529,6 +549,7 @@ impl Integrator {
             if t_new == self.t {
                 return Err(SolverError::StepSizeUnderflow { t: self.t, h });
             }
+            sys.begin_step();
             self.stages(sys, h, t_new);
             let bad = first_non_finite(&self.y_new);
             if fixed.is_some() {

@@ -6,6 +6,8 @@ pub trait System {
     fn dim(&self) -> usize;
     /// Right-hand side; must not allocate. `y` and `dydt` have length [`System::dim`].
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
+    /// Called before the stages of every step attempt (default: nothing).
+    fn begin_step(&mut self) {}
 }
 
 /// A system with event functions and a discrete mode that changes only at events.
@@ -20,6 +22,15 @@ pub trait EventSystem: System {
     /// its discrete mode and modify `y`. The integrator then restarts from `(t, y)` (FSAL
     /// invalidated).
     fn handle_event(&mut self, index: usize, t: f64, y: &mut [f64]) -> EventAction;
+    /// After an accepted step from `t_old` to `t_new`: a time inside it at which the system
+    /// suspects an event function of having changed sign and back (two roots in one step, which
+    /// the sign test at the step end cannot see), e.g. because a stage found its frozen mode
+    /// invalid there; `None` (the default) if nothing is suspect. The integrator then also
+    /// tests the signs at that time on the dense output and locates a root before it.
+    /// Must not allocate.
+    fn suspect(&mut self, _t_old: f64, _t_new: f64) -> Option<f64> {
+        None
+    }
 }
 
 /// What the integrator does after an event was handled.

@@ -112,17 +112,21 @@ pub struct Strips {
 }
 
 impl Strips {
-    /// `n` equal strips over (−a, a), clamped to 1..=MAX_STRIPS.
+    /// `n` equal strips over (−a, a), clamped to 1..=MAX_STRIPS; exactly symmetric
+    /// (s_{n−1−k} = −s_k, w_{n−1−k} = w_k, the middle strip of an odd n at 0).
     pub fn new(n: usize) -> Self {
         let n = n.clamp(1, MAX_STRIPS);
         let mut s = [0.0; MAX_STRIPS];
         let mut w = [0.0; MAX_STRIPS];
         let prim = |x: f64| 0.75 * (x - x * x * x / 3.0);
-        for k in 0..n {
+        for k in 0..n.div_ceil(2) {
             let lo = -1.0 + 2.0 * k as f64 / n as f64;
             let hi = lo + 2.0 / n as f64;
-            s[k] = 0.5 * (lo + hi);
+            let mid = if 2 * k + 1 == n { 0.0 } else { 0.5 * (lo + hi) };
+            s[k] = mid;
             w[k] = prim(hi) - prim(lo);
+            s[n - 1 - k] = -mid;
+            w[n - 1 - k] = w[k];
         }
         Self { n, s, w }
     }
@@ -148,6 +152,9 @@ pub struct DefectView<'a> {
     pub theta_bd_rate: f64,
     /// Semi-major axis factor a* of the edge contact.
     pub a_star: f64,
+    /// Frozen side of the edge-constant blend (see [`Defect::contact_with_blend`]); `None`
+    /// decides by the position.
+    pub blend: Option<bool>,
 }
 
 impl ContactOut {
@@ -160,8 +167,11 @@ impl ContactOut {
 /// Result of one contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ContactOut {
-    /// Normal force Q ≥ 0 [N].
+    /// Normal force Q [N] (≥ 0 except under [`Law::Closed`] past a loss of contact).
     pub q: f64,
+    /// Unclamped force K δ′|δ′|^{1/2} + c δ̇′ [N] where δ′ > 0 or the law is closed, else 0
+    /// (the contact event function is min(δ′, q_raw/S)).
+    pub q_raw: f64,
     /// Elastic overlap on the (possibly tilted) normal [m] (≤ 0: open).
     pub delta: f64,
     /// Hertz constant used [N/m^1.5].
@@ -182,6 +192,25 @@ pub struct ContactOut {
     pub in_defect: bool,
 }
 
+/// Normal-force law of one contact evaluation.
+///
+/// The physical law is [`Law::Clamped`]: Q = max(0, K δ^{3/2} + c δ̇) for δ > 0, else 0. Its
+/// switches (the damping jump c δ̇ when a contact closes, the clamp when it opens) are not
+/// smooth in the state, so the full model locates them as state events and evaluates a frozen
+/// law inside each step: [`Law::Closed`] (the unclamped force, continued smoothly past the
+/// loss of contact) or [`Law::Open`] (no normal force). Between the located switches the
+/// frozen law equals the clamped one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Law {
+    /// max(0, K δ^{3/2} + c δ̇) for δ > 0, else 0.
+    Clamped,
+    /// In contact: K δ|δ|^{1/2} + c δ̇ (may turn negative past a loss of contact).
+    Closed,
+    /// Out of contact: Q = 0 (the along-track force of a blended edge constant, a potential
+    /// force of the overlap, still acts while δ′ > 0, as under the clamped law).
+    Open,
+}
+
 /// Evaluates one ball–race contact. `damping` is c_br; `traction` None = frictionless.
 #[inline]
 pub fn evaluate(
@@ -192,6 +221,31 @@ pub fn evaluate(
     damping: f64,
     traction: Option<(&TractionCurve, &Strips)>,
     defect: Option<DefectView<'_>>,
+) -> ContactOut {
+    evaluate_law(
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        traction,
+        defect,
+        Law::Clamped,
+    )
+}
+
+/// [`evaluate`] with an explicit normal-force [`Law`].
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn evaluate_law(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    traction: Option<(&TractionCurve, &Strips)>,
+    defect: Option<DefectView<'_>>,
+    law: Law,
 ) -> ContactOut {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
@@ -208,7 +262,9 @@ pub fn evaluate(
         k: race.k,
         ..Default::default()
     };
-    if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    let open =
+        |d: f64| law != Law::Closed && d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+    if open(delta) {
         return out;
     }
     let (n1, n3) = (bx / l, br / l);
@@ -233,7 +289,7 @@ pub fn evaluate(
         if y_b * dv.side <= 0.0 {
             y_b = dv.side * 1e-15;
         }
-        if let Some(c) = dv.defect.contact_at(y_b) {
+        if let Some(c) = dv.defect.contact_with_blend(y_b, dv.blend) {
             let y_rate = dv.defect.along_track_rate(tbd, dv.theta_bd_rate);
             // dy_b per metre of ball-centre travel along the track direction c2.
             track_gain = dv.defect.along_track_rate(tbd, 1.0) / rho;
@@ -252,17 +308,24 @@ pub fn evaluate(
             out.in_defect = true;
             out.delta = delta;
             out.k = k;
-            if delta.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            if open(delta) {
                 return out;
             }
         }
     }
-    let sd = delta.sqrt();
-    let qe = k * delta * sd;
-    let q = (qe + damping * ddelta).max(0.0);
+    // δ > 0 here except under the frozen closed law past a loss of contact (then √ of 0).
+    let sd = delta.max(0.0).sqrt();
+    // (δ|δ|^½ equals δ·√δ bit for bit where δ > 0.)
+    let q_raw = k * delta * delta.abs().sqrt() + damping * ddelta;
+    let q = match law {
+        Law::Clamped => q_raw.max(0.0),
+        Law::Closed => q_raw,
+        Law::Open => 0.0,
+    };
+    out.q_raw = q_raw;
     out.q = q;
     out.f = scale(n, -q);
-    if dk_dy != 0.0 {
+    if dk_dy != 0.0 && delta > 0.0 {
         // Along-track force of the blended edge stiffness: −∂/∂y [(2/5) K(y) δ′^{5/2}] (C9),
         // through the ball centre (a potential force), reaction on the ring.
         let f_track = -0.4 * dk_dy * delta * delta * sd * track_gain;
@@ -285,13 +348,35 @@ pub fn evaluate(
     let (a1, a2) = (dot(c1, w0), dot(c2, w0));
     let (b1, b2, s) = (dot(dw, c2), dot(dw, c1), dot(dw, n));
     let z0 = (ball_radius * ball_radius - a * a).sqrt() - (rs * rs - a * a).sqrt();
-    let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for kk in 0..strips.n {
+    // The strips are symmetric (s_{n−1−k} = −s_k), so ζ_k needs half the square roots. The
+    // square roots, the traction law (one exp each) and the sums run in separate passes over
+    // fixed-size arrays, so that the independent strips overlap instead of waiting on the call.
+    let nst = strips.n;
+    let rs2 = rs * rs;
+    let mut zeta = [0.0; MAX_STRIPS];
+    let mut kap = [0.0; MAX_STRIPS];
+    for kk in 0..nst.div_ceil(2) {
         let xi = a * strips.s[kk];
-        let zeta = (rs * rs - xi * xi).sqrt() + z0;
+        let z = (rs2 - xi * xi).sqrt() + z0;
+        zeta[kk] = z;
+        zeta[nst - 1 - kk] = z;
+    }
+    for kk in 0..nst {
+        let xi = a * strips.s[kk];
+        let u1 = a1 + zeta[kk] * b1;
+        let u2 = a2 + xi * s - zeta[kk] * b2;
+        kap[kk] = (u1 * u1 + u2 * u2).sqrt();
+    }
+    for k in kap.iter_mut().take(nst) {
+        *k = curve.kappa_over_u(*k);
+    }
+    let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for kk in 0..nst {
+        let xi = a * strips.s[kk];
+        let zeta = zeta[kk];
         let u1 = a1 + zeta * b1;
         let u2 = a2 + xi * s - zeta * b2;
-        let g = -q * strips.w[kk] * curve.kappa_over_u((u1 * u1 + u2 * u2).sqrt());
+        let g = -q * strips.w[kk] * kap[kk];
         let (g1, g2) = (g * u1, g * u2);
         f1 += g1;
         f2 += g2;
