@@ -417,6 +417,34 @@ fn speed_forces(g: &Geometry, omega: f64, a: [f64; 2], x: [f64; 2]) -> ([f64; 2]
     ([-fg * co, fc + fg * so], [fc, fg, wc, wr, rc.beta])
 }
 
+/// Adds the central-difference derivative (h = 1e-9 m) of the speed forces with respect to the
+/// ball centre `x` (`wrt_a` false) or the groove offset `a` (true) to `m`.
+fn add_speed_force_slope(
+    g: &Geometry,
+    omega: f64,
+    a: [f64; 2],
+    x: [f64; 2],
+    wrt_a: bool,
+    m: &mut [[f64; 2]; 2],
+) {
+    let h = 1e-9;
+    for l in 0..2 {
+        let (mut ap, mut am, mut xp, mut xm) = (a, a, x, x);
+        if wrt_a {
+            ap[l] += h;
+            am[l] -= h;
+        } else {
+            xp[l] += h;
+            xm[l] -= h;
+        }
+        let (fp, _) = speed_forces(g, omega, ap, xp);
+        let (fm, _) = speed_forces(g, omega, am, xm);
+        for i in 0..2 {
+            m[i][l] += (fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+}
+
 fn eval_ball(g: &Geometry, omega: f64, theta: f64, a: [f64; 2], x: [f64; 2]) -> BallEval {
     let b = g.b;
     let nx = x[0].hypot(x[1]);
@@ -451,18 +479,7 @@ fn eval_ball(g: &Geometry, omega: f64, theta: f64, a: [f64; 2], x: [f64; 2]) -> 
     }
     if omega != 0.0 {
         // the speed forces vary slowly with X: central differences
-        let h = 1e-9;
-        for l in 0..2 {
-            let mut xp = x;
-            let mut xm = x;
-            xp[l] += h;
-            xm[l] -= h;
-            let (fp, _) = speed_forces(g, omega, a, xp);
-            let (fm, _) = speed_forces(g, omega, a, xm);
-            for i in 0..2 {
-                jac[i][l] += (fp[i] - fm[i]) / (2.0 * h);
-            }
-        }
+        add_speed_force_slope(g, omega, a, x, false, &mut jac);
     }
     BallEval {
         residual,
@@ -800,16 +817,8 @@ fn convex_start(
             let hj = hertz_jacobian(kn, s, a, na);
             for c in 0..3 {
                 grad[c] += q * (e[0] * p[0][c] + e[1] * p[1][c]);
-                for d in 0..3 {
-                    let mut acc = 0.0;
-                    for k in 0..2 {
-                        for l in 0..2 {
-                            acc += p[k][c] * hj[k][l] * p[l][d];
-                        }
-                    }
-                    h[c][d] += acc;
-                }
             }
+            add_ring_congruence(g.er[j], hj, &mut h);
         }
         for c in 0..3 {
             if !active[c] {
@@ -1142,18 +1151,7 @@ fn analytic_jacobian(
         // R_a = ∂R/∂a: the inner contact force q_i e_i(y) and the speed forces.
         let mut ra = ji;
         if omega != 0.0 {
-            let h = 1e-9;
-            for l in 0..2 {
-                let mut ap = a;
-                let mut am = a;
-                ap[l] += h;
-                am[l] -= h;
-                let (fp, _) = speed_forces(g, omega, ap, x);
-                let (fm, _) = speed_forces(g, omega, am, x);
-                for i in 0..2 {
-                    ra[i][l] += (fp[i] - fm[i]) / (2.0 * h);
-                }
-            }
+            add_speed_force_slope(g, omega, a, x, true, &mut ra);
         }
         // dy/da = I + R_x⁻¹ R_a (solve2 returns −R_x⁻¹ r).
         let mut dyda = [[0.0; 2]; 2];
@@ -1168,22 +1166,27 @@ fn analytic_jacobian(
                 dfda[i][l] = ji[i][0] * dyda[0][l] + ji[i][1] * dyda[1][l];
             }
         }
-        // F = P f with P = [[1, 0], [0, e_r0], [0, e_r1]]; a = a0 + D u, D = Pᵀ.
-        let e = g.er[j];
-        let p = [[1.0, 0.0], [0.0, e[0]], [0.0, e[1]]];
-        for r in 0..3 {
-            for c in 0..3 {
-                let mut v = 0.0;
-                for i in 0..2 {
-                    for l in 0..2 {
-                        v += p[r][i] * dfda[i][l] * p[c][l];
-                    }
-                }
-                jac[r][c] += v;
-            }
-        }
+        // F = Pᵀ f and a = a0 + P u.
+        add_ring_congruence(g.er[j], dfda, &mut jac);
     }
     jac.iter().flatten().all(|v| v.is_finite()).then_some(jac)
+}
+
+/// Adds Pᵀ m P to `out`, with P = ∂a/∂u = [[1, 0, 0], [0, e_r0, e_r1]] the map from the ring
+/// displacement (axial, y, z) to a ball's groove-centre offset in its (axial, radial) plane.
+fn add_ring_congruence(er: [f64; 2], m: [[f64; 2]; 2], out: &mut [[f64; 3]; 3]) {
+    let p = [[1.0, 0.0, 0.0], [0.0, er[0], er[1]]];
+    for c in 0..3 {
+        for d in 0..3 {
+            let mut acc = 0.0;
+            for k in 0..2 {
+                for l in 0..2 {
+                    acc += p[k][c] * m[k][l] * p[l][d];
+                }
+            }
+            out[c][d] += acc;
+        }
+    }
 }
 
 fn fd_jacobian(
