@@ -16,11 +16,13 @@
 pub mod contact;
 pub mod init;
 pub mod layout;
+pub mod switches;
 
 use self::contact::{
     cross, dot, sub, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose, Strips, V3,
 };
 use self::layout::*;
+use self::switches::Switches;
 use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
@@ -28,14 +30,6 @@ use crate::geometry::{Bearing, Race};
 use crate::scene::{Pulse, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
-
-/// Scale of the force part of the contact event function min(δ′, Q/S) [N/m]: only the sign and
-/// the continuity of the function matter (the same value as the lumped level's).
-const EVENT_FORCE_SCALE: f64 = 1e8;
-
-/// How far beyond its root [m] a stage must find a contact's event function before the step
-/// is suspected of a short loss or touch (located roots sit within ~1e-13 m at rtol 1e-6).
-const EVENT_ROOT_TOL: f64 = 1e-10;
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,30 +79,8 @@ pub struct FullModel {
     cage_ratio: f64,
     /// Azimuth of ball 0 at ψ = 0 [rad].
     theta_start: f64,
-    /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
-    sides: Vec<f64>,
-    /// Balls whose half changed in the last mode update (their contact functions jump there).
-    sides_changed: Vec<bool>,
-    /// Frozen side of the edge-constant blend per ball (true: within ℓ_b of an edge, C9);
-    /// its boundary is a state event (index 4z + j) like the contact switches.
-    in_blend: Vec<bool>,
-    /// Frozen contact modes per ball, (inner, outer): true = in contact (the unclamped force
-    /// law), false = open (no normal force). Set by [`Model::update_mode`] once `modes_set`;
-    /// before that (the initial state) the clamped law is used.
-    closed: Vec<[bool; 2]>,
-    modes_set: bool,
-    /// Contact events that fired since the last mode update (index 2j inner, 2j + 1 outer):
-    /// those contacts flip their mode.
-    fired: Vec<bool>,
-    /// Time of each contact's last flip: a driver that updates the mode once per fired event
-    /// (several events at one located time) must not re-derive an already flipped contact
-    /// from the sign of its function, which sits within round-off of 0 there.
-    flipped_at: Vec<f64>,
-    /// The stage time of the current step attempt at which a contact's frozen mode was most
-    /// clearly invalid (closed with min(δ′, Q/S) < −[`EVENT_ROOT_TOL`], open with it above),
-    /// and by how much: a short loss or touch inside one step has two roots that the sign test
-    /// at the step end misses, so the integrator also tests this time ([`Model::suspect`]).
-    suspect: Option<(f64, f64)>,
+    /// Frozen spall halves, blend sides and contact modes, and their switches.
+    sw: Switches,
     /// Normal forces of the last RHS evaluation (inner, outer) [N].
     q_inner: Vec<f64>,
     q_outer: Vec<f64>,
@@ -211,14 +183,7 @@ impl FullModel {
             inputs: *inputs,
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             theta_start: 0.0,
-            sides: vec![0.0; z],
-            sides_changed: vec![false; z],
-            in_blend: vec![false; z],
-            closed: vec![[true; 2]; z],
-            modes_set: false,
-            fired: vec![false; 5 * z],
-            flipped_at: vec![f64::NAN; 5 * z],
-            suspect: None,
+            sw: Switches::new(z),
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
             y0: vec![0.0; lay.dim()],
@@ -245,7 +210,7 @@ impl FullModel {
     /// True when ball j is inside the spall zone |θ_bd| < θ_e (as of the last
     /// [`Model::update_mode`]).
     pub fn in_defect_zone(&self, j: usize) -> bool {
-        self.sides.get(j).is_some_and(|s| *s != 0.0)
+        j < self.z && self.sw.side(j) != 0.0
     }
 
     /// Both contacts of ball j at state y (inner, outer), with the spall half of the last
@@ -320,7 +285,7 @@ impl FullModel {
     #[inline(always)]
     fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
         let d = self.defect.as_ref()?;
-        if d.ring() != race || self.sides[j] == 0.0 {
+        if d.ring() != race || self.sw.side(j) == 0.0 {
             return None;
         }
         let rate = match race {
@@ -329,15 +294,11 @@ impl FullModel {
         };
         Some(DefectView {
             defect: d,
-            side: self.sides[j],
+            side: self.sw.side(j),
             phi: y[self.lay.phi()],
             theta_bd_rate: rate,
             a_star: self.defect_a_star,
-            blend: if self.modes_set {
-                Some(self.in_blend[j])
-            } else {
-                None
-            },
+            blend: self.sw.blend(j),
         })
     }
 
@@ -361,7 +322,7 @@ impl FullModel {
             self.c_br,
             tr,
             self.defect_view(y, j, Race::Inner, w),
-            self.law(j, 0),
+            self.sw.law(j, 0),
         );
         let co = contact::evaluate_law(
             kin,
@@ -371,21 +332,9 @@ impl FullModel {
             self.c_br,
             tr,
             self.defect_view(y, j, Race::Outer, w),
-            self.law(j, 1),
+            self.sw.law(j, 1),
         );
         (ci, co)
-    }
-
-    /// The normal-force law of ball j's contact `k` (0 inner, 1 outer) in the frozen mode.
-    #[inline(always)]
-    fn law(&self, j: usize, k: usize) -> Law {
-        if !self.modes_set {
-            Law::Clamped
-        } else if self.closed[j][k] {
-            Law::Closed
-        } else {
-            Law::Open
-        }
     }
 
     /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
@@ -412,7 +361,7 @@ impl FullModel {
                 self.defect_view(y, j, ring, w),
                 Law::Closed,
             );
-            (c.delta.min(c.q / EVENT_FORCE_SCALE), c.q)
+            (switches::contact_event(&c), c.q_raw)
         };
         [
             ev(inner, &self.inner, Race::Inner),
@@ -420,32 +369,21 @@ impl FullModel {
         ]
     }
 
-    /// Re-derives the frozen contact modes at state y: a contact whose event just fired flips
-    /// (at the located state its function sits within the location accuracy of 0, on either
-    /// side); every other one follows the sign of its event function (on an exact 0 the sign
-    /// of the unclamped force decides), and so do both contacts of a ball that changed spall
-    /// halves at this update (a contact event located at the same time as the spall centre
-    /// fired under the old half; with the new one the function jumps).
-    fn update_contact_modes(&mut self, t: f64, y: &[f64]) {
+    /// Re-derives the frozen modes at state y (at time t): spall halves and blend sides,
+    /// then the contact modes under the new halves ([`Switches`]).
+    fn update_switches(&mut self, t: f64, y: &[f64]) {
+        if let Some(d) = &self.defect {
+            for j in 0..self.z {
+                self.sw.angles[j] = self.theta_bd(d, y, j);
+            }
+            self.sw.update_spall(t, d);
+        }
         let inner = self.inner_pose(y);
         let outer = self.outer_pose(y);
         for j in 0..self.z {
-            let ev = self.contact_events(y, j, &inner, &outer);
-            for (k, (g, q)) in ev.into_iter().enumerate() {
-                let i = 2 * j + k;
-                // A ball that changed halves at this update has new contact functions: only
-                // their signs tell the modes.
-                let flip = self.modes_set && !self.sides_changed[j];
-                if flip && self.fired[i] {
-                    self.closed[j][k] = !self.closed[j][k];
-                    self.flipped_at[i] = t;
-                } else if !(flip && self.flipped_at[i] == t) {
-                    self.closed[j][k] = g > 0.0 || (g == 0.0 && q > 0.0);
-                }
-            }
+            self.sw.contact_events[j] = self.contact_events(y, j, &inner, &outer);
         }
-        self.fired.iter_mut().for_each(|f| *f = false);
-        self.modes_set = true;
+        self.sw.update_contacts(t);
     }
 
     /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
@@ -511,75 +449,6 @@ impl FullModel {
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
     }
-
-    /// Re-derives the frozen spall half of every ball at state y (at time t). A ball whose
-    /// centre event just fired changes halves and one whose edge event fired enters (on the
-    /// side of θ_bd) or leaves the zone: at the located state θ_bd sits within the location
-    /// tolerance of the boundary on either side (the state is re-integrated by the method, not
-    /// taken from the interpolant), so its sign alone could keep the old half for the rest of
-    /// the pass. Every other ball takes its half from θ_bd (a position a hair ahead along the
-    /// motion decides at a boundary).
-    fn update_sides(&mut self, t: f64, y: &[f64]) {
-        let Some(d) = &self.defect else { return };
-        let te = d.half_angle();
-        let z2 = 2 * self.z;
-        for j in 0..self.z {
-            let (tbd, rate) = self.theta_bd(d, y, j);
-            let (edge, centre) = (z2 + 2 * j, z2 + 2 * j + 1);
-            let fired = |i: usize| self.modes_set && self.fired[i];
-            let kept = |i: usize| self.modes_set && self.flipped_at[i] == t;
-            let before = self.sides[j];
-            let (side, flipped) = if fired(centre) && before != 0.0 {
-                (-before, Some(centre))
-            } else if fired(edge) {
-                let side = if before != 0.0 {
-                    0.0
-                } else if tbd < 0.0 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                (side, Some(edge))
-            } else if kept(centre) || kept(edge) {
-                (before, None)
-            } else {
-                // A position a hair ahead along the motion decides the side at a boundary.
-                let a = tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0));
-                let side = if a.is_nan() || a.abs() >= te {
-                    0.0
-                } else if a < 0.0 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                (side, None)
-            };
-            if let Some(i) = flipped {
-                self.flipped_at[i] = t;
-            }
-            self.sides[j] = side;
-            self.sides_changed[j] = side != before;
-        }
-    }
-
-    /// Re-derives the frozen blend side of every ball at state y (at time t): a ball whose
-    /// blend event just fired flips, every other one follows the sign of its event function
-    /// (a position a hair ahead along the motion decides at the boundary).
-    fn update_blend(&mut self, t: f64, y: &[f64]) {
-        let Some(d) = &self.defect else { return };
-        let z4 = 4 * self.z;
-        for j in 0..self.z {
-            let i = z4 + j;
-            if self.modes_set && self.fired[i] {
-                self.in_blend[j] = !self.in_blend[j];
-                self.flipped_at[i] = t;
-            } else if !(self.modes_set && self.flipped_at[i] == t) {
-                let (tbd, rate) = self.theta_bd(d, y, j);
-                let a = tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0));
-                self.in_blend[j] = d.blend_margin(a) < 0.0;
-            }
-        }
-    }
 }
 
 impl Model for FullModel {
@@ -640,15 +509,7 @@ impl Model for FullModel {
             let b = self.lay.ball(j);
             let (kin, er, et, r, w) = self.ball_kin(y, j);
             let (ci, co) = self.contacts_of(y, j, &kin, w, &inner, &outer);
-            if self.modes_set {
-                for (k, c) in [&ci, &co].into_iter().enumerate() {
-                    let g = c.delta.min(c.q_raw / EVENT_FORCE_SCALE);
-                    let excess = if self.closed[j][k] { -g } else { g };
-                    if excess > EVENT_ROOT_TOL && self.suspect.is_none_or(|(_, e)| excess > e) {
-                        self.suspect = Some((t, excess));
-                    }
-                }
-            }
+            self.sw.note_stage(t, j, &ci, &co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
             self.q_inner[j] = ci.q.max(0.0);
@@ -715,33 +576,23 @@ impl Model for FullModel {
     }
 
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        self.update_sides(t, y);
-        self.update_blend(t, y);
-        self.update_contact_modes(t, y);
+        self.update_switches(t, y);
     }
 
     fn begin_step(&mut self) {
-        self.suspect = None;
+        self.sw.begin_step();
     }
 
     fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
-        self.suspect
-            .map(|(t, _)| t)
-            .filter(|&t| t > t_old && t < t_new)
+        self.sw.suspect(t_old, t_new)
     }
 
     fn event_fired(&mut self, index: usize) {
-        if let Some(f) = self.fired.get_mut(index) {
-            *f = true;
-        }
+        self.sw.event_fired(index);
     }
 
     fn n_events(&self) -> usize {
-        if self.defect.is_some() {
-            5 * self.z
-        } else {
-            2 * self.z
-        }
+        self.sw.n_events(self.defect.is_some())
     }
 
     /// Per ball (index 2j, 2j + 1): the contact events of the inner and outer contact
@@ -759,18 +610,9 @@ impl Model for FullModel {
             g[2 * j + 1] = go;
         }
         let Some(d) = &self.defect else { return };
-        let z2 = 2 * self.z;
         for j in 0..self.z {
             let (tbd, _) = self.theta_bd(d, y, j);
-            g[z2 + 2 * j] = d.zone_margin(tbd);
-            // The centre only inside the zone (frozen half): outside, θ_bd's wrap at ±π would
-            // be a sign change of any function that has a root at 0.
-            g[z2 + 2 * j + 1] = if self.sides[j] != 0.0 {
-                tbd.clamp(-0.5, 0.5)
-            } else {
-                1.0
-            };
-            g[2 * z2 + j] = d.blend_margin(tbd);
+            self.sw.spall_events(d, j, tbd, g);
         }
     }
 
