@@ -6,9 +6,11 @@
 //! angular velocity is `θ̇ e_x + ω_s ê_s`. The inner ring translates (no tilt, spin prescribed,
 //! C4); the outer ring moves with the 2-DOF pedestal (C3).
 //!
-//! The normal contacts are the full model's ([`super::full::contact::evaluate`]: geometry with
-//! changing contact angles, Hertz with contact damping, the spall's three effects with the
-//! spall half frozen between edge events located on the dense output). Traction is one point
+//! The normal contacts are the full model's ([`super::full::contact::evaluate_law`]: geometry
+//! with changing contact angles, Hertz with contact damping, the spall's three effects), with
+//! the full model's frozen modes and their events ([`super::full::switches::Switches`]): the
+//! contact switches (closing, opening), the spall half (edges and centre) and the C9 blend
+//! boundary are located on the dense output, and a frozen law holds between them. Traction is one point
 //! at the contact, `P = r_b + (R − δ/2) n`, rolling component only:
 //! `F_t = −Q κ(|u2|) sign(u2) c2` with the traction law of [`crate::contact::traction`], u2 the
 //! slip of ball against race along the rolling direction c2 (rotated with the contact normal in
@@ -25,9 +27,11 @@
 //! The initial state is the full model's (spec §7, from L1), reduced to these states.
 
 use super::full::contact::{
-    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, V3,
+    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose,
+    V3,
 };
 use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
+use super::full::switches::{self, Switches};
 use super::full::{self as full_model, FullModel, FullOptions};
 use super::Model;
 use crate::contact::traction::TractionCurve;
@@ -134,8 +138,9 @@ pub struct ReducedModel {
     theta_start: f64,
     /// (cos β, sin β) of the fixed attitude angle.
     attitude: (f64, f64),
-    /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
-    sides: Vec<f64>,
+    /// Frozen spall halves, blend sides and contact modes, and their switches (as in the
+    /// full model).
+    sw: Switches,
     /// Normal forces of the last RHS evaluation (inner, outer) [N].
     q_inner: Vec<f64>,
     q_outer: Vec<f64>,
@@ -219,7 +224,7 @@ impl ReducedModel {
             inputs: *inputs,
             cage_ratio,
             attitude: (1.0, 0.0),
-            sides: vec![0.0; z],
+            sw: Switches::new(z),
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
             y0: vec![0.0; lay.dim()],
@@ -359,7 +364,7 @@ impl ReducedModel {
     #[inline(always)]
     fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
         let d = self.defect.as_ref()?;
-        if d.ring() != race || self.sides[j] == 0.0 {
+        if d.ring() != race || self.sw.side(j) == 0.0 {
             return None;
         }
         let rate = match race {
@@ -368,11 +373,11 @@ impl ReducedModel {
         };
         Some(DefectView {
             defect: d,
-            side: self.sides[j],
+            side: self.sw.side(j),
             phi: y[self.lay.phi()],
             theta_bd_rate: rate,
             a_star: self.defect_a_star,
-            blend: None,
+            blend: self.sw.blend(j),
         })
     }
 
@@ -421,21 +426,51 @@ impl ReducedModel {
         (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
     }
 
-    /// Re-derives the frozen spall half of every ball at state y (as the full model does).
-    fn update_sides(&mut self, y: &[f64]) {
-        let Some(d) = &self.defect else { return };
-        let te = d.half_angle();
-        for j in 0..self.z {
-            let (tbd, rate) = self.theta_bd(d, y, j);
-            let a = tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0));
-            self.sides[j] = if a.is_nan() || a.abs() >= te {
-                0.0
-            } else if a < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
+    /// Contact event functions of ball j, (inner, outer), and the unclamped forces: as in the
+    /// full model, min(δ′, Q/S) under the frozen spall half and blend side.
+    #[inline(always)]
+    fn contact_events(
+        &self,
+        y: &[f64],
+        j: usize,
+        inner: &RingPose,
+        outer: &RingPose,
+    ) -> [(f64, f64); 2] {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
+            let c = contact::evaluate_law(
+                &kin,
+                pose,
+                race,
+                self.ball_radius,
+                self.c_br,
+                None,
+                self.defect_view(y, j, ring, w),
+                Law::Closed,
+            );
+            (switches::contact_event(&c), c.q_raw)
+        };
+        [
+            ev(inner, &self.inner, Race::Inner),
+            ev(outer, &self.outer, Race::Outer),
+        ]
+    }
+
+    /// Re-derives the frozen modes at state y (at time t), as the full model does: spall
+    /// halves and blend sides, then the contact modes under the new halves ([`Switches`]).
+    fn update_switches(&mut self, t: f64, y: &[f64]) {
+        if let Some(d) = &self.defect {
+            for j in 0..self.z {
+                self.sw.angles[j] = self.theta_bd(d, y, j);
+            }
+            self.sw.update_spall(t, d);
         }
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        for j in 0..self.z {
+            self.sw.contact_events[j] = self.contact_events(y, j, &inner, &outer);
+        }
+        self.sw.update_contacts(t);
     }
 
     /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts [J].
@@ -536,7 +571,7 @@ impl Model for ReducedModel {
         for j in 0..self.z {
             let b = self.lay.ball(j);
             let (kin, er, et, r, w) = self.ball_kin(y, j);
-            let ci = contact::evaluate(
+            let ci = contact::evaluate_law(
                 &kin,
                 &inner,
                 &self.inner,
@@ -544,8 +579,9 @@ impl Model for ReducedModel {
                 self.c_br,
                 None,
                 self.defect_view(y, j, Race::Inner, w),
+                self.sw.law(j, 0),
             );
-            let co = contact::evaluate(
+            let co = contact::evaluate_law(
                 &kin,
                 &outer,
                 &self.outer,
@@ -553,9 +589,13 @@ impl Model for ReducedModel {
                 self.c_br,
                 None,
                 self.defect_view(y, j, Race::Outer, w),
+                self.sw.law(j, 1),
             );
-            self.q_inner[j] = ci.q;
-            self.q_outer[j] = co.q;
+            self.sw.note_stage(t, j, &ci, &co);
+            // Inside a step the frozen law may give a round-off-small negative force just
+            // before a located loss of contact: report it as 0.
+            self.q_inner[j] = ci.q.max(0.0);
+            self.q_outer[j] = co.q.max(0.0);
             let (ti, to) = match &self.traction {
                 Some(curve) => (
                     self.traction_of(curve, &kin, &inner, &ci),
@@ -613,26 +653,41 @@ impl Model for ReducedModel {
             .reduce(f64::min)
     }
 
-    fn update_mode(&mut self, _t: f64, y: &[f64]) {
-        self.update_sides(y);
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
+        self.update_switches(t, y);
+    }
+
+    fn begin_step(&mut self) {
+        self.sw.begin_step();
+    }
+
+    fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
+        self.sw.suspect(t_old, t_new)
+    }
+
+    fn event_fired(&mut self, index: usize) {
+        self.sw.event_fired(index);
     }
 
     fn n_events(&self) -> usize {
-        if self.defect.is_some() {
-            2 * self.z
-        } else {
-            0
-        }
+        self.sw.n_events(self.defect.is_some())
     }
 
-    /// Per ball, as in the full model: θ_e − |θ_bd| (edge crossings) and θ_bd clipped to
-    /// ±0.5 rad (the centre, where the ball changes corners).
+    /// As in the full model (see [`Switches`]): per ball the inner and outer contact events
+    /// (index 2j, 2j + 1); with a spall the zone edge and centre (2z + 2j, 2z + 2j + 1) and the
+    /// blend boundary (4z + j).
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        for j in 0..self.z {
+            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+            g[2 * j] = gi;
+            g[2 * j + 1] = go;
+        }
         let Some(d) = &self.defect else { return };
         for j in 0..self.z {
             let (tbd, _) = self.theta_bd(d, y, j);
-            g[2 * j] = d.zone_margin(tbd);
-            g[2 * j + 1] = tbd.clamp(-0.5, 0.5);
+            self.sw.spall_events(d, j, tbd, g);
         }
     }
 
