@@ -27,11 +27,10 @@
 //! The initial state is the full model's (spec §7, from L1), reduced to these states.
 
 use super::full::contact::{
-    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose,
-    V3,
+    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, V3,
 };
 use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
-use super::full::switches::{self, Switches};
+use super::full::switches::{SwitchedModel, Switches};
 use super::full::{self as full_model, FullModel, FullOptions};
 use super::Model;
 use crate::contact::traction::TractionCurve;
@@ -426,53 +425,6 @@ impl ReducedModel {
         (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
     }
 
-    /// Contact event functions of ball j, (inner, outer), and the unclamped forces: as in the
-    /// full model, min(δ′, Q/S) under the frozen spall half and blend side.
-    #[inline(always)]
-    fn contact_events(
-        &self,
-        y: &[f64],
-        j: usize,
-        inner: &RingPose,
-        outer: &RingPose,
-    ) -> [(f64, f64); 2] {
-        let (kin, _, _, _, w) = self.ball_kin(y, j);
-        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
-            let c = contact::evaluate_law(
-                &kin,
-                pose,
-                race,
-                self.ball_radius,
-                self.c_br,
-                None,
-                self.defect_view(y, j, ring, w),
-                Law::Closed,
-            );
-            (switches::contact_event(&c), c.q_raw)
-        };
-        [
-            ev(inner, &self.inner, Race::Inner),
-            ev(outer, &self.outer, Race::Outer),
-        ]
-    }
-
-    /// Re-derives the frozen modes at state y (at time t), as the full model does: spall
-    /// halves and blend sides, then the contact modes under the new halves ([`Switches`]).
-    fn update_switches(&mut self, t: f64, y: &[f64]) {
-        if let Some(d) = &self.defect {
-            for j in 0..self.z {
-                self.sw.angles[j] = self.theta_bd(d, y, j);
-            }
-            self.sw.update_spall(t, d);
-        }
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        for j in 0..self.z {
-            self.sw.contact_events[j] = self.contact_events(y, j, &inner, &outer);
-        }
-        self.sw.update_contacts(t);
-    }
-
     /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts [J].
     pub fn hertz_potential(&self, y: &[f64]) -> f64 {
         let inner = self.inner_pose(y);
@@ -516,6 +468,47 @@ impl ReducedModel {
     /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+}
+
+impl SwitchedModel for ReducedModel {
+    fn n_balls(&self) -> usize {
+        self.z
+    }
+
+    fn switches(&self) -> &Switches {
+        &self.sw
+    }
+
+    fn switch_parts(&mut self) -> (&mut Switches, Option<&Defect>) {
+        (&mut self.sw, self.defect.as_ref())
+    }
+
+    fn spall(&self) -> Option<&Defect> {
+        self.defect.as_ref()
+    }
+
+    fn ring_poses(&self, y: &[f64]) -> (RingPose, RingPose) {
+        (self.inner_pose(y), self.outer_pose(y))
+    }
+
+    #[inline(always)]
+    fn ball_state(&self, y: &[f64], j: usize) -> (BallKin, f64) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        (kin, w)
+    }
+
+    fn contact_constants(&self) -> (&RaceConst, &RaceConst, f64, f64) {
+        (&self.inner, &self.outer, self.ball_radius, self.c_br)
+    }
+
+    #[inline(always)]
+    fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+        self.defect_view(y, j, race, w)
+    }
+
+    fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
+        self.theta_bd(d, y, j)
     }
 }
 
@@ -677,18 +670,7 @@ impl Model for ReducedModel {
     /// (index 2j, 2j + 1); with a spall the zone edge and centre (2z + 2j, 2z + 2j + 1) and the
     /// blend boundary (4z + j).
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        for j in 0..self.z {
-            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
-            g[2 * j] = gi;
-            g[2 * j + 1] = go;
-        }
-        let Some(d) = &self.defect else { return };
-        for j in 0..self.z {
-            let (tbd, _) = self.theta_bd(d, y, j);
-            self.sw.spall_events(d, j, tbd, g);
-        }
+        self.switch_events(y, g);
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {

@@ -19,10 +19,10 @@ pub mod layout;
 pub mod switches;
 
 use self::contact::{
-    cross, dot, sub, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose, Strips, V3,
+    cross, dot, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, Strips, V3,
 };
 use self::layout::*;
-use self::switches::Switches;
+use self::switches::{SwitchedModel, Switches};
 use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
@@ -337,55 +337,6 @@ impl FullModel {
         (ci, co)
     }
 
-    /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
-    /// force K δ′|δ′|^{1/2} + c δ̇′. Positive exactly where the clamped law has a positive force;
-    /// continuous, so the loss of a contact (Q reaching 0) and its return (δ′ reaching 0 with the
-    /// damping jump c δ̇′, or Q rising through 0) are its roots. Also the unclamped forces.
-    #[inline(always)]
-    fn contact_events(
-        &self,
-        y: &[f64],
-        j: usize,
-        inner: &RingPose,
-        outer: &RingPose,
-    ) -> [(f64, f64); 2] {
-        let (kin, _, _, _, w) = self.ball_kin(y, j);
-        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
-            let c = contact::evaluate_law(
-                &kin,
-                pose,
-                race,
-                self.ball_radius,
-                self.c_br,
-                None,
-                self.defect_view(y, j, ring, w),
-                Law::Closed,
-            );
-            (switches::contact_event(&c), c.q_raw)
-        };
-        [
-            ev(inner, &self.inner, Race::Inner),
-            ev(outer, &self.outer, Race::Outer),
-        ]
-    }
-
-    /// Re-derives the frozen modes at state y (at time t): spall halves and blend sides,
-    /// then the contact modes under the new halves ([`Switches`]).
-    fn update_switches(&mut self, t: f64, y: &[f64]) {
-        if let Some(d) = &self.defect {
-            for j in 0..self.z {
-                self.sw.angles[j] = self.theta_bd(d, y, j);
-            }
-            self.sw.update_spall(t, d);
-        }
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        for j in 0..self.z {
-            self.sw.contact_events[j] = self.contact_events(y, j, &inner, &outer);
-        }
-        self.sw.update_contacts(t);
-    }
-
     /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
     fn theta_bd(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
         let (kin, _, _, _, w) = self.ball_kin(y, j);
@@ -448,6 +399,47 @@ impl FullModel {
     /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+}
+
+impl SwitchedModel for FullModel {
+    fn n_balls(&self) -> usize {
+        self.z
+    }
+
+    fn switches(&self) -> &Switches {
+        &self.sw
+    }
+
+    fn switch_parts(&mut self) -> (&mut Switches, Option<&Defect>) {
+        (&mut self.sw, self.defect.as_ref())
+    }
+
+    fn spall(&self) -> Option<&Defect> {
+        self.defect.as_ref()
+    }
+
+    fn ring_poses(&self, y: &[f64]) -> (RingPose, RingPose) {
+        (self.inner_pose(y), self.outer_pose(y))
+    }
+
+    #[inline(always)]
+    fn ball_state(&self, y: &[f64], j: usize) -> (BallKin, f64) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        (kin, w)
+    }
+
+    fn contact_constants(&self) -> (&RaceConst, &RaceConst, f64, f64) {
+        (&self.inner, &self.outer, self.ball_radius, self.c_br)
+    }
+
+    #[inline(always)]
+    fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+        self.defect_view(y, j, race, w)
+    }
+
+    fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
+        self.theta_bd(d, y, j)
     }
 }
 
@@ -602,18 +594,7 @@ impl Model for FullModel {
     /// of θ_bd at ±π used to fire a spurious event once per orbit of every ball); then per ball
     /// (index 4z + j) the blend boundary (`Defect::blend_margin`).
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        for j in 0..self.z {
-            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
-            g[2 * j] = gi;
-            g[2 * j + 1] = go;
-        }
-        let Some(d) = &self.defect else { return };
-        for j in 0..self.z {
-            let (tbd, _) = self.theta_bd(d, y, j);
-            self.sw.spall_events(d, j, tbd, g);
-        }
+        self.switch_events(y, g);
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {

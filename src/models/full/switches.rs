@@ -11,8 +11,9 @@
 //! [`Switches::update_spall`], [`Switches::contact_events`] (the contact functions under the new
 //! halves) before [`Switches::update_contacts`]; nothing here allocates after construction.
 
-use super::contact::{ContactOut, Law};
+use super::contact::{self, BallKin, ContactOut, DefectView, Law, RaceConst, RingPose};
 use crate::defect::Defect;
+use crate::geometry::Race;
 
 /// Scale of the force part of the contact event function min(δ′, Q/S) [N/m]: only the sign and
 /// the continuity of the function matter (the same value as the lumped level's).
@@ -253,5 +254,106 @@ impl Switches {
         }
         self.fired.iter_mut().for_each(|f| *f = false);
         self.modes_set = true;
+    }
+}
+
+/// A ball-level model whose frozen modes live in a [`Switches`] (full and reduced levels): it
+/// gives the per-ball contact geometry, and the contact event functions, the mode update and the
+/// event vector are written once here.
+pub trait SwitchedModel {
+    /// Number of balls z.
+    fn n_balls(&self) -> usize;
+    /// The switches.
+    fn switches(&self) -> &Switches;
+    /// The switches and the spall, borrowed apart.
+    fn switch_parts(&mut self) -> (&mut Switches, Option<&Defect>);
+    /// The spall, if any.
+    fn spall(&self) -> Option<&Defect>;
+    /// The inner- and outer-ring poses at state y.
+    fn ring_poses(&self, y: &[f64]) -> (RingPose, RingPose);
+    /// Ball j's kinematics and orbital rate at state y.
+    fn ball_state(&self, y: &[f64], j: usize) -> (BallKin, f64);
+    /// Inner and outer race constants, ball radius [m] and contact damping c_br [N s/m].
+    fn contact_constants(&self) -> (&RaceConst, &RaceConst, f64, f64);
+    /// The spall as seen by ball j on `race` in the frozen interval (orbital rate `w`).
+    fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>>;
+    /// Ball-to-spall angle θ_bd of ball j and its rate.
+    fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64);
+
+    /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
+    /// force K δ′|δ′|^{1/2} + c δ̇′ under the frozen spall half and blend side. Positive exactly
+    /// where the clamped law has a positive force; continuous, so the loss of a contact (Q
+    /// reaching 0) and its return (δ′ reaching 0 with the damping jump c δ̇′, or Q rising
+    /// through 0) are its roots. Also the unclamped forces.
+    #[inline(always)]
+    fn contact_events(
+        &self,
+        y: &[f64],
+        j: usize,
+        inner: &RingPose,
+        outer: &RingPose,
+    ) -> [(f64, f64); 2] {
+        let (kin, w) = self.ball_state(y, j);
+        let (race_in, race_out, radius, c_br) = self.contact_constants();
+        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
+            let c = contact::evaluate_law(
+                &kin,
+                pose,
+                race,
+                radius,
+                c_br,
+                None,
+                self.spall_view(y, j, ring, w),
+                Law::Closed,
+            );
+            (contact_event(&c), c.q_raw)
+        };
+        [
+            ev(inner, race_in, Race::Inner),
+            ev(outer, race_out, Race::Outer),
+        ]
+    }
+
+    /// Re-derives the frozen modes at state y (at time t): spall halves and blend sides, then
+    /// the contact modes under the new halves. Fills the switches' buffers in place (taken out
+    /// and put back, no allocation).
+    fn update_switches(&mut self, t: f64, y: &[f64]) {
+        let z = self.n_balls();
+        if self.spall().is_some() {
+            let mut angles = std::mem::take(&mut self.switch_parts().0.angles);
+            if let Some(d) = self.spall() {
+                for (j, a) in angles.iter_mut().enumerate().take(z) {
+                    *a = self.spall_angle(d, y, j);
+                }
+            }
+            let (sw, d) = self.switch_parts();
+            sw.angles = angles;
+            if let Some(d) = d {
+                sw.update_spall(t, d);
+            }
+        }
+        let (inner, outer) = self.ring_poses(y);
+        let mut events = std::mem::take(&mut self.switch_parts().0.contact_events);
+        for (j, e) in events.iter_mut().enumerate().take(z) {
+            *e = self.contact_events(y, j, &inner, &outer);
+        }
+        let (sw, _) = self.switch_parts();
+        sw.contact_events = events;
+        sw.update_contacts(t);
+    }
+
+    /// Writes the event functions (indices in the module documentation) into `g`.
+    fn switch_events(&self, y: &[f64], g: &mut [f64]) {
+        let (inner, outer) = self.ring_poses(y);
+        for j in 0..self.n_balls() {
+            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+            g[2 * j] = gi;
+            g[2 * j + 1] = go;
+        }
+        let Some(d) = self.spall() else { return };
+        for j in 0..self.n_balls() {
+            let (tbd, _) = self.spall_angle(d, y, j);
+            self.switches().spall_events(d, j, tbd, g);
+        }
     }
 }
