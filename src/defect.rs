@@ -364,8 +364,10 @@ impl Defect {
         };
         let n = TABLE_POINTS;
         let dy = spec.width / (n - 1) as f64;
-        let mut nodes: Vec<DropNode> = Vec::with_capacity(if table { n } else { 0 });
-        for i in 0..if table { n } else { 0 } {
+        // Without `table` (Defect::summary) no node is built.
+        let count = if table { n } else { 0 };
+        let mut nodes: Vec<DropNode> = Vec::with_capacity(count);
+        for i in 0..count {
             let y_b = if i == n - 1 {
                 half_width
             } else {
@@ -824,21 +826,10 @@ impl Profile {
         }
         // Interior scan for the floor.
         let h = (hi - lo) / SCAN_POINTS as f64;
-        // The drops are computed in one branch-free pass (the compiler vectorises it), then the
-        // first smallest is picked: the same values and the same index as a one-pass scan.
-        let mut drops = [f64::INFINITY; SCAN_POINTS];
-        let (depth, hw, r2) = (self.depth, self.half_width, self.r * self.r);
-        for (k, f) in drops.iter_mut().enumerate().skip(1) {
-            // drop_via without branches: for |y| ≥ w/2 the parabola is ≤ 0, clamped to the
-            // track's 0 (the same value as depth_at).
-            let y = lo + k as f64 * h;
-            let s = y / hw;
-            let x = y - y_b;
-            *f = (depth * (1.0 - s * s)).max(0.0) + self.r - (r2 - x * x).max(0.0).sqrt();
-        }
         let mut k_best = 0;
         let mut f_best = f64::INFINITY;
-        for (k, &f) in drops.iter().enumerate().skip(1) {
+        for k in 1..SCAN_POINTS {
+            let f = self.drop_via(lo + k as f64 * h, y_b);
             if f < f_best {
                 f_best = f;
                 k_best = k;

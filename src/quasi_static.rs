@@ -979,10 +979,7 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
         xs = re.balls.iter().map(|e| e.eq.x).collect();
         let any_loaded = re.balls.iter().any(|e| e.eq.q_inner > 0.0);
         let p = if any_loaded {
-            let jac = match analytic_jacobian(&g, omega, &u, &re.balls) {
-                Some(j) => j,
-                None => fd_jacobian(&g, omega, &u, &xs, FD_JACOBIAN_STEP, active)?,
-            };
+            let jac = ring_jacobian(&g, omega, &u, &re.balls, &xs, FD_JACOBIAN_STEP, active)?;
             solve3(jac, [-r[0], -r[1], -r[2]], active)
         } else {
             None
@@ -1066,10 +1063,7 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
     let cage_speed = loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n;
     let spin_speed = loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n;
     xs = re.balls.iter().map(|e| e.eq.x).collect();
-    let stiffness = match analytic_jacobian(&g, omega, &u, &re.balls) {
-        Some(j) => j,
-        None => fd_jacobian(&g, omega, &u, &xs, STIFFNESS_STEP, [true; 3])?,
-    };
+    let stiffness = ring_jacobian(&g, omega, &u, &re.balls, &xs, STIFFNESS_STEP, [true; 3])?;
     Ok(QuasiStatic {
         speed: omega,
         delta_axial: u[0],
@@ -1119,7 +1113,6 @@ fn check_limits(b: &Bearing, re: &RingEval) -> Result<(), QuasiStaticError> {
     Ok(())
 }
 
-/// Central-difference Jacobian ∂F_ring/∂u (columns of inactive DOFs are zero).
 /// Jacobian ∂F/∂u of the ring force at the converged ball equilibria `balls` (from
 /// [`eval_ring`] at `u`), analytic by the implicit-function theorem: each ball's inner contact
 /// force f(y), y = a − x, with the ball centre x following a through its equilibrium
@@ -1154,11 +1147,11 @@ fn analytic_jacobian(
             add_speed_force_slope(g, omega, a, x, true, &mut ra);
         }
         // dy/da = I + R_x⁻¹ R_a (solve2 returns −R_x⁻¹ r).
-        let mut dyda = [[0.0; 2]; 2];
+        let mut dyda = [[1.0, 0.0], [0.0, 1.0]];
         for l in 0..2 {
             let p = solve2(ev.jac, [ra[0][l], ra[1][l]])?;
-            dyda[0][l] = f64::from(u8::from(l == 0)) - p[0];
-            dyda[1][l] = f64::from(u8::from(l == 1)) - p[1];
+            dyda[0][l] -= p[0];
+            dyda[1][l] -= p[1];
         }
         let mut dfda = [[0.0; 2]; 2];
         for i in 0..2 {
@@ -1189,6 +1182,24 @@ fn add_ring_congruence(er: [f64; 2], m: [[f64; 2]; 2], out: &mut [[f64; 3]; 3]) 
     }
 }
 
+/// ∂F_ring/∂u at `u`, whose ring evaluation gave `balls` (warm start `xs`): analytic
+/// ([`analytic_jacobian`]), else the central difference with step `h` over the `active` DOFs.
+fn ring_jacobian(
+    g: &Geometry,
+    omega: f64,
+    u: &[f64; 3],
+    balls: &[BallEval],
+    xs: &[[f64; 2]],
+    h: f64,
+    active: [bool; 3],
+) -> Result<[[f64; 3]; 3], QuasiStaticError> {
+    match analytic_jacobian(g, omega, u, balls) {
+        Some(j) => Ok(j),
+        None => fd_jacobian(g, omega, u, xs, h, active),
+    }
+}
+
+/// Central-difference Jacobian ∂F_ring/∂u (columns of inactive DOFs are zero).
 fn fd_jacobian(
     g: &Geometry,
     omega: f64,
@@ -1240,10 +1251,7 @@ pub fn displacement_controlled(
     }
     let re = eval_ring(&g, speed, &u, warm)?;
     *warm = re.balls.iter().map(|e| e.eq.x).collect();
-    let stiffness = match analytic_jacobian(&g, speed, &u, &re.balls) {
-        Some(j) => j,
-        None => fd_jacobian(&g, speed, &u, warm, STIFFNESS_STEP, [true; 3])?,
-    };
+    let stiffness = ring_jacobian(&g, speed, &u, &re.balls, warm, STIFFNESS_STEP, [true; 3])?;
     let loaded: Vec<&BallEquilibrium> = re
         .balls
         .iter()

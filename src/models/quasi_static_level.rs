@@ -144,33 +144,23 @@ pub(crate) fn static_outputs(
         return;
     }
     // The balls are equally spaced like L1's: ball j sits j table entries after ball 0, with the
-    // same interpolation weight (one rem_euclid for all balls).
+    // same interpolation weight (one wrap for all balls).
     // frac(θ/2π)·z by a floor, not rem_euclid (a software fmod whose cost grows with the
     // number of turns); the difference is a rounding of θ/2π.
     let turns = (theta_start + cage) / TAU;
     let u = (turns - turns.floor()) * z as f64;
     let j0 = (u.floor() as usize).min(z - 1);
     let s = u - j0 as f64;
-    // Contact forces (inner, outer), orbital speeds and separation flags are four blocks of z
-    // outputs; the table index wraps by a compare, not a division (this runs at every sample).
-    let block = &mut o[out::CONTACT_START..out::CONTACT_START + 4 * z];
-    let (q_in, rest) = block.split_at_mut(z);
-    let (q_out, rest) = rest.split_at_mut(z);
-    let (orbit, sep) = rest.split_at_mut(z);
-    let (ti, to) = (&table.q_inner[..z], &table.q_outer[..z]);
+    // The table index wraps by a compare, not a division (this runs at every sample).
     let mut a = j0;
     for j in 0..z {
         let b = if a + 1 == z { 0 } else { a + 1 };
-        q_in[j] = (1.0 - s) * ti[a] + s * ti[b];
-        q_out[j] = (1.0 - s) * to[a] + s * to[b];
-        orbit[j] = table.cage_speed;
-        sep[j] = if q_in[j] == 0.0 && q_out[j] == 0.0 {
-            1.0
-        } else {
-            0.0
-        };
+        o[out::CONTACT_START + j] = (1.0 - s) * table.q_inner[a] + s * table.q_inner[b];
+        o[out::CONTACT_START + z + j] = (1.0 - s) * table.q_outer[a] + s * table.q_outer[b];
+        o[out::orbit_speed(z, j)] = table.cage_speed;
         a = b;
     }
+    out::set_separation_flags(o, z);
 }
 
 /// The quasi-static level.
