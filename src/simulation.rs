@@ -185,9 +185,13 @@ pub mod out {
     /// ball touches neither race (both normal forces zero), else 0.
     #[inline]
     pub fn set_separation_flags(o: &mut [f64], z: usize) {
-        for j in 0..z {
-            let free = o[CONTACT_START + j] == 0.0 && o[CONTACT_START + z + j] == 0.0;
-            o[separated(z, j)] = if free { 1.0 } else { 0.0 };
+        // One bounds check for the four blocks (inner, outer, orbit, flags), not three per ball:
+        // the kinematic and quasi-static levels call this at every output sample.
+        let (forces, rest) = o[CONTACT_START..separated(z, z)].split_at_mut(2 * z);
+        let (q_in, q_out) = forces.split_at(z);
+        let flags = &mut rest[z..];
+        for ((f, qi), qo) in flags.iter_mut().zip(q_in).zip(q_out) {
+            *f = if *qi == 0.0 && *qo == 0.0 { 1.0 } else { 0.0 };
         }
     }
 }
