@@ -40,6 +40,10 @@ pub const MAX_SIZE: f64 = 0.1;
 /// Grid points of the coarse scan for the floor minimum at set-up.
 const SCAN_POINTS: usize = 400;
 
+/// How far past an edge, in blend lengths ℓ_b, a frozen in-zone law continues the C9 blend
+/// linearly (a step that overshoots the located edge by more sees the groove side's limit).
+pub const FROZEN_OVERSHOOT: f64 = 0.2;
+
 /// Maps an angle to (−π, π] (spec §0.1), also for large arguments such as φ = Ωt.
 /// NaN stays NaN.
 #[inline]
@@ -620,10 +624,17 @@ impl Defect {
     /// constant, `None` decides by the position (|y_b| > w_d/2 − ℓ_b: blend). The blend's
     /// boundary is a kink of K and a jump of dK/dy_b; a model that locates it as a state event
     /// freezes the side inside each step.
+    ///
+    /// A frozen blend (`Some`) also freezes the zone: past an edge (|y_b| ≥ w_d/2) the
+    /// in-zone law is continued smoothly (the corner contact, the blend and its along-track
+    /// force) instead of returning `None`. At the edge K is continuous but dK/dy_b is not (the
+    /// blend's along-track force −(2/5)δ′^{5/2} dK/dy_b drops to 0 outside), so a model that
+    /// locates the edge as a state event must not see that jump inside a step. `None` keeps
+    /// the position's answer (`None` outside the zone).
     #[inline]
     pub fn contact_with_blend(&self, y_b: f64, blend: Option<bool>) -> Option<DefectContact> {
         let a = y_b.abs();
-        if a.is_nan() || a >= self.half_width {
+        if a.is_nan() || (a >= self.half_width && blend.is_none()) {
             return None;
         }
         let t = (y_b + self.half_width) * self.inv_dy;
@@ -725,7 +736,9 @@ impl Defect {
     #[inline]
     fn blend_slope(&self, y_b: f64, c_edge: f64, c_groove: f64, frozen: Option<bool>) -> f64 {
         let s = self.half_width - y_b.abs();
-        if !(self.in_blend(s, frozen) && s > 0.0) {
+        if !self.in_blend(s, frozen)
+            || s / self.blend_length <= self.blend_floor(frozen, c_edge, c_groove)
+        {
             return 0.0;
         }
         let c = c_groove + (s / self.blend_length) * (c_edge - c_groove);
@@ -740,6 +753,21 @@ impl Defect {
         match frozen {
             None => s < self.blend_length,
             Some(b) => b && self.blend_length > 0.0,
+        }
+    }
+
+    /// Lower limit of the blend fraction s/ℓ_b: 0 (the groove constant at the edge) by
+    /// position; with the blend frozen on, the blend continues linearly past the edge (the
+    /// zone is frozen too, see [`Defect::contact_with_blend`]) down to −[`FROZEN_OVERSHOOT`],
+    /// or less where the compliance would fall below half the groove's.
+    #[inline]
+    fn blend_floor(&self, frozen: Option<bool>, c_edge: f64, c_groove: f64) -> f64 {
+        match frozen {
+            Some(true) if c_edge > c_groove => {
+                -FROZEN_OVERSHOOT.min(0.5 * c_groove / (c_edge - c_groove))
+            }
+            Some(true) => -FROZEN_OVERSHOOT,
+            _ => 0.0,
         }
     }
 
@@ -773,7 +801,7 @@ impl Defect {
         if !self.in_blend(s, frozen) {
             return k_edge;
         }
-        let f = (s / self.blend_length).max(0.0);
+        let f = (s / self.blend_length).max(self.blend_floor(frozen, c_edge, c_groove));
         let c = c_groove + f * (c_edge - c_groove);
         1.0 / (c * c.sqrt())
     }

@@ -360,6 +360,51 @@ fn compliance_blend_over_the_semi_minor_axis() {
     );
 }
 
+/// At a spall edge the C9 blend gives K its groove value but not its slope: inside, the blend's
+/// along-track force −(2/5)δ′^{5/2} dK/dy_b acts with dK/dy_b = (3/2) c_g^{−5/2} (c_e − c_g)/ℓ_b
+/// (c = K^{−2/3}); outside there is none. The models locate the edge as a state event, so the
+/// frozen in-zone law (blend frozen on) must continue smoothly past the edge instead of
+/// dropping to the intact law inside a step (which made DOP853 stall at rtol 1e-12 at the
+/// exit edge of the reduced model, examples/stall_probe.rs).
+#[test]
+fn frozen_zone_law_continues_smoothly_past_the_edges() {
+    let b = table1();
+    let d = defect(Race::Outer, 1.0 * MM, 0.2 * MM);
+    let (k_g, k_e, lb) = (b.k_outer, d.k_corner(), d.blend_length());
+    let (c_g, c_e) = (k_g.powf(-2.0 / 3.0), k_e.powf(-2.0 / 3.0));
+    let slope = 1.5 * (c_e - c_g) / lb / c_g.powf(2.5);
+    let hw = 0.5 * MM;
+    let eps = 1e-12;
+    for sign in [-1.0, 1.0] {
+        let inside = d.contact_with_blend(sign * (hw - eps), Some(true)).unwrap();
+        let past = d
+            .contact_with_blend(sign * (hw + eps), Some(true))
+            .expect("the frozen law continues past the edge");
+        // The slope at the edge against the closed form (it points into the zone: K falls
+        // toward the edge constant as the ball moves in).
+        assert!(
+            rel(inside.dk_dy, sign * slope) < 1e-6,
+            "{:e} vs {:e}",
+            inside.dk_dy,
+            sign * slope
+        );
+        // Value and slope continue across the edge (a jump would be O(1)).
+        assert!(rel(past.dk_dy, inside.dk_dy) < 1e-6, "{:e}", past.dk_dy);
+        assert!(rel(past.k_edge, inside.k_edge) < 1e-6 && rel(past.k_edge, k_g) < 1e-6);
+        assert!((past.g - inside.g).abs() < 1e-15 && past.g.abs() < 1e-15);
+        assert!((past.theta_dd - inside.theta_dd).abs() < 1e-8);
+        assert_eq!(past.kind, ContactKind::Corner);
+        // Far past the edge the continuation stops at a positive compliance.
+        let far = d
+            .contact_with_blend(sign * (hw + 0.5 * MM), Some(true))
+            .unwrap();
+        assert!(far.k_edge.is_finite() && far.k_edge > 0.0 && far.dk_dy == 0.0);
+        // By position (not frozen) the zone ends at the edge, as before.
+        assert!(d.contact_with_blend(sign * (hw + eps), None).is_none());
+        assert!(d.contact_at(sign * (hw + eps)).is_none());
+    }
+}
+
 #[test]
 fn point_mode_is_the_paper_literal_profile() {
     let b = bearing_with(|f| f.defect.mode = DefectMode::Point);

@@ -92,11 +92,20 @@ impl ReducedLayout {
 pub struct ReducedOptions {
     /// Rolling traction on (default) or frictionless contacts.
     pub traction: bool,
+    /// Diagnostic, off by default (spec §6 L3 has the rolling component only): the single-point
+    /// traction also acts on the transverse slip u1 (along c1, in the ball's axial–radial
+    /// plane), `F_t = −Q κ(|u|) u/|u|` with u = (u1, u2). With the fixed spin axis u1 is the
+    /// ball's translational slip across the groove, so this term only damps the ball's
+    /// motion across the groove, which L4 damps through its strip traction.
+    pub transverse: bool,
 }
 
 impl Default for ReducedOptions {
     fn default() -> Self {
-        Self { traction: true }
+        Self {
+            traction: true,
+            transverse: false,
+        }
     }
 }
 
@@ -120,6 +129,8 @@ pub struct ReducedModel {
     outer: RaceConst,
     c_br: f64,
     traction: Option<TractionCurve>,
+    /// Transverse slip in the traction ([`ReducedOptions::transverse`]).
+    transverse: bool,
     m_ir: f64,
     m_p: f64,
     k_py: f64,
@@ -210,6 +221,7 @@ impl ReducedModel {
             outer: full_model::race_const(bearing, Race::Outer),
             c_br: file.contact.c_br,
             traction,
+            transverse: options.transverse,
             m_ir: file.inner_ring.mass,
             m_p: file.pedestal.mass,
             k_py: file.pedestal.k_y,
@@ -407,7 +419,18 @@ impl ReducedModel {
         let r_cp = scale(n, self.ball_radius - 0.5 * c.delta);
         let v_ball = add(kin.v, cross(kin.omega, r_cp));
         let v_race = add(ring.v, cross(ring.omega(), sub(add(kin.p, r_cp), ring.p)));
-        let u2 = dot(sub(v_ball, v_race), c2);
+        let slip = sub(v_ball, v_race);
+        let u2 = dot(slip, c2);
+        if self.transverse {
+            let c1 = cross(c2, n);
+            let c1 = scale(c1, 1.0 / dot(c1, c1).sqrt());
+            let u1 = dot(slip, c1);
+            let g = -c.q * curve.kappa_over_u((u1 * u1 + u2 * u2).sqrt());
+            return Traction {
+                f: add(scale(c1, g * u1), scale(c2, g * u2)),
+                r_cp,
+            };
+        }
         let f2 = -c.q * curve.kappa_over_u(u2.abs()) * u2;
         Traction {
             f: scale(c2, f2),
