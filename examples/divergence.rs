@@ -8,7 +8,7 @@
 //! keys: level (reduced|full), duration, window, fs (state sample rate), rtol_a, rtol_b,
 //! method_a, method_b (dop853|dopri5|rkf45), eps (relative perturbation of run b's initial
 //! state), eps_state (index of the perturbed state; default: ball 0's radial velocity),
-//! traction (on|off), transverse (on|off: reduced only, [`ReducedOptions::transverse`]),
+//! traction (on|off), strips (N: reduced only, [`ReducedOptions::strips`]; 0 = the spec's single rolling point),
 //! defect (on|off), ball (report only this ball's states in the ball
 //! columns).
 
@@ -64,7 +64,7 @@ fn run(
     scene: &Scene,
     level: &str,
     traction: bool,
-    transverse: bool,
+    strips: usize,
     method: Method,
     rtol: f64,
     duration: f64,
@@ -92,10 +92,7 @@ fn run(
                 scene,
                 &bearing,
                 &inputs,
-                ReducedOptions {
-                    traction,
-                    transverse,
-                },
+                ReducedOptions { traction, strips },
             )
             .expect("model"),
         )
@@ -153,7 +150,7 @@ fn main() {
     let (mut method_a, mut method_b) = (Method::Dop853, Method::Dop853);
     let (mut eps, mut eps_state) = (0.0, None);
     let mut traction = true;
-    let mut transverse = false;
+    let mut strips = raceway::models::reduced::L3_STRIPS;
     let mut watch: Option<usize> = None;
     let method = |s: &str| match s {
         "dopri5" => Method::Dopri5,
@@ -174,7 +171,7 @@ fn main() {
             "eps" => eps = v.parse().expect("eps"),
             "eps_state" => eps_state = Some(v.parse::<usize>().expect("eps_state")),
             "traction" => traction = v == "on",
-            "transverse" => transverse = v == "on",
+            "strips" => strips = v.parse().expect("strips=N"),
             "ball" => watch = Some(v.parse().expect("ball")),
             "defect" => {
                 if v == "off" {
@@ -188,10 +185,10 @@ fn main() {
     let per_ball = if level == "full" { 9 } else { 7 };
     let perturb = (eps != 0.0).then(|| (eps_state.unwrap_or(4), eps));
     let (a, n) = run(
-        &scene, &level, traction, transverse, method_a, rtol_a, duration, fs, None,
+        &scene, &level, traction, strips, method_a, rtol_a, duration, fs, None,
     );
     let (b, _) = run(
-        &scene, &level, traction, transverse, method_b, rtol_b, duration, fs, perturb,
+        &scene, &level, traction, strips, method_b, rtol_b, duration, fs, perturb,
     );
     println!(
         "a: {method_a:?} rtol {rtol_a:e}: steps {} rejected {} rhs {}",

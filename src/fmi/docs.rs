@@ -30,7 +30,7 @@ fn level_text(f: Fidelity) -> &'static str {
         Fidelity::Kinematic => "Kinematic signal generator: impulse trains at the fault frequencies (pure rolling / outer-race control); no dynamics",
         Fidelity::QuasiStatic => "Quasi-static Jones–Harris load distribution and bearing stiffness at the current inputs; no dynamics",
         Fidelity::Lumped => "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, Hertz contacts and the spall; the default",
-        Fidelity::Reduced => "Reduced per-ball dynamics: every ball with its own orbit (x, r, θ) and one spin rate about a fixed attitude axis, inner ring translations, pedestal; the full model's Hertz contacts and spall, single-point rolling traction; ball flight and impacts without spin or transverse slip",
+        Fidelity::Reduced => "Reduced per-ball dynamics: every ball with its own orbit (x, r, θ) and one spin rate about a fixed attitude axis, inner ring translations, pedestal; the full model's Hertz contacts, spall and strip traction (4 strips); ball flight and impacts with a fixed spin axis",
         Fidelity::Full => "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
     }
 }
