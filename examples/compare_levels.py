@@ -164,9 +164,7 @@ def main():
         L.append("From `raceway bench` (E1 relative RMS error of pedestal.a.z, E2 largest envelope-peak "
                  "amplitude error at BPFO × 1…5 and E2_df its bin shift, E3 Welch-PSD difference in "
                  "dB, each against the level's own DOP853 rtol 1e-12 reference; `crosscheck` is "
-                 "DOPRI5 at 1e-11 against it). The impacts make the trajectory sensitive: two "
-                 "converged references differ by the cross-check row's E1, so E2 and E3 are the "
-                 "meaningful accuracy measures here.\n")
+                 "DOPRI5 at 1e-11 against it; its E1 says how far two converged runs agree).\n")
         L.append("| " + " | ".join(lines[0]) + " |")
         L.append("|---" * len(lines[0]) + "|")
         for row in lines[1:]:
@@ -174,12 +172,12 @@ def main():
         L.append("")
     L.append("## What the levels leave out (spec §6)\n")
     L.append("- reduced (L3): the full model's normal contacts, spall and edge events, ball flight and "
-             "impacts, per-ball orbital speeds, centrifugal and Coriolis forces; but one rolling "
-             "traction point per contact (no spin or transverse slip, so no spinning friction: its "
-             "friction torque and its drag on the balls are smaller and the cage runs closer to "
-             "outer-race control, which moves the fault lines up), a fixed spin-axis attitude, no "
-             "inner-ring tilt. It takes the full model's steps (same contact stiffness, same "
-             "rattling after each impact) at a cheaper right-hand side.")
+             "impacts, per-ball orbital speeds, centrifugal and Coriolis forces, and its strip "
+             "traction (4 strips); but a fixed spin-axis attitude (no gyroscopic pivoting: the "
+             "traction moments off the spin axis are taken up by the constraint, which leaves the "
+             "cage slightly faster than L4's) and no inner-ring tilt. It takes the full model's "
+             "steps (same contact stiffness, same rattling after each impact) at a cheaper "
+             "right-hand side.")
     L.append("- lumped (L2): massless kinematic balls at the L1 cage speed: no flight, no impact "
              "dynamics, no slip.\n")
     with open(out_md, "w") as f:
