@@ -104,6 +104,20 @@ pub struct ContactSection {
     pub k_outer: Option<f64>,
     /// Strips along the contact ellipse's major axis (C7).
     pub n_strips: u32,
+    /// Quadrature of the traction over the major axis (C7).
+    #[serde(default)]
+    pub strip_rule: StripRule,
+}
+
+/// Quadrature rule of the strip traction over the contact ellipse's major axis (spec §3.1, C7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum StripRule {
+    /// `n_strips` equal strips, slip at each strip centre, exact Hertz line-load weights.
+    #[default]
+    Equal,
+    /// `n_strips`-point Gauss rule for the line-load weight 1 − s² (Gauss–Jacobi α = β = 1).
+    Gauss,
 }
 
 impl Default for ContactSection {
@@ -114,6 +128,7 @@ impl Default for ContactSection {
             k_inner: None,
             k_outer: None,
             n_strips: 10,
+            strip_rule: StripRule::Equal,
         }
     }
 }
