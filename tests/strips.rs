@@ -157,3 +157,42 @@ fn strip_sums_converge_on_a_spinning_contact() {
     }
     assert!(e[3] < e[2] && e[2] < e[1] && e[1] < e[0], "{e:?}");
 }
+
+#[test]
+fn strip_sums_equal_the_plain_sum_over_strips() {
+    // The kernel pairs mirrored strips; check it against the plain per-strip sum of §3.4
+    // (F_k = −Q w_k κ(|u_k|) u_k/|u_k|, moments ξ_k f2, ζ_k f1, ζ_k f2) for odd and even n.
+    let c = curve();
+    let sf = SlipField {
+        q: 800.0,
+        a: 0.9e-3,
+        rs: 6.44e-3,
+        z0: -1.5e-4,
+        a1: -0.07,
+        a2: 0.2,
+        b1: 5.0,
+        b2: -60.0,
+        s: 380.0,
+    };
+    for n in 1..=MAX_STRIPS {
+        for st in [Strips::new(n), Strips::gauss(n)] {
+            let mut r = [0.0; 5];
+            for k in 0..n {
+                let (zeta, u1, u2) = sf.at(st.s[k]);
+                let u = u1.hypot(u2);
+                let g = -sf.q * st.w[k] * c.kappa(u) / u;
+                r[0] += g * u1;
+                r[1] += g * u2;
+                r[2] += sf.a * st.s[k] * g * u2;
+                r[3] += zeta * g * u1;
+                r[4] += zeta * g * u2;
+            }
+            let x = strip_sums(&c, &st, &sf);
+            let scale = [1.0, 1.0, sf.a, sf.rs, sf.rs];
+            for i in 0..5 {
+                let e = (x[i] - r[i]).abs() / (c.kappa_max * sf.q * scale[i]);
+                assert!(e < 1e-13, "n {n}, sum {i}: {} vs {} ({e:e})", x[i], r[i]);
+            }
+        }
+    }
+}

@@ -526,41 +526,66 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
         b2,
         s,
     } = *sf;
-    // The strips are symmetric (s_{n−1−k} = −s_k), so ζ_k needs half the square roots. The
-    // square roots, the traction law (one exp each) and the sums run in separate passes over
-    // fixed-size arrays, so that the independent strips overlap instead of waiting on the call.
+    // The strips are symmetric (s_{n−1−k} = −s_k, w_{n−1−k} = w_k), so a mirrored pair shares
+    // ζ, the transverse slip u1 = a1 + ζ b1 and u2 up to the sign of ξ s: pair p holds strip p
+    // (ξ_p = a s_p) and strip n−1−p (−ξ_p); an odd n has its middle strip at ξ = 0. The slips,
+    // the traction law (one exp per strip) and the sums run in separate passes over fixed-size
+    // arrays, so that the independent strips overlap instead of waiting on the call.
+    const HALF: usize = MAX_STRIPS / 2;
     let nst = strips.n;
+    let np = nst / 2;
     let rs2 = rs * rs;
-    let mut zeta = [0.0; MAX_STRIPS];
-    let mut kap = [0.0; MAX_STRIPS];
-    for kk in 0..nst.div_ceil(2) {
-        let xi = a * strips.s[kk];
+    let mut zeta = [0.0; HALF + 1];
+    let mut u1 = [0.0; HALF + 1];
+    let mut u2p = [0.0; HALF + 1];
+    let mut u2m = [0.0; HALF];
+    let mut kp = [0.0; HALF + 1];
+    let mut km = [0.0; HALF];
+    for p in 0..nst.div_ceil(2) {
+        let xi = a * strips.s[p];
         let z = (rs2 - xi * xi).sqrt() + z0;
-        zeta[kk] = z;
-        zeta[nst - 1 - kk] = z;
+        let t = xi * s;
+        let zb2 = z * b2;
+        zeta[p] = z;
+        u1[p] = a1 + z * b1;
+        u2p[p] = (a2 + t) - zb2;
+        if p < np {
+            u2m[p] = (a2 - t) - zb2;
+        }
     }
-    for kk in 0..nst {
-        let xi = a * strips.s[kk];
-        let u1 = a1 + zeta[kk] * b1;
-        let u2 = a2 + xi * s - zeta[kk] * b2;
-        kap[kk] = (u1 * u1 + u2 * u2).sqrt();
+    for p in 0..nst.div_ceil(2) {
+        let v = u1[p] * u1[p];
+        kp[p] = (v + u2p[p] * u2p[p]).sqrt();
+        if p < np {
+            km[p] = (v + u2m[p] * u2m[p]).sqrt();
+        }
     }
-    for k in kap.iter_mut().take(nst) {
+    for k in kp.iter_mut().take(nst.div_ceil(2)) {
+        *k = curve.kappa_over_u(*k);
+    }
+    for k in km.iter_mut().take(np) {
         *k = curve.kappa_over_u(*k);
     }
     let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for kk in 0..nst {
-        let xi = a * strips.s[kk];
-        let zeta = zeta[kk];
-        let u1 = a1 + zeta * b1;
-        let u2 = a2 + xi * s - zeta * b2;
-        let g = -q * strips.w[kk] * kap[kk];
-        let (g1, g2) = (g * u1, g * u2);
+    for p in 0..np {
+        let qw = -q * strips.w[p];
+        let (gp, gm) = (qw * kp[p], qw * km[p]);
+        let g1 = (gp + gm) * u1[p];
+        let (g2p, g2m) = (gp * u2p[p], gm * u2m[p]);
+        f1 += g1;
+        f2 += g2p + g2m;
+        mxi2 += a * strips.s[p] * (g2p - g2m);
+        mze1 += zeta[p] * g1;
+        mze2 += zeta[p] * (g2p + g2m);
+    }
+    if nst % 2 == 1 {
+        // The middle strip (ξ = 0: no spin moment).
+        let g = -q * strips.w[np] * kp[np];
+        let (g1, g2) = (g * u1[np], g * u2p[np]);
         f1 += g1;
         f2 += g2;
-        mxi2 += xi * g2;
-        mze1 += zeta * g1;
-        mze2 += zeta * g2;
+        mze1 += zeta[np] * g1;
+        mze2 += zeta[np] * g2;
     }
     [f1, f2, mxi2, mze1, mze2]
 }
