@@ -6,7 +6,9 @@
 //! seconds. At every sample, for every loaded contact (16 balls × 2 races), it takes the slip
 //! field (`FullModel::ball_slip_fields`) and integrates the strip sums (traction force in the
 //! contact plane and the three moment sums, [`strip_sums`]) with equal strips and with the
-//! Gauss rule for the line-load weight 1 − s², N = 4…16, against a reference: composite 3-point
+//! Gauss rule for the line-load weight 1 − s², N = 2…16 (and, for comparison, composite
+//! 2-/3-point Gauss–Legendre `cgl2`/`cgl3` and Richardson-extrapolated equal strips `rich3`),
+//! against a reference: composite 3-point
 //! Gauss–Legendre on `panels` equal panels of the full integrand (1 − s²)·κ(|u|)·u/|u|.
 //!
 //! Errors are normalised by the largest traction the contact can carry:
@@ -111,6 +113,21 @@ fn composite(panels: usize, p: usize) -> Strips {
         st.s[m] = -s;
         st.w[k] = w;
         st.w[m] = w;
+    }
+    st
+}
+
+/// Richardson extrapolation of equal strips from n/3 to n (nested midpoints; error ∝ h² for a
+/// smooth integrand): (9 I_n − I_{n/3})/8 on the n nodes of the finer rule.
+fn richardson3(n: usize) -> Strips {
+    let (fine, coarse) = (Strips::new(n), Strips::new(n / 3));
+    let mut st = fine;
+    for k in 0..n {
+        st.w[k] *= 9.0 / 8.0;
+    }
+    for j in 0..n / 3 {
+        // Coarse strip j's centre is the centre of fine strip 3j + 1.
+        st.w[3 * j + 1] -= coarse.w[j] / 8.0;
     }
     st
 }
@@ -252,13 +269,14 @@ fn main() {
         "rule,N,eF_med,eF_99,eF_max,eMs_med,eMs_99,eMs_max,eMr_med,eMr_99,eMr_max,spall_eF_max,spall_eMs_max"
     );
     let mut rows = Vec::new();
-    for rule in ["equal", "gauss", "cgl2", "cgl3"] {
+    for rule in ["equal", "gauss", "cgl2", "cgl3", "rich3"] {
         for nn in 2..=16 {
             let strips = match rule {
                 "equal" => Strips::new(nn),
                 "gauss" => Strips::gauss(nn),
                 "cgl2" if nn % 2 == 0 => composite(nn / 2, 2),
                 "cgl3" if nn % 3 == 0 => composite(nn / 3, 3),
+                "rich3" if nn % 3 == 0 => richardson3(nn),
                 _ => continue,
             };
             let (mut ef, mut ems, mut emr) = (Vec::new(), Vec::new(), Vec::new());
