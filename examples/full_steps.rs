@@ -4,7 +4,10 @@
 //! `cargo run --release --example full_steps -- [S1|S2] [dop853|dopri5|rkf45] [rtol] [duration] [lock]`
 //! (`lock` holds the inner-ring tilt, as `examples/scenes/sec3.5-outer-full.toml` does).
 //! An optional 7th argument names a file for the sampled pedestal.a.z (one value a line).
-//! Prints one CSV line: scene,method,rtol,duration,lock,steps,rejected,rhs,cpu_s,cpu_per_sim_s,us_per_rhs,rms_az.
+//! Prints one CSV line: scene,method,rtol,duration,lock,steps,rejected,rhs,cpu_s,cpu_per_sim_s,us_per_rhs,rms_az,
+//! cage (mean sampled cage speed after 5 ms [Hz]), strips.
+//! `FS_STRIPS=equal:10` / `gauss:6` overrides the strip rule and count (`contact.strip_rule`,
+//! `contact.n_strips`).
 
 use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::simulation::{out, Simulation};
@@ -36,6 +39,19 @@ fn main() {
     // outputs between communication points; no dense output unless events need it).
     let nosample = std::env::var_os("FS_NOSAMPLE").is_some();
     let mut s = Scene::default_scene();
+    if let Ok(v) = std::env::var("FS_STRIPS") {
+        let (rule, n) = v.split_once(':').expect("FS_STRIPS=rule:n");
+        s.bearing.contact.strip_rule = match rule {
+            "gauss" => raceway::config::StripRule::Gauss,
+            _ => raceway::config::StripRule::Equal,
+        };
+        s.bearing.contact.n_strips = n.parse().expect("n_strips");
+    }
+    let strips = format!(
+        "{:?}:{}",
+        s.bearing.contact.strip_rule, s.bearing.contact.n_strips
+    );
+    let (mut cage, mut n_cage) = (0.0, 0usize);
     s.fidelity = Fidelity::Full;
     if scene == "S1" {
         s.defect = None;
@@ -54,7 +70,11 @@ fn main() {
         if nosample {
             sim.advance(t_next).expect("advance");
         } else {
-            sim.advance_sampled(t_next, 1.0 / 51_200.0, &mut |_, o| {
+            sim.advance_sampled(t_next, 1.0 / 51_200.0, &mut |ts, o| {
+                if ts > 5e-3 {
+                    cage += o[out::CAGE_SPEED] / std::f64::consts::TAU;
+                    n_cage += 1;
+                }
                 sum2 += o[out::PEDESTAL_A_Z].powi(2);
                 sig.push(o[out::PEDESTAL_A_Z]);
                 n += 1;
@@ -71,12 +91,13 @@ fn main() {
         std::fs::write(path, text.join("\n")).expect("write signal");
     }
     println!(
-        "{scene},{method:?},{rtol:e},{duration},{lock},{},{},{},{cpu:.2},{:.1},{:.2},{:.6e},wall={wall:.2}",
+        "{scene},{method:?},{rtol:e},{duration},{lock},{},{},{},{cpu:.2},{:.1},{:.2},{:.6e},{:.5},{strips},wall={wall:.2}",
         st.steps,
         st.rejected,
         st.rhs_evals,
         cpu / duration,
         1e6 * cpu / st.rhs_evals as f64,
-        (sum2 / n.max(1) as f64).sqrt()
+        (sum2 / n.max(1) as f64).sqrt(),
+        cage / n_cage.max(1) as f64
     );
 }

@@ -1,6 +1,7 @@
 //! Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 outer-race spall.
 //!
 //! `cargo run --release --example validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [lock_tilt]`
+//! (`FS_STRIPS=equal:10` or `gauss:6` overrides `contact.strip_rule` and `contact.n_strips`)
 //!
 //! Runs `examples/scenes/sec3.5-outer.toml` at `fidelity = full`, detects one impact per ball
 //! pass (the outer-force maximum after the ball's outer contact opened at the spall entry),
@@ -46,6 +47,15 @@ fn main() {
         }
     };
     scene.fidelity = Fidelity::Full;
+    // FS_STRIPS=equal:10 / gauss:6 overrides the strip rule and count (diagnostics).
+    if let Ok(v) = std::env::var("FS_STRIPS") {
+        let (rule, n) = v.split_once(':').expect("FS_STRIPS=rule:n");
+        scene.bearing.contact.strip_rule = match rule {
+            "gauss" => raceway::config::StripRule::Gauss,
+            _ => raceway::config::StripRule::Equal,
+        };
+        scene.bearing.contact.n_strips = n.parse().expect("n_strips");
+    }
     // Optional third argument: override the contact damping c_br [N s/m] (diagnostics).
     if let Some(c) = args.get(3).and_then(|s| s.parse::<f64>().ok()) {
         scene.bearing.contact.c_br = c;

@@ -102,8 +102,24 @@ pub struct ContactSection {
     /// Optional override of the outer Hertz constant [N/m^1.5]; computed when absent.
     #[serde(rename = "K_outer", default, skip_serializing_if = "Option::is_none")]
     pub k_outer: Option<f64>,
-    /// Strips along the contact ellipse's major axis (C7).
+    /// Strips along the contact ellipse's major axis (C7; default 8: with equal strips the
+    /// quadrature error of the traction force stays below 1 % of κm·Q in 99 % of the contact
+    /// states of the S2 scene, 1.3 % at worst, see `examples/strip_study.rs`).
     pub n_strips: u32,
+    /// Quadrature of the traction over the major axis (C7).
+    #[serde(default)]
+    pub strip_rule: StripRule,
+}
+
+/// Quadrature rule of the strip traction over the contact ellipse's major axis (spec §3.1, C7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum StripRule {
+    /// `n_strips` equal strips, slip at each strip centre, exact Hertz line-load weights.
+    #[default]
+    Equal,
+    /// `n_strips`-point Gauss rule for the line-load weight 1 − s² (Gauss–Jacobi α = β = 1).
+    Gauss,
 }
 
 impl Default for ContactSection {
@@ -113,7 +129,8 @@ impl Default for ContactSection {
             hertz_method: HertzMethod::Exact,
             k_inner: None,
             k_outer: None,
-            n_strips: 10,
+            n_strips: 8,
+            strip_rule: StripRule::Equal,
         }
     }
 }
@@ -444,10 +461,11 @@ impl BearingFile {
         if let Some(k) = c.k_outer {
             check_positive("contact.K_outer", k)?;
         }
-        if !(1..=64).contains(&c.n_strips) {
+        let max = crate::models::full::contact::MAX_STRIPS as u32;
+        if !(1..=max).contains(&c.n_strips) {
             return Err(ConfigError::new(
                 "contact.n_strips",
-                format!("{} must lie in 1..=64", c.n_strips),
+                format!("{} must lie in 1..={max}", c.n_strips),
             ));
         }
 

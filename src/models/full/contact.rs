@@ -2,6 +2,7 @@
 //! Hertz force with contact damping (C6), the spall's three effects (§4.4–4.6) and strip
 //! traction (§3.1–3.4). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
+use crate::config::StripRule;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 
@@ -130,6 +131,64 @@ impl Strips {
         }
         Self { n, s, w }
     }
+
+    /// `n`-point Gauss rule for the Hertz line-load weight 1 − s² on (−1, 1) (Gauss–Jacobi
+    /// with α = β = 1), clamped to 1..=MAX_STRIPS: exact for slip fields whose traction is a
+    /// polynomial of degree ≤ 2n − 1 in s. The nodes are the zeros of P′_{n+1} (the interior
+    /// Gauss–Lobatto points) and `w_k = (3/4)(1 − s_k²) · 2/((n + 1)(n + 2) P_{n+1}(s_k)²)`,
+    /// so that Σ w_k = 1 as for [`Strips::new`]. Exactly symmetric like [`Strips::new`].
+    pub fn gauss(n: usize) -> Self {
+        let n = n.clamp(1, MAX_STRIPS);
+        let m = n + 1;
+        // (P_m(x), P′_m(x)) by the three-term recurrence; |x| < 1.
+        let legendre = |x: f64| {
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=m {
+                let kf = k as f64;
+                let p2 = ((2.0 * kf - 1.0) * x * p1 - (kf - 1.0) * p0) / kf;
+                p0 = p1;
+                p1 = p2;
+            }
+            // P′_m = m (x P_m − P_{m−1}) / (x² − 1).
+            (p1, m as f64 * (x * p1 - p0) / (x * x - 1.0))
+        };
+        let mut s = [0.0; MAX_STRIPS];
+        let mut w = [0.0; MAX_STRIPS];
+        let mf = m as f64;
+        for k in 0..n.div_ceil(2) {
+            let x = if 2 * k + 1 == n {
+                0.0
+            } else {
+                // Start from the Chebyshev–Lobatto point; Newton on P′_m with
+                // P″_m = (2x P′_m − m(m + 1) P_m)/(1 − x²) (Legendre's equation).
+                let mut x = -(std::f64::consts::PI * (k as f64 + 1.0) / mf).cos();
+                for _ in 0..100 {
+                    let (p, dp) = legendre(x);
+                    let dx = dp * (1.0 - x * x) / (2.0 * x * dp - mf * (mf + 1.0) * p);
+                    x -= dx;
+                    if dx.abs() < 1e-16 {
+                        break;
+                    }
+                }
+                x
+            };
+            let (p, _) = legendre(x);
+            let wk = 0.75 * (1.0 - x * x) * 2.0 / (mf * (mf + 1.0) * p * p);
+            s[k] = x;
+            w[k] = wk;
+            s[n - 1 - k] = -x;
+            w[n - 1 - k] = wk;
+        }
+        Self { n, s, w }
+    }
+
+    /// The strip layout of a [`StripRule`] with `n` nodes.
+    pub fn with_rule(rule: StripRule, n: usize) -> Self {
+        match rule {
+            StripRule::Equal => Self::new(n),
+            StripRule::Gauss => Self::gauss(n),
+        }
+    }
 }
 
 /// Ball kinematics (inertial).
@@ -247,6 +306,47 @@ pub fn evaluate_law(
     defect: Option<DefectView<'_>>,
     law: Law,
 ) -> ContactOut {
+    let (mut out, loaded) = evaluate_normal(ball, ring, race, ball_radius, damping, defect, law);
+    let (Some((curve, strips)), Some((sf, [n, c1, c2]))) = (traction, loaded) else {
+        return out;
+    };
+    let [f1, f2, mxi2, mze1, mze2] = strip_sums(curve, strips, &sf);
+    out.f = add(out.f, add(scale(c1, f1), scale(c2, f2)));
+    // r_cp × F_k = ξ f2 n + ζ f1 c2 − ζ f2 c1 (c1 × c2 = n, n × c1 = c2, n × c2 = −c1).
+    out.m = add(scale(n, mxi2), sub(scale(c2, mze1), scale(c1, mze2)));
+    out
+}
+
+/// The slip field of one contact where it carries a normal force (diagnostics: the input of
+/// the strip quadrature, e.g. to compare strip rules on states of a running simulation).
+#[allow(clippy::too_many_arguments)]
+pub fn slip_field_law(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    defect: Option<DefectView<'_>>,
+    law: Law,
+) -> Option<SlipField> {
+    evaluate_normal(ball, ring, race, ball_radius, damping, defect, law)
+        .1
+        .map(|(sf, _)| sf)
+}
+
+/// Everything of [`evaluate_law`] but the traction: the contact with its normal force, and
+/// where Q ≠ 0 the slip field and the contact frame (n, c1, c2).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn evaluate_normal(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    defect: Option<DefectView<'_>>,
+    law: Law,
+) -> (ContactOut, Option<(SlipField, [V3; 3])>) {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
     let rho = (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
@@ -265,7 +365,7 @@ pub fn evaluate_law(
     let open =
         |d: f64| law != Law::Closed && d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
     if open(delta) {
-        return out;
+        return (out, None);
     }
     let (n1, n3) = (bx / l, br / l);
     let mut n_r = [n1, n3 * ey, n3 * ez];
@@ -309,7 +409,7 @@ pub fn evaluate_law(
             out.delta = delta;
             out.k = k;
             if open(delta) {
-                return out;
+                return (out, None);
             }
         }
     }
@@ -334,60 +434,160 @@ pub fn evaluate_law(
     out.qn = scale(n, q);
     out.qn_ring = scale(n_r, q);
     if q == 0.0 {
-        return out;
+        return (out, None);
     }
-    let Some((curve, strips)) = traction else {
-        return out;
-    };
     let c1 = cross(c2, n);
     // a = a* Q_e^{1/3} = a* K^{1/3} δ^{1/2}.
     let a = (a_star * k_cbrt * sd).min(0.9 * ball_radius.min(rs));
+    let sf = slip_field(ball, ring, rbr, q, a, rs, ball_radius, n, c1, c2);
+    (out, Some((sf, [n, c1, c2])))
+}
+
+/// Slip of a loaded contact along its major axis, in contact-frame components (§3.1–3.2): the
+/// input of the strip quadrature. At s = ξ/a the deformed-surface point is
+/// `ζ(ξ) = √(R_s² − ξ²) + z0` along n, and the slip of the ball against the race is
+/// `u1 = a1 + ζ b1` (transverse, c1) and `u2 = a2 + ξ s − ζ b2` (rolling direction, c2).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SlipField {
+    /// Normal force Q [N].
+    pub q: f64,
+    /// Semi-major axis a [m].
+    pub a: f64,
+    /// Deformed-surface radius R_s [m].
+    pub rs: f64,
+    /// ζ offset `√(R² − a²) − √(R_s² − a²)` [m].
+    pub z0: f64,
+    /// Slip of the ball centre against the race (c1, c2 components) [m/s].
+    pub a1: f64,
+    pub a2: f64,
+    /// Relative angular velocity ω_b − ω_r on c2, c1 and n (spin) [rad/s].
+    pub b1: f64,
+    pub b2: f64,
+    pub s: f64,
+}
+
+impl SlipField {
+    /// (ζ, u1, u2) at s = ξ/a ∈ [−1, 1].
+    #[inline(always)]
+    pub fn at(&self, s: f64) -> (f64, f64, f64) {
+        let xi = self.a * s;
+        let zeta = (self.rs * self.rs - xi * xi).sqrt() + self.z0;
+        (
+            zeta,
+            self.a1 + zeta * self.b1,
+            self.a2 + xi * self.s - zeta * self.b2,
+        )
+    }
+}
+
+/// The slip field of a loaded contact with frame (n, c1, c2) and semi-major axis a.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn slip_field(
+    ball: &BallKin,
+    ring: &RingPose,
+    rbr: V3,
+    q: f64,
+    a: f64,
+    rs: f64,
+    ball_radius: f64,
+    n: V3,
+    c1: V3,
+    c2: V3,
+) -> SlipField {
     let omega_r = ring.omega();
     let w0 = sub(sub(ball.v, ring.v), cross(omega_r, rbr));
     let dw = sub(ball.omega, omega_r);
-    let (a1, a2) = (dot(c1, w0), dot(c2, w0));
-    let (b1, b2, s) = (dot(dw, c2), dot(dw, c1), dot(dw, n));
-    let z0 = (ball_radius * ball_radius - a * a).sqrt() - (rs * rs - a * a).sqrt();
-    // The strips are symmetric (s_{n−1−k} = −s_k), so ζ_k needs half the square roots. The
-    // square roots, the traction law (one exp each) and the sums run in separate passes over
-    // fixed-size arrays, so that the independent strips overlap instead of waiting on the call.
+    SlipField {
+        q,
+        a,
+        rs,
+        z0: (ball_radius * ball_radius - a * a).sqrt() - (rs * rs - a * a).sqrt(),
+        a1: dot(c1, w0),
+        a2: dot(c2, w0),
+        b1: dot(dw, c2),
+        b2: dot(dw, c1),
+        s: dot(dw, n),
+    }
+}
+
+/// Strip sums of one contact (§3.4): `[f1, f2, Σ ξ f2, Σ ζ f1, Σ ζ f2]`, the traction force on
+/// the ball in (c1, c2) components and the three moment sums.
+#[inline(always)]
+pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f64; 5] {
+    let SlipField {
+        q,
+        a,
+        rs,
+        z0,
+        a1,
+        a2,
+        b1,
+        b2,
+        s,
+    } = *sf;
+    // The strips are symmetric (s_{n−1−k} = −s_k, w_{n−1−k} = w_k), so a mirrored pair shares
+    // ζ, the transverse slip u1 = a1 + ζ b1 and u2 up to the sign of ξ s: pair p holds strip p
+    // (ξ_p = a s_p) and strip n−1−p (−ξ_p); an odd n has its middle strip at ξ = 0. The slips,
+    // the traction law (one exp per strip) and the sums run in separate passes over fixed-size
+    // arrays, so that the independent strips overlap instead of waiting on the call.
+    const HALF: usize = MAX_STRIPS / 2;
     let nst = strips.n;
+    let np = nst / 2;
     let rs2 = rs * rs;
-    let mut zeta = [0.0; MAX_STRIPS];
-    let mut kap = [0.0; MAX_STRIPS];
-    for kk in 0..nst.div_ceil(2) {
-        let xi = a * strips.s[kk];
+    let mut zeta = [0.0; HALF + 1];
+    let mut u1 = [0.0; HALF + 1];
+    let mut u2p = [0.0; HALF + 1];
+    let mut u2m = [0.0; HALF];
+    let mut kp = [0.0; HALF + 1];
+    let mut km = [0.0; HALF];
+    for p in 0..nst.div_ceil(2) {
+        let xi = a * strips.s[p];
         let z = (rs2 - xi * xi).sqrt() + z0;
-        zeta[kk] = z;
-        zeta[nst - 1 - kk] = z;
+        let t = xi * s;
+        let zb2 = z * b2;
+        zeta[p] = z;
+        u1[p] = a1 + z * b1;
+        u2p[p] = (a2 + t) - zb2;
+        if p < np {
+            u2m[p] = (a2 - t) - zb2;
+        }
     }
-    for kk in 0..nst {
-        let xi = a * strips.s[kk];
-        let u1 = a1 + zeta[kk] * b1;
-        let u2 = a2 + xi * s - zeta[kk] * b2;
-        kap[kk] = (u1 * u1 + u2 * u2).sqrt();
+    for p in 0..nst.div_ceil(2) {
+        let v = u1[p] * u1[p];
+        kp[p] = (v + u2p[p] * u2p[p]).sqrt();
+        if p < np {
+            km[p] = (v + u2m[p] * u2m[p]).sqrt();
+        }
     }
-    for k in kap.iter_mut().take(nst) {
+    for k in kp.iter_mut().take(nst.div_ceil(2)) {
+        *k = curve.kappa_over_u(*k);
+    }
+    for k in km.iter_mut().take(np) {
         *k = curve.kappa_over_u(*k);
     }
     let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for kk in 0..nst {
-        let xi = a * strips.s[kk];
-        let zeta = zeta[kk];
-        let u1 = a1 + zeta * b1;
-        let u2 = a2 + xi * s - zeta * b2;
-        let g = -q * strips.w[kk] * kap[kk];
-        let (g1, g2) = (g * u1, g * u2);
+    for p in 0..np {
+        let qw = -q * strips.w[p];
+        let (gp, gm) = (qw * kp[p], qw * km[p]);
+        let g1 = (gp + gm) * u1[p];
+        let (g2p, g2m) = (gp * u2p[p], gm * u2m[p]);
+        f1 += g1;
+        f2 += g2p + g2m;
+        mxi2 += a * strips.s[p] * (g2p - g2m);
+        mze1 += zeta[p] * g1;
+        mze2 += zeta[p] * (g2p + g2m);
+    }
+    if nst % 2 == 1 {
+        // The middle strip (ξ = 0: no spin moment).
+        let g = -q * strips.w[np] * kp[np];
+        let (g1, g2) = (g * u1[np], g * u2p[np]);
         f1 += g1;
         f2 += g2;
-        mxi2 += xi * g2;
-        mze1 += zeta * g1;
-        mze2 += zeta * g2;
+        mze1 += zeta[np] * g1;
+        mze2 += zeta[np] * g2;
     }
-    out.f = add(out.f, add(scale(c1, f1), scale(c2, f2)));
-    // r_cp × F_k = ξ f2 n + ζ f1 c2 − ζ f2 c1 (c1 × c2 = n, n × c1 = c2, n × c2 = −c1).
-    out.m = add(scale(n, mxi2), sub(scale(c2, mze1), scale(c1, mze2)));
-    out
+    [f1, f2, mxi2, mze1, mze2]
 }
 
 /// A 3×3 matrix, rows first.

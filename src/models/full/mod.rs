@@ -142,7 +142,10 @@ impl FullModel {
         let lay = Layout { z };
         let traction = if options.traction {
             let curve = TractionCurve::new(&file.traction)?;
-            Some((curve, Strips::new(file.contact.n_strips as usize)))
+            Some((
+                curve,
+                Strips::with_rule(file.contact.strip_rule, file.contact.n_strips as usize),
+            ))
         } else {
             None
         };
@@ -218,6 +221,38 @@ impl FullModel {
     pub fn ball_contacts(&self, y: &[f64], j: usize) -> (ContactOut, ContactOut) {
         let (kin, _, _, _, w) = self.ball_kin(y, j);
         self.contacts_of(y, j, &kin, w, &self.inner_pose(y), &self.outer_pose(y))
+    }
+
+    /// Slip fields of both contacts of ball j at state y (inner, outer; `None` where Q = 0),
+    /// with the frozen modes of the last [`Model::update_mode`] (diagnostics: the input of the
+    /// strip quadrature, see [`contact::strip_sums`]).
+    pub fn ball_slip_fields(
+        &self,
+        y: &[f64],
+        j: usize,
+    ) -> (Option<contact::SlipField>, Option<contact::SlipField>) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
+        let field = |pose: &RingPose, rc: &RaceConst, race: Race, k: usize| {
+            contact::slip_field_law(
+                &kin,
+                pose,
+                rc,
+                self.ball_radius,
+                self.c_br,
+                self.defect_view(y, j, race, w),
+                self.sw.law(j, k),
+            )
+        };
+        (
+            field(&inner, &self.inner, Race::Inner, 0),
+            field(&outer, &self.outer, Race::Outer, 1),
+        )
+    }
+
+    /// The traction curve and strip rule (`None` for frictionless contacts).
+    pub fn traction(&self) -> Option<&(TractionCurve, Strips)> {
+        self.traction.as_ref()
     }
 
     /// Ball-to-spall angle θ_bd of ball j [rad] (NaN without a spall; diagnostics).
