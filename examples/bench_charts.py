@@ -433,7 +433,7 @@ def main():
           "(and tens of dB) say that the waveforms differ: only the fault lines are shared.\n")
     if lv:
         w("## Levels against the full model (separate, longer run)\n")
-        w("A separate run (`docs/bench-levels/`, the full model is ≈ 100× slower than real time):\n")
+        w("A separate run (`docs/bench-levels/`, with the full model on S2 and S3):\n")
         w("```sh\ntarget/release/raceway bench --out docs/bench-levels --scenes S2,S3 "
           "--levels kinematic,lumped,full --methods dop853,rkf45 --rtols 1e-4,1e-6,1e-8 "
           "--repeats 1 --duration 0.06 --time-limit 40 --throughput-duration 0.02\n```\n")
