@@ -55,7 +55,7 @@ use std::f64::consts::TAU;
 /// States per ball.
 /// Traction strips of L3 by default ([`ReducedOptions::strips`]). Measured on the §3.5 outer
 /// scene (0.1 s, DOP853 rtol 1e-6): mean cage speed 70.267 Hz with the spec's single rolling
-/// point, 69.947 with 2 strips, 70.121 with 4, 70.127 with 10; the full model 70.030 (10 strips).
+/// point, 69.947 with 2 strips, 70.121 with 4, 70.127 with 10; the full model 70.030 (10 strips; 70.030 with 8).
 pub const L3_STRIPS: usize = 4;
 
 pub const PER_BALL: usize = 7;
