@@ -3,6 +3,9 @@
 //! races, hits the trailing edge with a force well above the running load and then bounces
 //! between the races; an inner-ring spall turning with the shaft; point mode; Sec. 3.5 BPFO.
 
+#[path = "common/bounces.rs"]
+mod bounces;
+use bounces::inner_outer_alternations;
 use raceway::defect::DefectSpec;
 use raceway::geometry::Race;
 use raceway::scene::{Fidelity, Operating, Scene};
@@ -101,19 +104,7 @@ fn outer_spall_entry_flight_and_trailing_edge_impact() {
     // After the impact the ball jumps between the races: within 250 µs its contacts open and
     // close alternately several times (inner-only and outer-only instants alternate).
     let k_after = (k_hit_end + (250e-6 / dt) as usize).min(t.len());
-    let mut switches = 0;
-    let mut last = 0i8;
-    for k in k_hit_end..k_after {
-        let state = match (qi[j][k] > 0.0, qo[j][k] > 0.0) {
-            (true, false) => 1,
-            (false, true) => -1,
-            _ => 0,
-        };
-        if state != 0 && state != last {
-            switches += usize::from(last != 0);
-            last = state;
-        }
-    }
+    let switches = inner_outer_alternations(&qi[j], &qo[j], k_hit_end, k_after);
     eprintln!("after the impact: {switches} switches between inner-only and outer-only contact");
     assert!(
         switches >= 3,

@@ -4,6 +4,9 @@
 //! Sec. 3.5 BPFO from impact spacing, the Sec. 3.1 flight through a wide outer spall and an
 //! inner-ring spall turning with the shaft.
 
+#[path = "common/bounces.rs"]
+mod bounces;
+use bounces::inner_outer_alternations;
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::models::reduced::{ReducedModel, ReducedOptions};
@@ -340,18 +343,7 @@ fn sec31_ball_flies_through_the_spall_and_hits_the_trailing_edge() {
     // tests/full_spall.rs): within 250 µs inner-only and outer-only contact alternate.
     let k_hit_end = (k_hit + (40e-6 / dt) as usize).min(t.len());
     let k_after = (k_hit_end + (250e-6 / dt) as usize).min(t.len());
-    let (mut switches, mut last) = (0, 0i8);
-    for k in k_hit_end..k_after {
-        let state = match (qi[j][k] > 0.0, qo[j][k] > 0.0) {
-            (true, false) => 1,
-            (false, true) => -1,
-            _ => 0,
-        };
-        if state != 0 && state != last {
-            switches += usize::from(last != 0);
-            last = state;
-        }
-    }
+    let switches = inner_outer_alternations(&qi[j], &qo[j], k_hit_end, k_after);
     eprintln!("after the impact: {switches} switches between inner-only and outer-only contact");
     assert!(
         switches >= 3,
