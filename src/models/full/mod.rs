@@ -26,7 +26,9 @@ use self::switches::{SwitchedModel, Switches};
 use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
+use crate::defect::DefectSpec;
 use crate::geometry::{Bearing, Race};
+use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
@@ -134,6 +136,35 @@ impl FullModel {
         inputs: &Inputs,
         options: FullOptions,
     ) -> Result<Self, SimError> {
+        Self::build(
+            bearing,
+            inputs,
+            options,
+            scene.defect.as_ref(),
+            scene.pulse.clone(),
+            None,
+        )
+    }
+
+    /// The healthy bearing without a pulse, started from a given L1 solution at `inputs` (or
+    /// from a new one).
+    pub fn healthy(
+        bearing: &Bearing,
+        inputs: &Inputs,
+        options: FullOptions,
+        l1: Option<&QuasiStatic>,
+    ) -> Result<Self, SimError> {
+        Self::build(bearing, inputs, options, None, None, l1)
+    }
+
+    fn build(
+        bearing: &Bearing,
+        inputs: &Inputs,
+        options: FullOptions,
+        defect: Option<&DefectSpec>,
+        pulse: Option<Pulse>,
+        l1: Option<&QuasiStatic>,
+    ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let z = bearing.z;
         if z == 0 {
@@ -149,7 +180,7 @@ impl FullModel {
         } else {
             None
         };
-        let defect = match &scene.defect {
+        let defect = match defect {
             Some(spec) => Some(Defect::new(
                 spec,
                 bearing,
@@ -180,7 +211,7 @@ impl FullModel {
             k_pz: file.pedestal.k_z,
             c_py: file.pedestal.c_y,
             c_pz: file.pedestal.c_z,
-            pulse: scene.pulse.clone(),
+            pulse,
             defect,
             defect_a_star,
             inputs: *inputs,
@@ -196,7 +227,7 @@ impl FullModel {
             prescribed: false,
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
-        init::initial_state(&mut m, bearing)?;
+        init::initial_state(&mut m, bearing, l1)?;
         Ok(m)
     }
 
