@@ -165,6 +165,9 @@ pub struct ReducedModel {
     theta_start: f64,
     /// (cos β, sin β) of the fixed attitude angle.
     attitude: (f64, f64),
+    /// The Newton solve of the balls' steady rotation behind the attitude (None without
+    /// traction or at zero speed).
+    settle: Option<full_model::init::SettleReport>,
     /// Frozen spall halves, blend sides and contact modes, and their switches (as in the
     /// full model).
     sw: Switches,
@@ -203,12 +206,12 @@ impl ReducedModel {
         }
         // The full model's start (spec §7: L1, pedestal and ring offsets, ball placement clear of
         // the spall) and its spall; without traction it builds no strip tables.
-        let full = FullModel::with_options(
+        let mut full = FullModel::with_options(
             scene,
             bearing,
             inputs,
             FullOptions {
-                traction: false,
+                traction: options.traction,
                 lock_tilt: true,
             },
         )?;
@@ -252,6 +255,7 @@ impl ReducedModel {
             inputs: *inputs,
             cage_ratio,
             attitude: (1.0, 0.0),
+            settle: None,
             sw: Switches::new(z),
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
@@ -261,7 +265,7 @@ impl ReducedModel {
             ring_moment_x: 0.0,
             prescribed: false,
         };
-        m.reduce_initial_state(&full, bearing);
+        m.reduce_initial_state(&mut full, bearing);
         Ok(m)
     }
 
@@ -269,10 +273,16 @@ impl ReducedModel {
     /// `ω_b = ω_c e_x + ω_R ê_s(β_j)`, gives the attitude angle β (the mean over the balls; at
     /// zero speed, where L1 has no spin, the outer-race-control angle at α0) and ω_s = the spin
     /// part projected on the common axis.
-    fn reduce_initial_state(&mut self, full: &FullModel, bearing: &Bearing) {
+    fn reduce_initial_state(&mut self, full: &mut FullModel, bearing: &Bearing) {
         let fl = full.layout();
         let mut yf = vec![0.0; fl.dim()];
         full.initial_state(&mut yf);
+        if self.traction.is_some() && self.inputs.shaft_speed > 0.0 {
+            // The attitude the traction sets (as L4's balls settle to), not L1's outer-race
+            // control: see the module notes.
+            full.update_mode(0.0, &yf);
+            self.settle = Some(full_model::init::settle_ball_rotation(full, &mut yf, 1e-12));
+        }
         let lay = self.lay;
         let y = &mut self.y0;
         y.iter_mut().for_each(|v| *v = 0.0);
@@ -324,6 +334,11 @@ impl ReducedModel {
     /// The state layout.
     pub fn layout(&self) -> ReducedLayout {
         self.lay
+    }
+
+    /// The Newton solve of the balls' steady rotation (None without traction or at zero speed).
+    pub fn settle_report(&self) -> Option<full_model::init::SettleReport> {
+        self.settle
     }
 
     /// The fixed attitude angle β of the spin axis [rad].
