@@ -28,7 +28,9 @@
 //! skip = 0.02                     # transient excluded from spectra
 //! ```
 //!
-//! Optional tables: `[pulse]` (impact test, C14), `[lumped]` (resonator, slip jitter, seed),
+//! Optional tables: `[pulse]` (impact test, C14), `[lumped]` (resonator, slip jitter, seed, and
+//! `cage_speed = "traction" | "outer_race_control"` for the kinematic, quasi-static and lumped
+//! levels),
 //! `[full]` (traction on/off, inner-ring tilt held) and `[coupling]` (`mode = "force"`, the
 //! default: loads in, the inner ring integrated inside; or `"motion"`: the journal's
 //! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]).
@@ -283,6 +285,21 @@ pub struct LumpedOptions {
     /// Seed of the slip jitter.
     #[serde(default)]
     pub seed: u64,
+    /// Cage speed of the kinematic, quasi-static and lumped levels (their balls roll at it).
+    #[serde(default)]
+    pub cage_speed: CageSpeed,
+}
+
+/// Where the cage speed of the levels with kinematic balls comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum CageSpeed {
+    /// The balls' steady rotation under the strip traction (the speed the full model settles
+    /// to; [`crate::models::traction_cage_speed`]). Default.
+    #[default]
+    Traction,
+    /// L1's outer-race control (spec §6 L0/L2, the textbook kinematics at the loaded angles).
+    OuterRaceControl,
 }
 
 /// Options of the full (L4) model, table `[full]`.

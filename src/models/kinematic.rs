@@ -109,7 +109,7 @@ struct Memo {
 impl KinematicModel {
     /// Builds the generator for a scene (L1 at the scene's inputs).
     pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
-        let table = L1Table::solve(bearing, inputs)?;
+        let table = L1Table::solve(bearing, inputs, scene.lumped.cage_speed)?;
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);
@@ -473,7 +473,7 @@ impl Model for KinematicModel {
         self.catch_up(t, y);
         self.inputs = *inputs;
         if self.table.moved(inputs) {
-            if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
+            if let Ok(t) = L1Table::solve(&self.bearing, inputs, self.table.cage) {
                 self.table = t;
                 self.modes = self.compute_modes();
                 self.memo.valid = false;
@@ -557,7 +557,8 @@ impl Model for KinematicModel {
             fz: s[3],
         };
         if inputs != self.table.inputs {
-            self.table = L1Table::solve(&self.bearing, &inputs).map_err(|e| e.to_string())?;
+            self.table = L1Table::solve(&self.bearing, &inputs, self.table.cage)
+                .map_err(|e| e.to_string())?;
             self.modes = self.compute_modes();
         }
         self.next_entry = s[4] as i64;

@@ -17,7 +17,7 @@ use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
 use crate::quasi_static;
-use crate::scene::{Pulse, Resonator, Scene};
+use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::{PI, TAU};
 
@@ -96,6 +96,8 @@ pub struct LumpedModel {
     inputs: Inputs,
     /// ω_c/Ω from L1 at the inputs of the last L1 solve, and those inputs.
     cage_ratio: f64,
+    /// Where the cage speed comes from (`lumped.cage_speed`).
+    cage: CageSpeed,
     l1_inputs: Inputs,
     /// Static ring displacement relative to the outer ring from L1 (for the initial state).
     ring_offset: [f64; 3],
@@ -156,6 +158,7 @@ impl LumpedModel {
             theta_start: 0.0,
             inputs: *inputs,
             cage_ratio: 0.0,
+            cage: scene.lumped.cage_speed,
             l1_inputs: *inputs,
             ring_offset: [0.0; 3],
             zones: vec![Zone::Outside; bearing.z],
@@ -191,8 +194,12 @@ impl LumpedModel {
     /// L1 at the given inputs: the cage-speed ratio and the static ring offset.
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) start")?;
+        let traction = match self.cage {
+            CageSpeed::Traction => super::traction_cage_speed(bearing, inputs, Some(&qs))?,
+            CageSpeed::OuterRaceControl => None,
+        };
         self.cage_ratio = if inputs.shaft_speed > 0.0 {
-            qs.cage_speed / inputs.shaft_speed
+            traction.unwrap_or(qs.cage_speed) / inputs.shaft_speed
         } else {
             kinematic_cage_ratio(bearing, &qs)
         };

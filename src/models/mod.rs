@@ -191,3 +191,35 @@ pub trait Model: Send {
         false
     }
 }
+
+/// Cage speed [rad/s] at which the balls roll under the strip traction: the mean orbital rate
+/// of the balls' steady rotation ([`full::init::settle_ball_rotation`]) on the healthy bearing
+/// at `inputs`, the ring and pedestal at the L1 start with the tilt held. This is the cage
+/// speed the full model settles to (69.965 Hz against L4's 69.96–70.03 Hz on the §3.5 scene),
+/// where L1's outer-race control gives 70.42 Hz. None at zero speed or if the solve does not
+/// converge; the caller then keeps L1's. The Newton tolerance 1e-6 (scaled residual) changes
+/// the cage speed by < 1e-6 relative against 1e-9 and saves ≈ 0.03 ms (0.11 ms per solve on the
+/// Table-1 bearing, `cargo run --release --example cage_probe`), which the kinematic level's
+/// 5-ms budget per simulated second needs.
+pub fn traction_cage_speed(
+    bearing: &Bearing,
+    inputs: &Inputs,
+    l1: Option<&crate::quasi_static::QuasiStatic>,
+) -> Result<Option<f64>, SimError> {
+    if inputs.shaft_speed <= 0.0 {
+        return Ok(None);
+    }
+    let options = full::FullOptions {
+        traction: true,
+        lock_tilt: true,
+    };
+    let mut m = full::FullModel::healthy(bearing, inputs, options, l1)?;
+    let mut y = vec![0.0; m.dim()];
+    m.initial_state(&mut y);
+    m.update_mode(0.0, &y);
+    let r = full::init::settle_ball_rotation(&mut m, &mut y, 1e-6);
+    Ok(
+        (r.solved > 0 && r.residual < 1e-6 && r.mean_orbital_rate.is_finite())
+            .then_some(r.mean_orbital_rate),
+    )
+}

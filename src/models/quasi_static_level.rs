@@ -17,7 +17,7 @@
 use super::Model;
 use crate::geometry::Bearing;
 use crate::quasi_static::QuasiStatic;
-use crate::scene::Scene;
+use crate::scene::{CageSpeed, Scene};
 use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
 
@@ -44,13 +44,22 @@ pub struct L1Table {
     pub alpha: f64,
     /// Inputs the table was solved for.
     pub inputs: Inputs,
+    /// Where `cage_speed` comes from.
+    pub cage: CageSpeed,
 }
 
 impl L1Table {
-    /// Solves L1 at `inputs`.
-    pub fn solve(bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    /// Solves L1 at `inputs`, with the cage speed from `cage`.
+    pub fn solve(bearing: &Bearing, inputs: &Inputs, cage: CageSpeed) -> Result<Self, SimError> {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) solve")?;
-        Ok(Self::from_solution(bearing, &qs, inputs))
+        let mut t = Self::from_solution(bearing, &qs, inputs);
+        t.cage = cage;
+        if cage == CageSpeed::Traction {
+            if let Some(w) = super::traction_cage_speed(bearing, inputs, Some(&qs))? {
+                t.cage_speed = w;
+            }
+        }
+        Ok(t)
     }
 
     fn from_solution(bearing: &Bearing, qs: &QuasiStatic, inputs: &Inputs) -> Self {
@@ -81,6 +90,7 @@ impl L1Table {
             q_max: qs.balls.iter().map(|b| b.q_inner).fold(0.0, f64::max),
             alpha,
             inputs: *inputs,
+            cage: CageSpeed::OuterRaceControl,
         }
     }
 
@@ -172,10 +182,10 @@ pub struct QuasiStaticModel {
 
 impl QuasiStaticModel {
     /// Solves L1 at the scene's inputs.
-    pub fn new(_scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
         Ok(Self {
             bearing: bearing.clone(),
-            table: L1Table::solve(bearing, inputs)?,
+            table: L1Table::solve(bearing, inputs, scene.lumped.cage_speed)?,
             inputs: *inputs,
         })
     }
@@ -202,7 +212,7 @@ impl Model for QuasiStaticModel {
     fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
         self.inputs = *inputs;
         if self.table.moved(inputs) {
-            if let Ok(t) = L1Table::solve(&self.bearing, inputs) {
+            if let Ok(t) = L1Table::solve(&self.bearing, inputs, self.table.cage) {
                 self.table = t;
             }
         }
@@ -242,7 +252,8 @@ impl Model for QuasiStaticModel {
             fz: s[3],
         };
         if inputs != self.table.inputs {
-            self.table = L1Table::solve(&self.bearing, &inputs).map_err(|e| e.to_string())?;
+            self.table = L1Table::solve(&self.bearing, &inputs, self.table.cage)
+                .map_err(|e| e.to_string())?;
         }
         Ok(())
     }
