@@ -29,13 +29,20 @@
 //! §3.5 scene), which moves the fault lines by one to two bins. With 4 strips the references
 //! agree to ≈ 1e-6 over 0.1 s and the cage runs at 70.12 Hz, at ≈ 1.45× the RHS cost.
 //!
+//! The attitude β is not L1's outer-race control (25.8° on the §3.5 bearing) but the one the
+//! traction sets: the balls' steady rotation solved on the full model at the start
+//! ([`full_model::init::settle_ball_rotation`], 33.6°; L4's balls settle to 33.4° within
+//! ≈ 20 ms). With it L3's cage runs at 69.964 Hz against L4's 69.957 Hz (tilt held), and its
+//! friction torque is 0.203 against 0.202 N m (with L1's attitude: 70.121 Hz, 0.311 N m).
+//!
 //! State layout ([`ReducedLayout`]), deviations as in the full model (solvers.md): per ball j
 //! (7 states from `7 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_s. Then the inner
 //! ring (6 from `7 z`): x, y, z, ẋ, ẏ, ż; the pedestal (4 from `7 z + 6`): y_p, z_p, ẏ_p, ż_p;
 //! the reference cage angle ψ (`7 z + 10`) and the shaft angle φ (`7 z + 11`). 7z + 12 states
 //! (110 for z = 14; the spec's 7z + 10 plus the two bookkeeping angles the full model also has).
 //!
-//! The initial state is the full model's (spec §7, from L1), reduced to these states.
+//! The initial state is the full model's (spec §7, from L1) with the balls' steady rotation,
+//! reduced to these states.
 
 use super::full::contact::{
     self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose,
