@@ -302,6 +302,25 @@ pub enum CageSpeed {
     OuterRaceControl,
 }
 
+impl CageSpeed {
+    /// The FMU parameter code: 0 traction, 1 outer-race control.
+    pub fn code(self) -> i32 {
+        match self {
+            CageSpeed::Traction => 0,
+            CageSpeed::OuterRaceControl => 1,
+        }
+    }
+
+    /// The variant of an FMU parameter code.
+    pub fn from_code(code: i32) -> Option<Self> {
+        match code {
+            0 => Some(CageSpeed::Traction),
+            1 => Some(CageSpeed::OuterRaceControl),
+            _ => None,
+        }
+    }
+}
+
 /// Options of the full (L4) model, table `[full]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

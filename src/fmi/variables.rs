@@ -10,7 +10,7 @@ use super::shell::{Causality, Initial, Start, VarType, Variability, Variable};
 use crate::config::{BearingFile, DefectMode};
 use crate::defect::DefectSpec;
 use crate::geometry::Race;
-use crate::scene::{CouplingMode, Fidelity, MethodName, Scene};
+use crate::scene::{CageSpeed, CouplingMode, Fidelity, MethodName, Scene};
 use crate::simulation::{output_table, Inputs, Journal};
 
 /// The continuous inputs.
@@ -112,6 +112,8 @@ pub enum Param {
     SolverMethod,
     SolverRtol,
     SolverMaxSteps,
+    /// Appended last so that the earlier value references stay as they were.
+    LumpedCageSpeed,
 }
 
 /// The solver's work counters (Integer outputs).
@@ -230,6 +232,7 @@ impl Config {
             Param::SolverMethod => s.solver.method.code() as f64,
             Param::SolverRtol => s.solver.rtol,
             Param::SolverMaxSteps => s.solver.max_steps.min(i32::MAX as u64) as f64,
+            Param::LumpedCageSpeed => s.lumped.cage_speed.code() as f64,
         }
     }
 
@@ -277,13 +280,17 @@ impl Config {
             }
             Param::SolverRtol => s.solver.rtol = v,
             Param::SolverMaxSteps => s.solver.max_steps = code.max(1) as u64,
+            Param::LumpedCageSpeed => {
+                s.lumped.cage_speed = CageSpeed::from_code(code)
+                    .ok_or_else(|| format!("lumped.cage_speed = {code}: valid codes are 0, 1"))?
+            }
         }
         Ok(())
     }
 }
 
 impl Param {
-    pub const ALL: [Param; 23] = [
+    pub const ALL: [Param; 24] = [
         Param::Fidelity,
         Param::Coupling,
         Param::DefectRing,
@@ -307,6 +314,7 @@ impl Param {
         Param::SolverMethod,
         Param::SolverRtol,
         Param::SolverMaxSteps,
+        Param::LumpedCageSpeed,
     ];
 
     /// (name, type, unit, min, max, description)
@@ -369,6 +377,8 @@ impl Param {
                 "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it"),
             Param::SolverMaxSteps => ("solver.max_steps", I, None, Some(1.0), Some(imax),
                 "Step budget per communication step; when exhausted the step returns fmi2Discard"),
+            Param::LumpedCageSpeed => ("lumped.cage_speed", I, None, Some(0.0), Some(1.0),
+                "Cage speed of the kinematic, quasi-static and lumped levels: 0 the balls' steady rotation under the traction (default; the speed the full model settles to), 1 L1's outer-race control"),
         }
     }
 
