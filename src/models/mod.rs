@@ -213,13 +213,6 @@ pub fn traction_cage_speed(
         traction: true,
         lock_tilt: true,
     };
-    let mut m = full::FullModel::healthy(bearing, inputs, options, l1)?;
-    let mut y = vec![0.0; m.dim()];
-    m.initial_state(&mut y);
-    m.update_mode(0.0, &y);
-    let r = full::init::settle_ball_rotation(&mut m, &mut y, 1e-6);
-    Ok(
-        (r.solved > 0 && r.residual < 1e-6 && r.mean_orbital_rate.is_finite())
-            .then_some(r.mean_orbital_rate),
-    )
+    let m = full::FullModel::healthy(bearing, inputs, options, l1)?;
+    Ok(m.settle_report().map(|r| r.mean_orbital_rate))
 }

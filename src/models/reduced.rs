@@ -213,7 +213,7 @@ impl ReducedModel {
         }
         // The full model's start (spec §7: L1, pedestal and ring offsets, ball placement clear of
         // the spall) and its spall; without traction it builds no strip tables.
-        let mut full = FullModel::with_options(
+        let full = FullModel::with_options(
             scene,
             bearing,
             inputs,
@@ -272,7 +272,7 @@ impl ReducedModel {
             ring_moment_x: 0.0,
             prescribed: false,
         };
-        m.reduce_initial_state(&mut full, bearing);
+        m.reduce_initial_state(&full, bearing);
         Ok(m)
     }
 
@@ -280,16 +280,13 @@ impl ReducedModel {
     /// `ω_b = ω_c e_x + ω_R ê_s(β_j)`, gives the attitude angle β (the mean over the balls; at
     /// zero speed, where L1 has no spin, the outer-race-control angle at α0) and ω_s = the spin
     /// part projected on the common axis.
-    fn reduce_initial_state(&mut self, full: &mut FullModel, bearing: &Bearing) {
+    fn reduce_initial_state(&mut self, full: &FullModel, bearing: &Bearing) {
         let fl = full.layout();
         let mut yf = vec![0.0; fl.dim()];
         full.initial_state(&mut yf);
-        if self.traction.is_some() && self.inputs.shaft_speed > 0.0 {
-            // The attitude the traction sets (as L4's balls settle to), not L1's outer-race
-            // control: see the module notes.
-            full.update_mode(0.0, &yf);
-            self.settle = Some(full_model::init::settle_ball_rotation(full, &mut yf, 1e-12));
-        }
+        // With traction the full model starts in the balls' steady rotation: the attitude the
+        // traction sets, not L1's outer-race control (see the module notes).
+        self.settle = full.settle_report();
         let lay = self.lay;
         let y = &mut self.y0;
         y.iter_mut().for_each(|v| *v = 0.0);

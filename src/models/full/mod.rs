@@ -79,6 +79,8 @@ pub struct FullModel {
     inputs: Inputs,
     /// Reference cage speed ratio ψ̇/Ω.
     cage_ratio: f64,
+    /// The steady-rotation solve of the start ([`FullModel::settle_report`]).
+    settle: Option<init::SettleReport>,
     /// Azimuth of ball 0 at ψ = 0 [rad].
     theta_start: f64,
     /// Frozen spall halves, blend sides and contact modes, and their switches.
@@ -216,6 +218,7 @@ impl FullModel {
             defect_a_star,
             inputs: *inputs,
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
+            settle: None,
             theta_start: 0.0,
             sw: Switches::new(z),
             q_inner: vec![0.0; z],
@@ -228,7 +231,26 @@ impl FullModel {
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
         init::initial_state(&mut m, bearing, l1)?;
+        if m.traction.is_some() && inputs.shaft_speed > 0.0 {
+            // Start the balls in their steady rotation under the traction (the state they
+            // settle to in ≈ 20 ms from L1's outer-race control): a quiet start, and the cage
+            // speed the model runs at.
+            let mut y = m.y0.clone();
+            m.update_mode(0.0, &y);
+            let r = init::settle_ball_rotation(&mut m, &mut y, 1e-6);
+            if r.solved > 0 && r.residual < 1e-6 && r.mean_orbital_rate.is_finite() {
+                m.y0 = y;
+                m.cage_ratio = r.mean_orbital_rate / inputs.shaft_speed;
+                m.settle = Some(r);
+            }
+        }
         Ok(m)
+    }
+
+    /// The Newton solve of the balls' steady rotation at the start (None without traction, at
+    /// zero speed, or if it did not converge: then the start is L1's outer-race control).
+    pub fn settle_report(&self) -> Option<init::SettleReport> {
+        self.settle
     }
 
     /// The state layout.
