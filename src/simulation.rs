@@ -739,6 +739,10 @@ impl Simulation {
             )));
         }
         self.update_l1_point();
+        // The sampler below reads the dense output only at multiples of dt: the integrator
+        // builds it only for the steps that contain one (or need it for an event).
+        self.integrator
+            .set_sample_grid(sampling.as_ref().map(|(dt, _)| *dt));
         let n = self.model.dim();
         // The step budget (solver.max_steps) holds for the whole advance (one communication
         // step), not for each integrator call between two stops or events.

@@ -815,3 +815,97 @@ fn pi_controller_works() {
     it.advance(&mut Arenstorf, ARENSTORF_T, None).unwrap();
     assert!(max_diff(it.y(), &ARENSTORF_Y0) < 1e-2);
 }
+
+/// With a sample grid the dense output is built only for the steps that contain a grid point
+/// (and the event steps), and the samples are bitwise those of the always-dense run: DOP853 on
+/// the Kepler orbit (e = 0.5, sampled 64 times per unit time, steps longer than the spacing)
+/// and on the level-crossing oscillator with events. The stages the lazy run saves are exactly
+/// 3 (DOP853's extra dense stages) per step without a grid point.
+#[test]
+fn sample_grid_builds_dense_output_only_where_sampled() {
+    fn sampled<S: EventSystem>(
+        sys: &mut S,
+        y0: &[f64],
+        grid: bool,
+        with_events: bool,
+    ) -> (Vec<f64>, Stats, usize) {
+        let dt = 1.0 / 64.0;
+        let mut it = Integrator::new(
+            Options::new(Method::Dop853, 1e-9, vec![1e-12; y0.len()]),
+            0.0,
+            y0,
+        )
+        .unwrap();
+        if grid {
+            it.set_sample_grid(Some(dt));
+        }
+        let mut samples = Vec::new();
+        let mut with_point = 0;
+        let mut buf = vec![0.0; y0.len()];
+        for i in 1..=10 {
+            let mut obs = |v: &StepView| {
+                let mut k = (v.t_start() / dt).floor() as i64 + 1;
+                let mut hit = false;
+                loop {
+                    let ts = k as f64 * dt;
+                    if ts > v.t_end() * (1.0 + 1e-15) {
+                        break;
+                    }
+                    if ts > v.t_start() {
+                        v.interpolate(ts.min(v.t_end()), &mut buf);
+                        samples.extend_from_slice(&buf);
+                        hit = true;
+                    }
+                    k += 1;
+                }
+                with_point += usize::from(hit);
+            };
+            if with_events {
+                it.advance_with_events(sys, i as f64, Some(&mut obs))
+                    .unwrap();
+            } else {
+                it.advance(sys, i as f64, Some(&mut obs)).unwrap();
+            }
+        }
+        (samples, it.stats(), with_point)
+    }
+    struct Plain(Kepler);
+    impl System for Plain {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], d: &mut [f64]) {
+            self.0.rhs(t, y, d)
+        }
+    }
+    impl EventSystem for Plain {
+        fn n_events(&self) -> usize {
+            0
+        }
+        fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
+        fn handle_event(&mut self, _i: usize, _t: f64, _y: &mut [f64]) -> EventAction {
+            EventAction::Continue
+        }
+    }
+    let e: f64 = 0.5;
+    let k0 = [1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()];
+    for with_events in [false, true] {
+        let (a, sa, _) = sampled(&mut Plain(Kepler), &k0, false, with_events);
+        let (b, sb, with_point) = sampled(&mut Plain(Kepler), &k0, true, with_events);
+        assert_eq!(a, b, "Kepler samples (events path: {with_events})");
+        assert_eq!(sa.steps, sb.steps);
+        let without = sb.steps as usize - with_point;
+        assert!(
+            without > 0,
+            "every step holds a sample: the test does not test"
+        );
+        assert_eq!(
+            sa.rhs_evals - sb.rhs_evals,
+            3 * without as u64,
+            "saved stages (events path: {with_events})"
+        );
+    }
+    let (a, _, _) = sampled(&mut Level { times: Vec::new() }, &[1.0, 0.0], false, true);
+    let (b, _, _) = sampled(&mut Level { times: Vec::new() }, &[1.0, 0.0], true, true);
+    assert_eq!(a, b, "oscillator with level events");
+}

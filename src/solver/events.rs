@@ -126,7 +126,10 @@ impl Integrator {
         // for the steps that need it: a function that changed sign at the step end or sits at
         // 0 at its start. The stepping is the same either way; an FSAL method builds it always
         // (its stage 0 is gone after the step, and its dense output costs no extra stage).
-        let always_dense = observer.is_some() || self.tab.fsal;
+        // With a sample grid ([`Integrator::set_sample_grid`]) the observer needs it only for
+        // the steps that contain a grid point.
+        let lazy = observer.is_some() && self.lazy_dense();
+        let always_dense = (observer.is_some() && !lazy) || self.tab.fsal;
         while self.t < t_end {
             let t_old = self.step(sys, t_end, always_dense, &mut attempts)?;
             sys.events(self.t, &self.y, &mut self.g_new);
@@ -137,7 +140,8 @@ impl Integrator {
             if !always_dense
                 && (suspect.is_some()
                     || self.g_old.contains(&0.0)
-                    || (0..m).any(|i| crosses(self.g_old[i], self.g_new[i])))
+                    || (0..m).any(|i| crosses(self.g_old[i], self.g_new[i]))
+                    || (lazy && self.grid_hit(t_old, self.t)))
             {
                 self.dense_after_step(sys, t_old);
             }

@@ -50,6 +50,9 @@ pub struct Integrator {
     pub(super) g_sus: Vec<f64>,
     pub(super) event_mask: Vec<bool>,
     pub(super) fired: Vec<bool>,
+    /// Sample spacing of an observer that interpolates only at multiples of it
+    /// ([`Integrator::set_sample_grid`]).
+    pub(super) sample_grid: Option<f64>,
 }
 
 /// Index of the first non-finite entry.
@@ -150,6 +153,7 @@ impl Integrator {
             g_sus: Vec::new(),
             event_mask: Vec::new(),
             fired: Vec::new(),
+            sample_grid: None,
             opts: options,
         })
     }
@@ -183,6 +187,35 @@ impl Integrator {
     /// initial step is automatic).
     pub fn h_next(&self) -> f64 {
         self.h_next
+    }
+
+    /// Declares that the observer of [`Integrator::advance`] / `advance_with_events` reads the
+    /// dense output only at the multiples k·dt inside a step (t_start < k·dt ≤ t_end), as a
+    /// sampler at a fixed rate does; `None` (the default): anywhere. With a grid, a method
+    /// whose dense output costs extra stages (DOP853: 3) builds it only for the steps that
+    /// contain a grid point (or need it for an event); the steps, and the dense output of the
+    /// steps that have it, are the same. A non-positive or non-finite `dt` clears the grid.
+    pub fn set_sample_grid(&mut self, dt: Option<f64>) {
+        self.sample_grid = dt.filter(|d| d.is_finite() && *d > 0.0);
+    }
+
+    /// True if the dense output is built lazily ([`Integrator::set_sample_grid`]; not for an
+    /// FSAL method, whose stage 0 is gone after the step and whose dense output is free).
+    pub(super) fn lazy_dense(&self) -> bool {
+        self.sample_grid.is_some() && !self.tab.fsal
+    }
+
+    /// True if a grid point k·dt lies in (t_old, t_new] (the sampler's own test: `k·dt > t_old`
+    /// and `k·dt ≤ t_new (1 + 1e-15)`).
+    pub(super) fn grid_hit(&self, t_old: f64, t_new: f64) -> bool {
+        let Some(dt) = self.sample_grid else {
+            return true;
+        };
+        let k0 = (t_old / dt).floor() as i64 + 1;
+        (k0..k0 + 2)
+            .map(|k| k as f64 * dt)
+            .take_while(|&ts| ts <= t_new * (1.0 + 1e-15))
+            .any(|ts| ts > t_old)
     }
 
     /// Change the step budget of each call (see [`Options::max_steps`]); at least 1.
@@ -366,10 +399,14 @@ impl Integrator {
         mut observer: Option<&mut dyn FnMut(&StepView)>,
     ) -> Result<(), SolverError> {
         self.check_target(sys.dim(), t_end)?;
-        let want_dense = observer.is_some();
+        let lazy = observer.is_some() && self.lazy_dense();
+        let want_dense = observer.is_some() && !lazy;
         let mut attempts = 0u64;
         while self.t < t_end {
             let t_old = self.step(sys, t_end, want_dense, &mut attempts)?;
+            if lazy && self.grid_hit(t_old, self.t) {
+                self.dense_after_step(sys, t_old);
+            }
             if let Some(obs) = observer.as_mut() {
                 let view = StepView {
                     dense: &self.dense,
