@@ -173,13 +173,12 @@ def main():
     L.append("## What the levels leave out (spec §6)\n")
     L.append("- reduced (L3): the full model's normal contacts, spall and edge events, ball flight and "
              "impacts, per-ball orbital speeds, centrifugal and Coriolis forces, and its strip "
-             "traction (4 strips); but a fixed spin-axis attitude (no gyroscopic pivoting: the "
-             "traction moments off the spin axis are taken up by the constraint, which leaves the "
-             "cage slightly faster than L4's) and no inner-ring tilt. It takes the full model's "
-             "steps (same contact stiffness, same rattling after each impact) at a cheaper "
-             "right-hand side.")
-    L.append("- lumped (L2): massless kinematic balls at the L1 cage speed: no flight, no impact "
-             "dynamics, no slip.\n")
+             "traction (4 strips); but a fixed spin-axis attitude (the one the traction sets, "
+             "solved at the start; no gyroscopic pivoting after that) and no inner-ring tilt. It "
+             "takes the full model's steps (same contact stiffness, same rattling after each "
+             "impact) at a cheaper right-hand side.")
+    L.append("- lumped (L2): massless kinematic balls at the traction cage speed (the speed the "
+             "full model settles to): no flight, no impact dynamics, no slip.\n")
     with open(out_md, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
