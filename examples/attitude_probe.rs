@@ -9,38 +9,10 @@ use raceway::models::reduced::ReducedModel;
 use raceway::models::Model;
 use raceway::scene::Scene;
 use raceway::simulation::Inputs;
-use raceway::solver::{
-    AdvanceOutcome, EventAction, EventSystem, Integrator, Method, Options, System,
-};
+use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
 use std::f64::consts::TAU;
 
-struct Driver<'a>(&'a mut FullModel);
-impl System for Driver<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], d: &mut [f64]) {
-        self.0.rhs(t, y, d)
-    }
-    fn begin_step(&mut self) {
-        self.0.begin_step()
-    }
-}
-impl EventSystem for Driver<'_> {
-    fn n_events(&self) -> usize {
-        self.0.n_events()
-    }
-    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
-        self.0.events(t, y, g)
-    }
-    fn handle_event(&mut self, i: usize, _t: f64, _y: &mut [f64]) -> EventAction {
-        self.0.event_fired(i);
-        EventAction::Stop
-    }
-    fn suspect(&mut self, a: f64, b: f64) -> Option<f64> {
-        self.0.suspect(a, b)
-    }
-}
+use raceway::simulation::ModelSystem as Driver;
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();

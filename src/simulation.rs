@@ -319,8 +319,11 @@ pub struct Simulation {
     qs_motion: Option<QsMotion>,
 }
 
-/// Lets the integrator drive a model (the integrator knows nothing about bearings).
-struct ModelSystem<'a>(&'a mut dyn Model);
+/// Lets the integrator drive a model (the integrator knows nothing about bearings): the event
+/// protocol of [`Simulation`] (an event stops the advance after `event_fired`; the caller then
+/// calls `update_mode` and `Integrator::discontinuity`). Public for drivers that step a model
+/// themselves (the diagnostic examples).
+pub struct ModelSystem<'a>(pub &'a mut dyn Model);
 
 impl System for ModelSystem<'_> {
     fn dim(&self) -> usize {
