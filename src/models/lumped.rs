@@ -195,7 +195,10 @@ impl LumpedModel {
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) start")?;
         let traction = match self.cage {
-            CageSpeed::Traction => super::traction_cage_speed(bearing, inputs, Some(&qs))?,
+            // A bearing the full model cannot set up keeps L1's cage speed.
+            CageSpeed::Traction => super::traction_cage_speed(bearing, inputs, Some(&qs))
+                .ok()
+                .flatten(),
             CageSpeed::OuterRaceControl => None,
         };
         self.cage_ratio = if inputs.shaft_speed > 0.0 {

@@ -55,7 +55,11 @@ impl L1Table {
         let mut t = Self::from_solution(bearing, &qs, inputs);
         t.cage = cage;
         if cage == CageSpeed::Traction {
-            if let Some(w) = super::traction_cage_speed(bearing, inputs, Some(&qs))? {
+            // A bearing the full model cannot set up keeps L1's cage speed.
+            if let Some(w) = super::traction_cage_speed(bearing, inputs, Some(&qs))
+                .ok()
+                .flatten()
+            {
                 t.cage_speed = w;
             }
         }
