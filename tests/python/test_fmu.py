@@ -382,3 +382,16 @@ def test_reduced_level_runs_with_per_ball_outputs(probe, dynamics):
         assert all(60.0 < w / (2 * math.pi) < 80.0 for w in orbit), orbit
         assert sep == [1.0 if a == 0.0 and b == 0.0 else 0.0 for a, b in zip(q_in, q_out)]
 
+
+
+@pytest.mark.parametrize("code, ftf", [(0, 980.4 / 14), (1, 70.42)])
+def test_cage_speed_parameter(fmu, code, ftf):
+    """lumped.cage_speed: 0 (default) the traction cage speed, whose BPFO lies within the paper's
+    980.4 Hz ± 0.3 % (spec §8.3); 1 L1's outer-race control, FTF 70.42 Hz (spec §8.2)."""
+    from fmpy import simulate_fmu
+
+    res = simulate_fmu(str(fmu), stop_time=2e-3, output_interval=1e-3,
+                       start_values={"fidelity": 0, "lumped.cage_speed": code},
+                       output=["cage.speed"])
+    cage_hz = res["cage.speed"][-1] / (2 * math.pi)
+    assert abs(cage_hz / ftf - 1) < 3e-3, cage_hz
