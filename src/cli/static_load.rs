@@ -44,6 +44,17 @@ pub fn run(args: Args) -> Result<(), String> {
     let case = LoadCase::from_fa_fr_rpm(args.fa, args.fr, args.speed_rpm);
     let q = solve(&b, &case).map_err(|e| e.to_string())?;
     let freq = q.frequencies(&b);
+    // The cage speed the balls settle to under the traction (the dynamic levels' start and the
+    // default cage speed of the kinematic ones); None at rest.
+    let inputs = raceway::simulation::Inputs {
+        shaft_speed: args.speed_rpm * std::f64::consts::TAU / 60.0,
+        fx: args.fa,
+        fy: 0.0,
+        fz: -args.fr,
+    };
+    let traction_cage = raceway::models::traction_cage_speed(&b, &inputs, Some(&q))
+        .ok()
+        .flatten();
     let name = if b.file.name.is_empty() {
         args.bearing.clone()
     } else {
@@ -83,6 +94,7 @@ pub fn run(args: Args) -> Result<(), String> {
             "delta_z": q.delta_z,
             "stiffness": q.stiffness,
             "cage_speed": q.cage_speed,
+            "traction_cage_speed": traction_cage,
             "spin_speed": q.spin_speed,
             "frequencies": freq,
             "iterations": q.iterations,
@@ -175,6 +187,20 @@ pub fn run(args: Args) -> Result<(), String> {
             "  FTF {:.3} Hz   BPFO {:.2} Hz   BPFI {:.2} Hz   BSF {:.2} Hz   2BSF {:.2} Hz",
             freq.ftf, freq.bpfo, freq.bpfi, freq.bsf, freq.two_bsf
         );
+        if let Some(w) = traction_cage {
+            let (ftf, z, fs) = (w / std::f64::consts::TAU, b.z as f64, args.speed_rpm / 60.0);
+            let _ = writeln!(
+                out,
+                "Steady rotation under the traction (where the full model's balls settle; the \
+                 levels' default cage speed): cage {w:.3} rad/s"
+            );
+            let _ = writeln!(
+                out,
+                "  FTF {ftf:.3} Hz   BPFO {:.2} Hz   BPFI {:.2} Hz",
+                z * ftf,
+                z * (fs - ftf)
+            );
+        }
     }
     emit(&out);
     Ok(())
