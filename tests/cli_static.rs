@@ -73,7 +73,12 @@ fn static_json_table1_9900rpm() {
     // The steady rotation under the traction: BPFO = 14 FTF within the paper's 980.4 Hz ± 0.3 %
     // (spec §8.3), where outer-race control is 0.6 % off.
     let w = num(&v, "traction_cage_speed");
-    rel_close(14.0 * w / std::f64::consts::TAU, 980.4, 3e-3, "BPFO with traction");
+    rel_close(
+        14.0 * w / std::f64::consts::TAU,
+        980.4,
+        3e-3,
+        "BPFO with traction",
+    );
 }
 
 #[test]
