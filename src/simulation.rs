@@ -11,8 +11,8 @@ use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
-    AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method, Options,
-    StepView, System,
+    grid_points, AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method,
+    Options, StepView, System,
 };
 use std::fmt;
 
@@ -788,18 +788,10 @@ impl Simulation {
                         let times = &mut self.sample_times;
                         let buf = &mut self.y_scratch;
                         let mut obs = |v: &StepView| {
-                            let mut k = (v.t_start() / dt).floor() as i64 + 1;
-                            loop {
-                                let ts = k as f64 * dt;
-                                if ts > v.t_end() * (1.0 + 1e-15) {
-                                    break;
-                                }
-                                if ts > v.t_start() {
-                                    v.interpolate(ts.min(v.t_end()), buf);
-                                    samples.extend_from_slice(buf);
-                                    times.push(ts);
-                                }
-                                k += 1;
+                            for ts in grid_points(dt, v.t_start(), v.t_end()) {
+                                v.interpolate(ts.min(v.t_end()), buf);
+                                samples.extend_from_slice(buf);
+                                times.push(ts);
                             }
                         };
                         if with_events {

@@ -83,6 +83,19 @@ impl DenseOutput {
     }
 }
 
+/// The multiples k·dt of a sampling grid inside a step: t_start < k·dt ≤ t_end (1 + 1e-15),
+/// ascending. What a fixed-rate sampler interpolates, and what [`Integrator::set_sample_grid`]
+/// builds the dense output for: one definition, so the two cannot disagree.
+///
+/// [`Integrator::set_sample_grid`]: super::Integrator::set_sample_grid
+pub fn grid_points(dt: f64, t_start: f64, t_end: f64) -> impl Iterator<Item = f64> {
+    let k0 = (t_start / dt).floor() as i64 + 1;
+    (k0..)
+        .map(move |k| k as f64 * dt)
+        .take_while(move |&ts| ts <= t_end * (1.0 + 1e-15))
+        .filter(move |&ts| ts > t_start)
+}
+
 /// One accepted step as seen by an observer: interval and dense output.
 pub struct StepView<'a> {
     pub(crate) dense: &'a DenseOutput,

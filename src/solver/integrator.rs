@@ -205,17 +205,10 @@ impl Integrator {
         self.sample_grid.is_some() && !self.tab.fsal
     }
 
-    /// True if a grid point k·dt lies in (t_old, t_new] (the sampler's own test: `k·dt > t_old`
-    /// and `k·dt ≤ t_new (1 + 1e-15)`).
+    /// True if the step (t_old, t_new] holds a grid point ([`super::grid_points`]).
     pub(super) fn grid_hit(&self, t_old: f64, t_new: f64) -> bool {
-        let Some(dt) = self.sample_grid else {
-            return true;
-        };
-        let k0 = (t_old / dt).floor() as i64 + 1;
-        (k0..k0 + 2)
-            .map(|k| k as f64 * dt)
-            .take_while(|&ts| ts <= t_new * (1.0 + 1e-15))
-            .any(|ts| ts > t_old)
+        self.sample_grid
+            .is_none_or(|dt| super::grid_points(dt, t_old, t_new).next().is_some())
     }
 
     /// Change the step budget of each call (see [`Options::max_steps`]); at least 1.

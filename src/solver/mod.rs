@@ -29,7 +29,7 @@ pub mod state;
 pub mod system;
 pub mod tableau;
 
-pub use dense::StepView;
+pub use dense::{grid_points, StepView};
 pub use error::SolverError;
 pub use integrator::{AdvanceOutcome, Integrator};
 pub use method::Method;
