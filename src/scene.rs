@@ -257,6 +257,19 @@ impl Pulse {
             0.0
         }
     }
+
+    /// The first corner of the triangle (start, peak, end) after `t` (by more than 1e-15 s),
+    /// where the force has a kink: a known-time stop for the integrators.
+    pub fn next_kink(&self, t: f64) -> Option<f64> {
+        [
+            self.t0,
+            self.t0 + 0.5 * self.duration,
+            self.t0 + self.duration,
+        ]
+        .into_iter()
+        .filter(|&tp| tp > t + 1e-15)
+        .reduce(f64::min)
+    }
 }
 
 /// A high-frequency resonator on the pedestal in z (L2 option, spec §6 L2).

@@ -194,15 +194,8 @@ impl LumpedModel {
     /// L1 at the given inputs: the cage-speed ratio and the static ring offset.
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) start")?;
-        let traction = match self.cage {
-            // A bearing the full model cannot set up keeps L1's cage speed.
-            CageSpeed::Traction => super::traction_cage_speed(bearing, inputs, Some(&qs))
-                .ok()
-                .flatten(),
-            CageSpeed::OuterRaceControl => None,
-        };
         self.cage_ratio = if inputs.shaft_speed > 0.0 {
-            traction.unwrap_or(qs.cage_speed) / inputs.shaft_speed
+            super::kinematic_levels_cage_speed(bearing, inputs, &qs, self.cage) / inputs.shaft_speed
         } else {
             kinematic_cage_ratio(bearing, &qs)
         };
@@ -679,12 +672,8 @@ impl Model for LumpedModel {
             }
             best = best.min(t + gap / cage_rate);
         }
-        if let Some(p) = &self.pulse {
-            for tp in [p.t0, p.t0 + 0.5 * p.duration, p.t0 + p.duration] {
-                if tp > t + 1e-15 {
-                    best = best.min(tp);
-                }
-            }
+        if let Some(tp) = self.pulse.as_ref().and_then(|p| p.next_kink(t)) {
+            best = best.min(tp);
         }
         (best <= t_max && best > t).then_some(best)
     }

@@ -192,6 +192,24 @@ pub trait Model: Send {
     }
 }
 
+/// Cage speed [rad/s] of the levels with kinematic balls at a positive shaft speed, from the L1
+/// solution `qs` at `inputs`: the traction solve ([`traction_cage_speed`]) or L1's outer-race
+/// control, as `cage` selects. A bearing the full model cannot set up keeps L1's.
+pub fn kinematic_levels_cage_speed(
+    bearing: &Bearing,
+    inputs: &Inputs,
+    qs: &crate::quasi_static::QuasiStatic,
+    cage: crate::scene::CageSpeed,
+) -> f64 {
+    let traction = match cage {
+        crate::scene::CageSpeed::Traction => traction_cage_speed(bearing, inputs, Some(qs))
+            .ok()
+            .flatten(),
+        crate::scene::CageSpeed::OuterRaceControl => None,
+    };
+    traction.unwrap_or(qs.cage_speed)
+}
+
 /// Cage speed [rad/s] at which the balls roll under the strip traction: the mean orbital rate
 /// of the balls' steady rotation ([`full::init::settle_ball_rotation`]) on the healthy bearing
 /// at `inputs`, the ring and pedestal at the L1 start with the tilt held. This is the cage

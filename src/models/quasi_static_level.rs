@@ -54,14 +54,8 @@ impl L1Table {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) solve")?;
         let mut t = Self::from_solution(bearing, &qs, inputs);
         t.cage = cage;
-        if cage == CageSpeed::Traction {
-            // A bearing the full model cannot set up keeps L1's cage speed.
-            if let Some(w) = super::traction_cage_speed(bearing, inputs, Some(&qs))
-                .ok()
-                .flatten()
-            {
-                t.cage_speed = w;
-            }
+        if inputs.shaft_speed > 0.0 {
+            t.cage_speed = super::kinematic_levels_cage_speed(bearing, inputs, &qs, cage);
         }
         Ok(t)
     }

@@ -704,11 +704,7 @@ impl Model for ReducedModel {
     }
 
     fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
-        let p = self.pulse.as_ref()?;
-        [p.t0, p.t0 + 0.5 * p.duration, p.t0 + p.duration]
-            .into_iter()
-            .filter(|&tp| tp > t + 1e-15 && tp <= t_max)
-            .reduce(f64::min)
+        self.pulse.as_ref()?.next_kink(t).filter(|&tp| tp <= t_max)
     }
 
     fn update_mode(&mut self, t: f64, y: &[f64]) {
