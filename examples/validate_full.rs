@@ -1,7 +1,9 @@
 //! Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 outer-race spall.
 //!
 //! `cargo run --release --example validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [lock_tilt]`
-//! (`FS_STRIPS=equal:10` or `gauss:6` overrides `contact.strip_rule` and `contact.n_strips`)
+//! (`FS_STRIPS=equal:10` or `gauss:6` overrides `contact.strip_rule` and `contact.n_strips`;
+//! `RW_MASSES=0.29,0.77` the inner-ring and pedestal masses, as used for the C12 calibration in
+//! docs/spec-departures.md)
 //!
 //! Runs `examples/scenes/sec3.5-outer.toml` at `fidelity = full`, detects one impact per ball
 //! pass (the outer-force maximum after the ball's outer contact opened at the spall entry),
@@ -50,6 +52,18 @@ fn main() {
             _ => raceway::config::StripRule::Equal,
         };
         scene.bearing.contact.n_strips = n.parse().expect("n_strips");
+    }
+    // RW_MASSES=m_ir,m_p overrides the inner-ring and pedestal masses [kg] (C12 calibration;
+    // the ring's inertias scale with its mass).
+    if let Ok(v) = std::env::var("RW_MASSES") {
+        let (mi, mp) = v.split_once(',').expect("RW_MASSES=m_ir,m_p");
+        let (mi, mp): (f64, f64) = (mi.parse().expect("m_ir"), mp.parse().expect("m_p"));
+        let r = &mut scene.bearing.inner_ring;
+        let f = mi / r.mass;
+        r.mass = mi;
+        r.i_polar *= f;
+        r.i_diam *= f;
+        scene.bearing.pedestal.mass = mp;
     }
     // Optional third argument: override the contact damping c_br [N s/m] (diagnostics).
     if let Some(c) = args.get(3).and_then(|s| s.parse::<f64>().ok()) {

@@ -185,9 +185,9 @@ pub struct InnerRing {
 impl Default for InnerRing {
     fn default() -> Self {
         Self {
-            mass: 0.29,
-            i_polar: 2.3e-4,
-            i_diam: 1.3e-4,
+            mass: 0.50,
+            i_polar: 3.97e-4,
+            i_diam: 2.24e-4,
         }
     }
 }
@@ -206,7 +206,7 @@ pub struct Pedestal {
 impl Default for Pedestal {
     fn default() -> Self {
         Self {
-            mass: 0.77,
+            mass: 0.526,
             k_y: 15e6,
             k_z: 15e6,
             c_y: 1800.0,

@@ -341,7 +341,8 @@ fn slip_jitter_is_seeded_reproducible_and_smears_the_fault_harmonics() {
     };
     let (_, env0) = envelope(&base);
     let mut sc = base.clone();
-    sc.lumped.slip_jitter = 0.02;
+    let sigma = 0.08;
+    sc.lumped.slip_jitter = sigma;
     sc.lumped.seed = 3;
     let (a1, env1) = envelope(&sc);
     let (a2, _) = envelope(&sc);
@@ -354,16 +355,23 @@ fn slip_jitter_is_seeded_reproducible_and_smears_the_fault_harmonics() {
     assert!(f1.rel_error(bpfo).abs() < 0.002, "{}", f1.freq);
     // Timing jitter of relative standard deviation σ_t multiplies the k-th line of an impulse
     // train by exp(−(2πkσ_t)²/2). Ball offsets interpolated linearly between per-revolution
-    // nodes of deviation σ have σ_t² = (2/3)σ² on average, so the 5th harmonic keeps at most
-    // that fraction (jitter also varies the impact severity, which lowers it further).
-    let k = 5.0;
-    let bound = (-(std::f64::consts::TAU * k * 0.02).powi(2) * (2.0 / 3.0) / 2.0).exp();
-    let h0 = signal::peak_near(&env0, k * bpfo, 0.01 * bpfo).unwrap();
-    let h1 = signal::peak_near(&env1, k * bpfo, 0.01 * bpfo).unwrap();
-    let ratio = h1.value / h0.value;
+    // nodes of deviation σ have σ_t² = (2/3)σ² on average: at σ = 0.08 the 5th line keeps 0.12
+    // and the 1st 0.92 of its height, so the 5th falls 0.13 times as far as the 1st. The
+    // jitter-free lines themselves scatter by up to a factor 2–4 from speed to speed (how each
+    // impact meets the ringing of the previous ones), so the test compares the two harmonics'
+    // losses, with a margin for that scatter (measured 0.07–0.30 over 8000–11 000 rpm).
+    let keep = |k: f64| {
+        let h0 = signal::peak_near(&env0, k * bpfo, 0.01 * bpfo).unwrap();
+        let h1 = signal::peak_near(&env1, k * bpfo, 0.01 * bpfo).unwrap();
+        h1.value / h0.value
+    };
+    let theory = |k: f64| (-(std::f64::consts::TAU * k * sigma).powi(2) * (2.0 / 3.0) / 2.0).exp();
+    let (r1, r5) = (keep(1.0), keep(5.0));
     assert!(
-        ratio < bound && ratio > 0.2,
-        "5th harmonic kept {ratio:.3}, bound {bound:.3}"
+        r5 / r1 < 0.5,
+        "5th harmonic kept {r5:.3}, 1st {r1:.3}: ratio {:.3} (theory {:.3})",
+        r5 / r1,
+        theory(5.0) / theory(1.0)
     );
 }
 
