@@ -275,7 +275,7 @@ def part_b():
         curve.append(row)
     out["curve"] = curve
     # the default (flexible) rotor at 9900 rpm with the interface Jacobian: at H = 1 ms on the
-    # default bearing (its pedestal: 0.77 kg on 15 MN/m) and with a grounded outer ring, and the
+    # default bearing (its pedestal: 0.526 kg on 15 MN/m) and with a grounded outer ring, and the
     # largest stable H on the default bearing
     dr = {}
     for label, extra in (("default bearing", {}), ("grounded outer ring", GROUNDED)):
@@ -844,12 +844,12 @@ def document(results):
         L += [f"- default bearing: largest stable H (bisection, 10 %, 20 ms runs) = "
               f"{d['largest_stable_H_default_bearing'] * 1e6:.1f} µs", "",
               "The instantaneous interface Jacobian linearises the reaction with respect to the "
-              "journal only. The default bearing has a pedestal (0.77 kg on 15 MN/m) inside it: the "
+              "journal only. The default bearing has a pedestal (0.526 kg on 15 MN/m) inside it: the "
               "journal–pedestal mode through the bearing stiffness (≈ 3–4 kHz, damped only by the "
               "contacts) stays explicitly coupled, because the rotor sees the pedestal frozen over the "
               "step: on the default bearing the Jacobian scheme is limited to the step above. With a "
               "grounded outer ring it no longer blows up at 1 ms but still grows slowly: at 9900 rpm a 1 ms "
-              "step is one ball-pass period (BPFO ≈ 986 Hz), so the Jacobian, sampled once per step, "
+              "step is one ball-pass period (BPFO ≈ 980 Hz), so the Jacobian, sampled once per step, "
               "aliases the ball-passage stiffness variation and the spall impacts. The single-mass "
               "case above (shaft at rest) is stable at 1 ms. What removes the limit is the bearing's *step* "
               "sensitivity instead of its instantaneous derivatives: the `implicit` scheme of "
