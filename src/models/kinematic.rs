@@ -334,7 +334,9 @@ impl KinematicModel {
         }
         let psi = self.phase(y);
         let ring_inner = d.ring() == Race::Inner;
-        let (theta0, cos_a) = (d.theta0(), self.table.alpha.cos());
+        let theta0 = d.theta0();
+        // cos α only when a threshold is crossed (this runs at every output sample).
+        let mut cos_a = f64::NAN;
         loop {
             let (entry, exit) = (self.entry_thr, self.exit_thr);
             let is_exit = self.next_exit < self.next_entry && exit <= entry;
@@ -349,6 +351,9 @@ impl KinematicModel {
             } else {
                 theta0
             };
+            if cos_a.is_nan() {
+                cos_a = self.table.alpha.cos();
+            }
             let e_rz = cos_a * theta.cos();
             if is_exit {
                 // The ball regains its load: the pedestal is pushed again.
