@@ -564,6 +564,7 @@ impl Simulation {
             Self::atol(model, rtol),
         );
         o.max_steps = scene.solver.max_steps;
+        o.pi_beta = scene.solver.pi_beta;
         o
     }
 

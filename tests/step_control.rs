@@ -121,3 +121,35 @@ fn observed_order_sizes_the_retry_after_two_rejections() {
     let h2n = c.reject(tab, &o, h1, e2);
     assert!((h2n - h1 * 0.9 * e2.powf(-1.0 / 8.0)).abs() < 1e-12);
 }
+
+/// The scene's `solver.pi_beta` reaches the integrator's controller (fewer rejections on the
+/// spall scene at the lumped level, as `docs/step-control.md` measured for β = 0.08) and is
+/// validated with the field named.
+#[test]
+fn scene_pi_beta_reaches_the_controller_and_is_validated() {
+    use raceway::scene::{Fidelity, Scene};
+    use raceway::simulation::Simulation;
+    let rejected = |beta: f64| {
+        let mut s = Scene::default_scene();
+        s.fidelity = Fidelity::Lumped;
+        s.solver.pi_beta = beta;
+        let mut sim = Simulation::new(&s).unwrap();
+        sim.advance(0.03).unwrap();
+        let st = sim.solver_stats();
+        (st.rejected, st.steps)
+    };
+    let (r0, n0) = rejected(0.0);
+    let (r8, n8) = rejected(0.08);
+    eprintln!("I: {r0} of {n0} rejected; PI 0.08: {r8} of {n8}");
+    assert!(
+        r0 > 100,
+        "the I-controller rejects steps on this scene: {r0}"
+    );
+    assert!(2 * r8 < r0, "PI 0.08 rejects {r8}, the I-controller {r0}");
+    for bad in [-0.01, 0.25, f64::NAN] {
+        let mut s = Scene::default_scene();
+        s.solver.pi_beta = bad;
+        let e = Simulation::new(&s).err().expect("refused").to_string();
+        assert!(e.contains("solver.pi_beta"), "{e}");
+    }
+}

@@ -60,6 +60,7 @@ const KEYS: &[(&str, KeyKind)] = &[
     ("output.sample_rate", KeyKind::Number),
     ("output.skip", KeyKind::Number),
     ("solver.rtol", KeyKind::Number),
+    ("solver.pi_beta", KeyKind::Number),
 ];
 
 /// The keys an axis may sweep (also accepted in `[set]`).
@@ -570,6 +571,7 @@ impl Sweep {
                 "output.sample_rate" => scene.output.sample_rate = num()?,
                 "output.skip" => scene.output.skip = num()?,
                 "solver.rtol" => scene.solver.rtol = num()?,
+                "solver.pi_beta" => scene.solver.pi_beta = num()?,
                 other => return Err(format!("unknown sweep key '{other}'")),
             }
         }

@@ -395,3 +395,21 @@ def test_cage_speed_parameter(fmu, code, ftf):
                        output=["cage.speed"])
     cage_hz = res["cage.speed"][-1] / (2 * math.pi)
     assert abs(cage_hz / ftf - 1) < 3e-3, cage_hz
+
+
+def test_pi_beta_parameter(fmu):
+    """solver.pi_beta: the PI controller (0.08) rejects far fewer steps than the default
+    I-controller (0) on the default spall scene at the lumped level, and a value outside
+    [0, 0.2] is refused."""
+    from fmpy import simulate_fmu
+
+    def rejected(beta):
+        res = simulate_fmu(str(fmu), stop_time=0.03, output_interval=0.01,
+                           start_values={"fidelity": 2, "solver.pi_beta": beta},
+                           output=["solver.rejected", "solver.steps"])
+        return int(res["solver.rejected"][-1]), int(res["solver.steps"][-1])
+
+    (r0, n0), (r8, n8) = rejected(0.0), rejected(0.08)
+    assert r0 > 100 and 2 * r8 < r0, (r0, n0, r8, n8)
+    with pytest.raises(Exception):
+        simulate_fmu(str(fmu), stop_time=1e-3, start_values={"solver.pi_beta": 0.5})
