@@ -519,46 +519,7 @@ impl ReducedModel {
     }
 }
 
-impl SwitchedModel for ReducedModel {
-    fn n_balls(&self) -> usize {
-        self.z
-    }
-
-    fn switches(&self) -> &Switches {
-        &self.sw
-    }
-
-    fn switch_parts(&mut self) -> (&mut Switches, Option<&Defect>) {
-        (&mut self.sw, self.defect.as_ref())
-    }
-
-    fn spall(&self) -> Option<&Defect> {
-        self.defect.as_ref()
-    }
-
-    fn ring_poses(&self, y: &[f64]) -> (RingPose, RingPose) {
-        (self.inner_pose(y), self.outer_pose(y))
-    }
-
-    #[inline(always)]
-    fn ball_state(&self, y: &[f64], j: usize) -> (BallKin, f64) {
-        let (kin, _, _, _, w) = self.ball_kin(y, j);
-        (kin, w)
-    }
-
-    fn contact_constants(&self) -> (&RaceConst, &RaceConst, f64, f64) {
-        (&self.inner, &self.outer, self.ball_radius, self.c_br)
-    }
-
-    #[inline(always)]
-    fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        self.defect_view(y, j, race, w)
-    }
-
-    fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
-        self.theta_bd(d, y, j)
-    }
-}
+super::full::switches::impl_switched_model!(ReducedModel);
 
 impl Model for ReducedModel {
     fn dim(&self) -> usize {

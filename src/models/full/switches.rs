@@ -257,6 +257,83 @@ impl Switches {
     }
 }
 
+/// Implements [`SwitchedModel`] for a ball-level model through the members the full and the
+/// reduced model both have: the fields `z`, `sw`, `defect`, `inner`, `outer`, `ball_radius`,
+/// `c_br` and the methods `inner_pose`, `outer_pose`, `ball_kin`, `defect_view`, `theta_bd`.
+macro_rules! impl_switched_model {
+    ($model:ty) => {
+        impl $crate::models::full::switches::SwitchedModel for $model {
+            fn n_balls(&self) -> usize {
+                self.z
+            }
+
+            fn switches(&self) -> &$crate::models::full::switches::Switches {
+                &self.sw
+            }
+
+            fn switch_parts(
+                &mut self,
+            ) -> (
+                &mut $crate::models::full::switches::Switches,
+                Option<&$crate::defect::Defect>,
+            ) {
+                (&mut self.sw, self.defect.as_ref())
+            }
+
+            fn spall(&self) -> Option<&$crate::defect::Defect> {
+                self.defect.as_ref()
+            }
+
+            fn ring_poses(
+                &self,
+                y: &[f64],
+            ) -> (
+                $crate::models::full::contact::RingPose,
+                $crate::models::full::contact::RingPose,
+            ) {
+                (self.inner_pose(y), self.outer_pose(y))
+            }
+
+            #[inline(always)]
+            fn ball_state(
+                &self,
+                y: &[f64],
+                j: usize,
+            ) -> ($crate::models::full::contact::BallKin, f64) {
+                let (kin, _, _, _, w) = self.ball_kin(y, j);
+                (kin, w)
+            }
+
+            fn contact_constants(
+                &self,
+            ) -> (
+                &$crate::models::full::contact::RaceConst,
+                &$crate::models::full::contact::RaceConst,
+                f64,
+                f64,
+            ) {
+                (&self.inner, &self.outer, self.ball_radius, self.c_br)
+            }
+
+            #[inline(always)]
+            fn spall_view(
+                &self,
+                y: &[f64],
+                j: usize,
+                race: $crate::geometry::Race,
+                w: f64,
+            ) -> Option<$crate::models::full::contact::DefectView<'_>> {
+                self.defect_view(y, j, race, w)
+            }
+
+            fn spall_angle(&self, d: &$crate::defect::Defect, y: &[f64], j: usize) -> (f64, f64) {
+                self.theta_bd(d, y, j)
+            }
+        }
+    };
+}
+pub(crate) use impl_switched_model;
+
 /// A ball-level model whose frozen modes live in a [`Switches`] (full and reduced levels): it
 /// gives the per-ball contact geometry, and the contact event functions, the mode update and the
 /// event vector are written once here.
