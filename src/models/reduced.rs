@@ -664,36 +664,7 @@ impl Model for ReducedModel {
         dydt[self.lay.phi()] = self.inputs.shaft_speed;
     }
 
-    fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
-        self.pulse.as_ref()?.next_kink(t).filter(|&tp| tp <= t_max)
-    }
-
-    fn update_mode(&mut self, t: f64, y: &[f64]) {
-        self.update_switches(t, y);
-    }
-
-    fn begin_step(&mut self) {
-        self.sw.begin_step();
-    }
-
-    fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
-        self.sw.suspect(t_old, t_new)
-    }
-
-    fn event_fired(&mut self, index: usize) {
-        self.sw.event_fired(index);
-    }
-
-    fn n_events(&self) -> usize {
-        self.sw.n_events(self.defect.is_some())
-    }
-
-    /// As in the full model (see [`Switches`]): per ball the inner and outer contact events
-    /// (index 2j, 2j + 1); with a spall the zone edge and centre (2z + 2j, 2z + 2j + 1) and the
-    /// blend boundary (4z + j).
-    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
-        self.switch_events(y, g);
-    }
+    super::full::switches::switched_model_events!();
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
         let mut dydt = std::mem::take(&mut self.scratch);

@@ -334,6 +334,48 @@ macro_rules! impl_switched_model {
 }
 pub(crate) use impl_switched_model;
 
+/// The event part of [`crate::models::Model`] for a [`SwitchedModel`] with a `pulse` field,
+/// written once for the full and the reduced model: the pulse's kinks are stops, the modes live
+/// in the model's [`Switches`]. Expands to methods inside `impl Model for …`.
+macro_rules! switched_model_events {
+    () => {
+        fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
+            self.pulse.as_ref()?.next_kink(t).filter(|&tp| tp <= t_max)
+        }
+
+        fn update_mode(&mut self, t: f64, y: &[f64]) {
+            self.update_switches(t, y);
+        }
+
+        fn begin_step(&mut self) {
+            self.sw.begin_step();
+        }
+
+        fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
+            self.sw.suspect(t_old, t_new)
+        }
+
+        fn event_fired(&mut self, index: usize) {
+            self.sw.event_fired(index);
+        }
+
+        fn n_events(&self) -> usize {
+            self.sw.n_events(self.defect.is_some())
+        }
+
+        /// Per ball (index 2j, 2j + 1): the contact events of the inner and outer contact
+        /// (`contact_events`). With a spall, then per ball (index 2z + 2j, 2z + 2j + 1):
+        /// θ_e − |θ_bd| (edge crossings) and, while the ball is in the zone, θ_bd clipped to
+        /// ±0.5 rad (the centre, where the ball changes corners; 1 outside the zone, where the
+        /// wrap of θ_bd at ±π used to fire a spurious event once per orbit of every ball); then
+        /// per ball (index 4z + j) the blend boundary (`Defect::blend_margin`).
+        fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+            self.switch_events(y, g);
+        }
+    };
+}
+pub(crate) use switched_model_events;
+
 /// A ball-level model whose frozen modes live in a [`Switches`] (full and reduced levels): it
 /// gives the per-ball contact geometry, and the contact event functions, the mode update and the
 /// event vector are written once here.
