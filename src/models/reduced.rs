@@ -410,22 +410,15 @@ impl ReducedModel {
     /// The spall as seen by ball j on `race` in the frozen interval, if it is in the zone.
     #[inline(always)]
     fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        let d = self.defect.as_ref()?;
-        if d.ring() != race || self.sw.side(j) == 0.0 {
-            return None;
-        }
-        let rate = match race {
-            Race::Inner => w - self.inputs.shaft_speed,
-            Race::Outer => w,
-        };
-        Some(DefectView {
-            defect: d,
-            side: self.sw.side(j),
-            phi: y[self.lay.phi()],
-            theta_bd_rate: rate,
-            a_star: self.defect_a_star,
-            blend: self.sw.blend(j),
-        })
+        self.sw.defect_view(
+            self.defect.as_ref(),
+            j,
+            race,
+            w,
+            self.inputs.shaft_speed,
+            y[self.lay.phi()],
+            self.defect_a_star,
+        )
     }
 
     /// Rolling traction of one closed contact (single point, rolling component only).
