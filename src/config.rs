@@ -45,17 +45,17 @@ impl std::error::Error for ConfigError {}
 pub struct BearingSection {
     /// Number of balls.
     pub z: u32,
-    /// Ball diameter D [m].
+    /// Ball diameter D \[m\].
     pub ball_diameter: f64,
-    /// Pitch diameter dm [m].
+    /// Pitch diameter dm \[m\].
     pub pitch_diameter: f64,
-    /// Free (nominal) contact angle α0 [deg].
+    /// Free (nominal) contact angle α0 \[deg\].
     pub contact_angle_free_deg: f64,
     /// Inner groove curvature factor f_i (groove radius = f_i·D), > 0.5.
     pub f_inner: f64,
     /// Outer groove curvature factor f_o, > 0.5.
     pub f_outer: f64,
-    /// Play along the contact line s0 ≥ 0 [m].
+    /// Play along the contact line s0 ≥ 0 \[m\].
     #[serde(default)]
     pub clearance: f64,
 }
@@ -232,7 +232,7 @@ pub enum DefectMode {
 pub enum BlendLength {
     /// The string `"b"`: the contact ellipse's semi-minor axis.
     Named(BlendName),
-    /// An explicit length [m]; 0 is the paper's abrupt change.
+    /// An explicit length \[m\]; 0 is the paper's abrupt change.
     Metres(f64),
 }
 
@@ -254,7 +254,7 @@ impl Default for BlendLength {
 pub struct DefectDefaults {
     #[serde(default)]
     pub mode: DefectMode,
-    /// Edge radius r_e used in the edge Hertz constant (eq. 20) [m].
+    /// Edge radius r_e used in the edge Hertz constant (eq. 20) \[m\].
     pub edge_radius: f64,
     #[serde(default)]
     pub blend_length: BlendLength,

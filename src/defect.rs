@@ -193,17 +193,17 @@ impl SpallSummary {
         self.ring
     }
 
-    /// Spall centre azimuth θ_d0 [rad], wrapped to (−π, π].
+    /// Spall centre azimuth θ_d0 \[rad\], wrapped to (−π, π].
     pub fn theta0(&self) -> f64 {
         self.theta0
     }
 
-    /// Half angle θ_e of the spall on the track [rad].
+    /// Half angle θ_e of the spall on the track \[rad\].
     pub fn half_angle(&self) -> f64 {
         self.theta_e
     }
 
-    /// Largest drop of the ball centre over the spall [m].
+    /// Largest drop of the ball centre over the spall \[m\].
     pub fn max_drop(&self) -> f64 {
         self.max_drop
     }

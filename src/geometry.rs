@@ -42,21 +42,21 @@ pub struct Bearing {
     pub file: BearingFile,
     /// Number of balls.
     pub z: usize,
-    /// Ball diameter D [m].
+    /// Ball diameter D \[m\].
     pub d: f64,
-    /// Pitch diameter dm [m].
+    /// Pitch diameter dm \[m\].
     pub dm: f64,
-    /// Free contact angle α0 [rad].
+    /// Free contact angle α0 \[rad\].
     pub alpha0: f64,
     pub f_inner: f64,
     pub f_outer: f64,
     /// Total curvature B = f_i + f_o − 1.
     pub b_total: f64,
-    /// Play along the contact line s0 [m].
+    /// Play along the contact line s0 \[m\].
     pub clearance: f64,
-    /// Reduced modulus E′ = E/(1−ν²) [Pa].
+    /// Reduced modulus E′ = E/(1−ν²) \[Pa\].
     pub e_prime: f64,
-    /// Ball mass [kg].
+    /// Ball mass \[kg\].
     pub ball_mass: f64,
     /// Ball moment of inertia m D²/10 [kg m²].
     pub ball_inertia: f64,
@@ -123,7 +123,7 @@ impl Bearing {
         Self::new(&BearingFile::load(preset_or_path)?)
     }
 
-    /// Ball radius R = D/2 [m].
+    /// Ball radius R = D/2 \[m\].
     pub fn ball_radius(&self) -> f64 {
         0.5 * self.d
     }
@@ -163,7 +163,7 @@ impl Bearing {
     }
 
     /// Groove curvature-centre circle of a race in the ring frame: (axial offset x_g, radius R_g)
-    /// [m] (spec §2.1). With play s0 the inner circle moves *toward* the outer one along the
+    /// \[m\] (spec §2.1). With play s0 the inner circle moves *toward* the outer one along the
     /// contact line, so the unloaded groove-centre distance is B·D − s0: the balls are free until
     /// the rings have moved s0. (The spec says "outward", which would make s0 an interference.)
     pub fn groove_centre(&self, race: Race) -> (f64, f64) {
@@ -180,7 +180,7 @@ impl Bearing {
         }
     }
 
-    /// Unloaded distance between the two groove centres, B·D − s0 [m]: a ball touches both
+    /// Unloaded distance between the two groove centres, B·D − s0 \[m\]: a ball touches both
     /// races (zero total approach) when the distance is B·D.
     pub fn groove_centre_distance(&self) -> f64 {
         self.b_total * self.d - self.clearance

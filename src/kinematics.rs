@@ -12,7 +12,7 @@ use crate::geometry::Bearing;
 use serde::Serialize;
 use std::f64::consts::PI;
 
-/// Kinematic frequencies of a bearing at one shaft speed [Hz].
+/// Kinematic frequencies of a bearing at one shaft speed \[Hz\].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FaultFrequencies {
     /// Shaft (inner-ring) rotation frequency fs.
@@ -29,8 +29,8 @@ pub struct FaultFrequencies {
     pub two_bsf: f64,
 }
 
-/// Pure-rolling kinematic frequencies at one contact angle `alpha` [rad] for a shaft speed
-/// `speed_hz` [Hz] (spec §6 L0):
+/// Pure-rolling kinematic frequencies at one contact angle `alpha` \[rad\] for a shaft speed
+/// `speed_hz` \[Hz\] (spec §6 L0):
 /// `FTF = (fs/2)(1 − γ)`, `BPFO = z·FTF`, `BPFI = (z fs/2)(1 + γ)`,
 /// `BSF = (dm/2D) fs (1 − γ²)`, with `γ = D cos α / dm`.
 pub fn fault_frequencies(b: &Bearing, speed_hz: f64, alpha: f64) -> FaultFrequencies {
@@ -53,7 +53,7 @@ fn from_ftf_bsf(b: &Bearing, speed_hz: f64, ftf: f64, bsf: f64) -> FaultFrequenc
     }
 }
 
-/// Cage frequency when both rings turn, `f_c = [f_i(1−γ) + f_o(1+γ)]/2` [Hz] (spec §6 L0).
+/// Cage frequency when both rings turn, `f_c = [f_i(1−γ) + f_o(1+γ)]/2` \[Hz\] (spec §6 L0).
 pub fn cage_frequency_two_rings(b: &Bearing, inner_hz: f64, outer_hz: f64, alpha: f64) -> f64 {
     let gamma = b.gamma(alpha);
     0.5 * (inner_hz * (1.0 - gamma) + outer_hz * (1.0 + gamma))
@@ -67,7 +67,7 @@ pub struct RaceControl {
     pub cage_ratio: f64,
     /// Ball spin speed in the cage frame over shaft speed, ω_R/Ω (negative for Ω > 0).
     pub spin_ratio: f64,
-    /// Ball attitude angle β [rad]: the spin axis is `ê_s = cos β e_x − sin β e_r`.
+    /// Ball attitude angle β \[rad\]: the spin axis is `ê_s = cos β e_x − sin β e_r`.
     pub beta: f64,
 }
 
@@ -78,7 +78,7 @@ impl RaceControl {
     }
 }
 
-/// Outer-race control kinematics for loaded contact angles `alpha_i`, `alpha_o` [rad]
+/// Outer-race control kinematics for loaded contact angles `alpha_i`, `alpha_o` \[rad\]
 /// (spec §6 L0, Jones):
 /// 1. `tan β = sin α_o/(cos α_o + D/dm)`;
 /// 2. `g = (D/2) sin α_o cos(α_i − β)/sin(α_o − β)`, `h = dm/2 − (D/2) cos α_i`;
@@ -121,7 +121,7 @@ pub fn frequencies_from_cage(
     )
 }
 
-/// Outer-race-control frequencies for loaded angles `alpha_i`, `alpha_o` [rad] at `speed_hz`.
+/// Outer-race-control frequencies for loaded angles `alpha_i`, `alpha_o` \[rad\] at `speed_hz`.
 /// BSF is the ball's spin speed in the cage frame, |ω_R|/2π.
 pub fn loaded_frequencies(
     b: &Bearing,

@@ -46,13 +46,13 @@ use std::fmt;
 /// Largest contact deflection accepted, as a fraction of the ball diameter (1 % of D is about
 /// 100× the ISO 76 permanent-deformation criterion of 1e-4 D).
 pub const MAX_DEFLECTION_OVER_D: f64 = 0.01;
-/// Largest loaded contact angle magnitude accepted [deg] ("reaching 90°").
+/// Largest loaded contact angle magnitude accepted \[deg\] ("reaching 90°").
 pub const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
-/// Finite-difference step of the stiffness matrix's fallback (spec §6 L1) [m].
+/// Finite-difference step of the stiffness matrix's fallback (spec §6 L1) \[m\].
 pub const STIFFNESS_STEP: f64 = 1e-8;
-/// Convergence tolerance on ring displacements [m].
+/// Convergence tolerance on ring displacements \[m\].
 pub const TOL_DISPLACEMENT: f64 = 1e-10;
-/// Convergence tolerance on the ring force balance [N].
+/// Convergence tolerance on the ring force balance \[N\].
 pub const TOL_FORCE: f64 = 1e-6;
 
 /// A ball counts as loaded when its inner contact force exceeds the force tolerance
@@ -72,11 +72,11 @@ const FD_JACOBIAN_STEP: f64 = 1e-9;
 pub struct LoadCase {
     /// Shaft (inner-ring) speed Ω [rad/s].
     pub speed: f64,
-    /// Axial force along +x [N].
+    /// Axial force along +x \[N\].
     pub fa: f64,
-    /// Force along +y [N].
+    /// Force along +y \[N\].
     pub fy: f64,
-    /// Force along +z [N] (a radial load F_r of the paper is `fz = −F_r`, C13).
+    /// Force along +z \[N\] (a radial load F_r of the paper is `fz = −F_r`, C13).
     pub fz: f64,
 }
 
@@ -95,31 +95,31 @@ impl LoadCase {
 /// Equilibrium of one ball.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BallEquilibrium {
-    /// Azimuth θ_j = 2πj/z [rad].
+    /// Azimuth θ_j = 2πj/z \[rad\].
     pub theta: f64,
-    /// Inner contact force Q_i [N].
+    /// Inner contact force Q_i \[N\].
     pub q_inner: f64,
-    /// Outer contact force Q_o [N].
+    /// Outer contact force Q_o \[N\].
     pub q_outer: f64,
-    /// Inner contact angle α_i [rad].
+    /// Inner contact angle α_i \[rad\].
     pub alpha_inner: f64,
-    /// Outer contact angle α_o [rad].
+    /// Outer contact angle α_o \[rad\].
     pub alpha_outer: f64,
-    /// Inner contact deflection δ_i [m] (negative: gap).
+    /// Inner contact deflection δ_i \[m\] (negative: gap).
     pub delta_inner: f64,
-    /// Outer contact deflection δ_o [m] (negative: gap).
+    /// Outer contact deflection δ_o \[m\] (negative: gap).
     pub delta_outer: f64,
     /// Orbital (cage) speed ω_c of this ball [rad/s].
     pub cage_speed: f64,
     /// Spin speed in the cage frame ω_R [rad/s] (negative for Ω > 0).
     pub spin_speed: f64,
-    /// Attitude angle β [rad]: spin axis `cos β e_x − sin β e_r`.
+    /// Attitude angle β \[rad\]: spin axis `cos β e_x − sin β e_r`.
     pub beta: f64,
-    /// Ball centre relative to the outer groove centre, (axial, radial) [m].
+    /// Ball centre relative to the outer groove centre, (axial, radial) \[m\].
     pub x: [f64; 2],
-    /// Centrifugal force F_c [N].
+    /// Centrifugal force F_c \[N\].
     pub centrifugal: f64,
-    /// Gyroscopic friction force F_g at the outer contact [N] (along t_o).
+    /// Gyroscopic friction force F_g at the outer contact \[N\] (along t_o).
     pub gyro_force: f64,
 }
 
@@ -128,11 +128,11 @@ pub struct BallEquilibrium {
 pub struct QuasiStatic {
     /// Shaft speed it was solved for [rad/s].
     pub speed: f64,
-    /// Inner-ring axial displacement δ_a [m].
+    /// Inner-ring axial displacement δ_a \[m\].
     pub delta_axial: f64,
-    /// Inner-ring displacement along y [m].
+    /// Inner-ring displacement along y \[m\].
     pub delta_y: f64,
-    /// Inner-ring displacement along z [m].
+    /// Inner-ring displacement along z \[m\].
     pub delta_z: f64,
     /// One entry per ball, j = 0..z−1.
     pub balls: Vec<BallEquilibrium>,
@@ -147,12 +147,12 @@ pub struct QuasiStatic {
     pub stiffness: [[f64; 3]; 3],
     /// Ring Newton iterations (convex start + full problem).
     pub iterations: usize,
-    /// Final ring force residual, max norm [N].
+    /// Final ring force residual, max norm \[N\].
     pub residual: f64,
 }
 
 impl QuasiStatic {
-    /// Radial displacement |(δ_y, δ_z)| [m].
+    /// Radial displacement |(δ_y, δ_z)| \[m\].
     pub fn delta_radial(&self) -> f64 {
         self.delta_y.hypot(self.delta_z)
     }
@@ -162,7 +162,7 @@ impl QuasiStatic {
         self.balls.iter().filter(|b| is_loaded(b.q_inner))
     }
 
-    /// Outer-race-control frequencies from the mean cage and spin speeds [Hz]. At zero speed
+    /// Outer-race-control frequencies from the mean cage and spin speeds \[Hz\]. At zero speed
     /// every frequency is zero.
     pub fn frequencies(&self, b: &Bearing) -> FaultFrequencies {
         let fs = self.speed / (2.0 * PI);
@@ -177,7 +177,7 @@ impl QuasiStatic {
         )
     }
 
-    /// Sum of the inner contact forces acting on the ring, Σ Q_i (e_i,x, e_i,r e_r(θ_j)) [N].
+    /// Sum of the inner contact forces acting on the ring, Σ Q_i (e_i,x, e_i,r e_r(θ_j)) \[N\].
     pub fn ring_force(&self) -> [f64; 3] {
         let mut f = [0.0; 3];
         for ball in &self.balls {
@@ -211,7 +211,7 @@ pub enum QuasiStaticError {
         stage: &'static str,
         /// Iterations spent.
         iterations: usize,
-        /// Last residual (max norm) [N].
+        /// Last residual (max norm) \[N\].
         residual: f64,
     },
 }
@@ -243,13 +243,13 @@ impl std::error::Error for QuasiStaticError {}
 /// Closed-form pure-axial solution at zero speed: every ball carries the same load.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PureAxial {
-    /// Loaded contact angle α (both contacts) [rad].
+    /// Loaded contact angle α (both contacts) \[rad\].
     pub alpha: f64,
-    /// Ball load Q (both contacts) [N].
+    /// Ball load Q (both contacts) \[N\].
     pub q: f64,
-    /// Total ball deflection δ_i + δ_o [m].
+    /// Total ball deflection δ_i + δ_o \[m\].
     pub delta_total: f64,
-    /// Inner-ring axial displacement δ_a [m].
+    /// Inner-ring axial displacement δ_a \[m\].
     pub delta_axial: f64,
 }
 
@@ -1227,7 +1227,7 @@ fn fd_jacobian(
 }
 
 /// Displacement-controlled quasi-static state (coupling mode "motion" at L0/L1): the inner ring
-/// held at displacement `u` = (δ_a, δ_y, δ_z) relative to the outer ring [m], every ball in its
+/// held at displacement `u` = (δ_a, δ_y, δ_z) relative to the outer ring \[m\], every ball in its
 /// own equilibrium (contacts, centrifugal and gyroscopic forces) as in [`solve`]. The result's
 /// [`QuasiStatic::ring_force`] is the load the ring needs to stay at `u` (the bearing pushes the
 /// shaft with minus that), `stiffness` its Jacobian (analytic, see `analytic_jacobian`; the

@@ -107,15 +107,15 @@ impl Fidelity {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Operating {
-    /// Shaft speed [rpm].
+    /// Shaft speed \[rpm\].
     pub speed_rpm: f64,
-    /// Axial load along +x [N].
+    /// Axial load along +x \[N\].
     #[serde(default)]
     pub fa: f64,
-    /// Radial load [N], applied along −z.
+    /// Radial load \[N\], applied along −z.
     #[serde(default)]
     pub fr: f64,
-    /// Extra load along +y [N].
+    /// Extra load along +y \[N\].
     #[serde(default)]
     pub fy: f64,
 }
@@ -211,13 +211,13 @@ impl Default for SolverSettings {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSettings {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     #[serde(default = "default_duration")]
     pub duration: f64,
-    /// Output sample rate [Hz].
+    /// Output sample rate \[Hz\].
     #[serde(default = "default_sample_rate")]
     pub sample_rate: f64,
-    /// Initial transient excluded from spectra [s] (spec §7: 20 ms).
+    /// Initial transient excluded from spectra \[s\] (spec §7: 20 ms).
     #[serde(default = "default_skip")]
     pub skip: f64,
 }
@@ -246,16 +246,16 @@ impl Default for OutputSettings {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pulse {
-    /// Peak force [N] (applied along −z).
+    /// Peak force \[N\] (applied along −z).
     pub peak: f64,
-    /// Total duration [s] (peak at half of it).
+    /// Total duration \[s\] (peak at half of it).
     pub duration: f64,
-    /// Start time [s].
+    /// Start time \[s\].
     pub t0: f64,
 }
 
 impl Pulse {
-    /// Force along −z at time t [N] (a positive number).
+    /// Force along −z at time t \[N\] (a positive number).
     pub fn force(&self, t: f64) -> f64 {
         let s = (t - self.t0) / self.duration;
         if (0.0..=1.0).contains(&s) {
@@ -283,11 +283,11 @@ impl Pulse {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Resonator {
-    /// Natural frequency [Hz].
+    /// Natural frequency \[Hz\].
     pub frequency: f64,
     /// Damping ratio.
     pub damping_ratio: f64,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
 }
 

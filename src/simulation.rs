@@ -1,7 +1,7 @@
 //! The stepping object shared by the CLI and the FMU: scene → state → advance(to t) → outputs.
 //!
-//! A [`Simulation`] owns one dynamic [`Model`](crate::models::Model) (chosen by the scene's
-//! fidelity) and one [`Integrator`](crate::solver::Integrator). Inputs (shaft speed, loads) may
+//! A [`Simulation`] owns one dynamic [`Model`] (chosen by the scene's
+//! fidelity) and one [`Integrator`]. Inputs (shaft speed, loads) may
 //! change between advances; each change is a discontinuity for the integrator. Failures of the
 //! integrator are returned as values and leave the simulation at its last good time.
 
@@ -21,7 +21,7 @@ use std::fmt;
 pub struct Inputs {
     /// Shaft (inner-ring) speed about +x [rad/s].
     pub shaft_speed: f64,
-    /// External force on the inner ring [N] (Fx = Fa along +x, Fz = −Fr).
+    /// External force on the inner ring \[N\] (Fx = Fa along +x, Fz = −Fr).
     pub fx: f64,
     pub fy: f64,
     pub fz: f64,
@@ -62,7 +62,7 @@ impl Inputs {
     }
 }
 
-/// The journal's (inner-ring centre's) motion in coupling mode "motion": displacement `x` [m]
+/// The journal's (inner-ring centre's) motion in coupling mode "motion": displacement `x` \[m\]
 /// and velocity `v` [m/s] along x, y, z at the time it was set, in the frame and from the origin
 /// of the `ring.x/y/z` outputs: the inertial frame, x along the shaft axis (the axial load
 /// direction), z up (the radial load acts along −z); origin = the inner-ring centre when the
@@ -576,7 +576,7 @@ impl Simulation {
         &self.bearing
     }
 
-    /// Current time [s].
+    /// Current time \[s\].
     pub fn time(&self) -> f64 {
         self.integrator.t()
     }

@@ -31,7 +31,7 @@ struct Args {
     /// Bearing of the FMU: a preset name or a bearing TOML file.
     #[arg(long, default_value = DEFAULT_PRESET)]
     bearing: String,
-    /// Output file [default: <target dir>/fmu/BallBearing.fmu].
+    /// Output file [default: TARGET_DIR/fmu/BallBearing.fmu, TARGET_DIR being cargo's target folder].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Only (re)write modelDescription/modelDescription.xml (default preset) and exit.

@@ -22,7 +22,7 @@ const MODEL_STATE_VERSION: u32 = 1;
 /// What a variable stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
-    /// Bearing force [N], component 0..3.
+    /// Bearing force \[N\], component 0..3.
     F(usize),
     /// Bearing force rate [N/s].
     DF(usize),

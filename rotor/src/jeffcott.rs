@@ -33,9 +33,9 @@ use raceway::solver::{Integrator, IntegratorState, Method, Options, SolverError,
 /// Parameters of the rotor (SI units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RotorParams {
-    /// Journal (bearing-station) mass [kg] (> 0).
+    /// Journal (bearing-station) mass \[kg\] (> 0).
     pub journal_mass: f64,
-    /// Disk mass [kg] (>= 0; 0: rigid rotor).
+    /// Disk mass \[kg\] (>= 0; 0: rigid rotor).
     pub disk_mass: f64,
     /// Shaft lateral stiffness journal–disk [N/m] (> 0 if `disk_mass > 0`).
     pub shaft_k: f64,
@@ -47,9 +47,9 @@ pub struct RotorParams {
     pub unbalance: f64,
     /// Gravity [m/s²], acting along −z.
     pub gravity: f64,
-    /// Constant external load on the journal [N].
+    /// Constant external load on the journal \[N\].
     pub load: [f64; 3],
-    /// Initial journal displacement [m]; the disk starts at its static sag below it.
+    /// Initial journal displacement \[m\]; the disk starts at its static sag below it.
     pub journal0: [f64; 3],
     /// Shaft speed at the start [rad/s] (>= 0).
     pub speed_initial: f64,
@@ -156,7 +156,7 @@ impl RotorParams {
         self.disk_mass == 0.0
     }
 
-    /// Static sag of the disk below the journal under gravity [m] (0 if rigid).
+    /// Static sag of the disk below the journal under gravity \[m\] (0 if rigid).
     pub fn disk_sag(&self) -> f64 {
         if self.rigid() {
             0.0
@@ -165,7 +165,7 @@ impl RotorParams {
         }
     }
 
-    /// Duration of the speed ramp [s] (0 without a ramp).
+    /// Duration of the speed ramp \[s\] (0 without a ramp).
     pub fn ramp_time(&self) -> f64 {
         if self.speed_rate > 0.0 {
             (self.speed_final - self.speed_initial).abs() / self.speed_rate
@@ -198,7 +198,7 @@ impl RotorParams {
 /// The bearing force law over one communication step (see the module docs).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct InterfaceForce {
-    /// Force of the bearing on the shaft at the step start [N].
+    /// Force of the bearing on the shaft at the step start \[N\].
     pub f: [f64; 3],
     /// Its rate over the step [N/s] (linear extrapolation; 0: held constant).
     pub df: [f64; 3],
@@ -321,9 +321,9 @@ pub struct RotorOutputs {
     pub speed: f64,
     /// Shaft angle wrapped to [0, 2π).
     pub angle: f64,
-    /// Unbalance force [N] (y, z).
+    /// Unbalance force \[N\] (y, z).
     pub unbalance: [f64; 2],
-    /// Bearing force acting now [N] (as integrated).
+    /// Bearing force acting now \[N\] (as integrated).
     pub bearing_force: [f64; 3],
 }
 

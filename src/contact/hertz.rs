@@ -43,9 +43,9 @@ pub struct HertzContact {
     pub inv_rx: f64,
     /// Curvature sum in the plane of the major axis, 1/R_y [1/m].
     pub inv_ry: f64,
-    /// Effective radius R = (1/R_x + 1/R_y)⁻¹ [m].
+    /// Effective radius R = (1/R_x + 1/R_y)⁻¹ \[m\].
     pub r_eff: f64,
-    /// Reduced modulus E′ = E/(1−ν²) [Pa].
+    /// Reduced modulus E′ = E/(1−ν²) \[Pa\].
     pub e_prime: f64,
     /// Ellipticity k = a/b.
     pub ellipticity: f64,
@@ -108,7 +108,7 @@ impl HertzContact {
         }
     }
 
-    /// Semi-major axis a and semi-minor axis b [m] at normal load `q` [N].
+    /// Semi-major axis a and semi-minor axis b \[m\] at normal load `q` \[N\].
     pub fn semi_axes(&self, q: f64) -> (f64, f64) {
         let (a_star, b_star) = self.semi_axis_factors();
         let c = q.max(0.0).cbrt();
@@ -122,7 +122,7 @@ impl HertzContact {
         ((base * k * k).cbrt(), (base / k).cbrt())
     }
 
-    /// Peak Hertz pressure p0 = 3Q/(2πab) [Pa].
+    /// Peak Hertz pressure p0 = 3Q/(2πab) \[Pa\].
     pub fn peak_pressure(&self, q: f64) -> f64 {
         let (a, b) = self.semi_axes(q);
         if a * b > 0.0 {
@@ -132,7 +132,7 @@ impl HertzContact {
         }
     }
 
-    /// Normal approach δ [m] at load `q` [N].
+    /// Normal approach δ \[m\] at load `q` \[N\].
     pub fn deflection(&self, q: f64) -> f64 {
         (q.max(0.0) / self.stiffness).powf(2.0 / 3.0)
     }

@@ -30,9 +30,9 @@ pub struct QsReaction {
     /// Journal displacement and shaft speed it was solved for.
     pub x: [f64; 3],
     pub speed: f64,
-    /// Pedestal (outer-ring) static displacement (y, z) [m].
+    /// Pedestal (outer-ring) static displacement (y, z) \[m\].
     pub pedestal: [f64; 2],
-    /// Load F that holds the ring (the bearing's force on the shaft is −F) [N].
+    /// Load F that holds the ring (the bearing's force on the shaft is −F) \[N\].
     pub load: [f64; 3],
     /// Linearization of −F in the journal motion.
     pub jacobian: ReactionJacobian,

@@ -32,15 +32,15 @@ pub struct L1Table {
     q_outer: Vec<f64>,
     /// Mean loaded cage speed [rad/s] (the kinematic outer-race-control one at zero speed).
     pub cage_speed: f64,
-    /// Inner-ring displacement relative to the outer ring (δ_a, δ_y, δ_z) [m].
+    /// Inner-ring displacement relative to the outer ring (δ_a, δ_y, δ_z) \[m\].
     pub offset: [f64; 3],
     /// Radial stiffness ∂F_z/∂δ_z of the ball set [N/m].
     pub k_zz: f64,
     /// Load-zone parameter ε = ½(1 + δ_a tan α / δ_r) (∞ without radial displacement).
     pub epsilon: f64,
-    /// Largest inner contact force [N].
+    /// Largest inner contact force \[N\].
     pub q_max: f64,
-    /// Mean inner contact angle of the loaded balls [rad].
+    /// Mean inner contact angle of the loaded balls \[rad\].
     pub alpha: f64,
     /// Inputs the table was solved for.
     pub inputs: Inputs,

@@ -345,12 +345,12 @@ impl ReducedModel {
         self.settle
     }
 
-    /// The fixed attitude angle β of the spin axis [rad].
+    /// The fixed attitude angle β of the spin axis \[rad\].
     pub fn attitude_angle(&self) -> f64 {
         self.attitude.1.atan2(self.attitude.0)
     }
 
-    /// Normal forces of the last evaluation: (inner, outer) per ball [N].
+    /// Normal forces of the last evaluation: (inner, outer) per ball \[N\].
     pub fn contact_forces(&self) -> (&[f64], &[f64]) {
         (&self.q_inner, &self.q_outer)
     }
@@ -466,7 +466,7 @@ impl ReducedModel {
         (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
     }
 
-    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts [J].
+    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\].
     pub fn hertz_potential(&self, y: &[f64]) -> f64 {
         let inner = self.inner_pose(y);
         let outer = self.outer_pose(y);
@@ -483,7 +483,7 @@ impl ReducedModel {
         e
     }
 
-    /// Total mechanical energy [J]: ball translation and spin ½Jω_s², inner-ring translation,
+    /// Total mechanical energy \[J\]: ball translation and spin ½Jω_s², inner-ring translation,
     /// pedestal, Hertz potential of the intact contacts, pedestal springs, minus the work of the
     /// constant loads. Conserved without traction, damping and spall (the orbital part θ̇ e_x
     /// of the ball's angular velocity is kinematic here and carries no energy of its own).

@@ -2,7 +2,7 @@
 //!
 //! Columns: `run_index, run_id, status (ok|failed), error, wall_s`, then one column per axis
 //! key (the run's value, canonical text), then the metric columns of
-//! [`metric_columns`](super::metric_columns). Numbers are written as shortest round-trip
+//! [`metric_columns`]. Numbers are written as shortest round-trip
 //! decimals, so equal values give equal text; metrics of a failed run are empty.
 
 use super::metrics::{metric_columns, MetricRow};

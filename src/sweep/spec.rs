@@ -151,7 +151,7 @@ pub struct Keep {
     /// Output analysed for the signal metrics (default `pedestal.a.z`).
     #[serde(default = "default_signal")]
     pub signal: String,
-    /// Envelope band-pass [Hz] (default 2000–12000 Hz, clamped to Nyquist).
+    /// Envelope band-pass \[Hz\] (default 2000–12000 Hz, clamped to Nyquist).
     #[serde(default = "default_band")]
     pub band: [f64; 2],
     /// Envelope-spectrum amplitudes at FTF, BPFO and BPFI and their harmonics.
@@ -166,7 +166,7 @@ pub struct Keep {
     /// RMS of the (mean-removed) signal.
     #[serde(default = "yes")]
     pub rms: bool,
-    /// Kurtosis E[x⁴]/E[x²]² of the mean-removed signal (3 for Gaussian noise).
+    /// Kurtosis E\[x⁴\]/E\[x²\]² of the mean-removed signal (3 for Gaussian noise).
     #[serde(default = "yes")]
     pub kurtosis: bool,
     /// Crest factor max|x|/RMS of the mean-removed signal.

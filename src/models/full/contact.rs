@@ -44,11 +44,11 @@ pub const MAX_STRIPS: usize = 32;
 /// Pose and motion of a ring (spec §1.1: small tilts, non-spinning frame, spin rate separate).
 #[derive(Debug, Clone, Copy)]
 pub struct RingPose {
-    /// Centre r_r [m].
+    /// Centre r_r \[m\].
     pub p: V3,
     /// Centre velocity [m/s].
     pub v: V3,
-    /// Tilt vector β = (0, β_y, β_z) [rad].
+    /// Tilt vector β = (0, β_y, β_z) \[rad\].
     pub beta: V3,
     /// Tilt rates (0, β̇_y, β̇_z) [rad/s].
     pub beta_rate: V3,
@@ -87,10 +87,10 @@ impl RingPose {
 /// Per-race constants of the contact law.
 #[derive(Debug, Clone, Copy)]
 pub struct RaceConst {
-    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame [m] (§2.1).
+    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame \[m\] (§2.1).
     pub xg: f64,
     pub rg: f64,
-    /// (f − ½) D: distance groove centre – ball centre at first touch [m].
+    /// (f − ½) D: distance groove centre – ball centre at first touch \[m\].
     pub e: f64,
     /// Hertz constant [N/m^1.5].
     pub k: f64,
@@ -98,7 +98,7 @@ pub struct RaceConst {
     pub k_cbrt: f64,
     /// Semi-major axis factor a* (a = a* Q^{1/3}).
     pub a_star: f64,
-    /// Deformed-surface radius R_s = 2fD/(2f + 1) [m] (C7).
+    /// Deformed-surface radius R_s = 2fD/(2f + 1) \[m\] (C7).
     pub rs: f64,
     /// Sign s_k of the contact angle (outer +1, inner −1).
     pub sign: f64,
@@ -205,7 +205,7 @@ pub struct DefectView<'a> {
     pub defect: &'a Defect,
     /// −1 / +1: the half of the spall (sign of y_b) frozen for this interval.
     pub side: f64,
-    /// Shaft angle φ [rad] (for an inner-ring spall).
+    /// Shaft angle φ \[rad\] (for an inner-ring spall).
     pub phi: f64,
     /// θ̇_bd: the ball's angular speed relative to the spall [rad/s].
     pub theta_bd_rate: f64,
@@ -217,7 +217,7 @@ pub struct DefectView<'a> {
 }
 
 impl ContactOut {
-    /// Contact angle α (eq. 5) of the intact groove [rad] for a race of sign `s_k`.
+    /// Contact angle α (eq. 5) of the intact groove \[rad\] for a race of sign `s_k`.
     pub fn alpha(&self, sign: f64) -> f64 {
         (sign * self.bx).atan2(sign * self.br)
     }
@@ -226,25 +226,25 @@ impl ContactOut {
 /// Result of one contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ContactOut {
-    /// Normal force Q [N] (≥ 0 except under [`Law::Closed`] past a loss of contact).
+    /// Normal force Q \[N\] (≥ 0 except under [`Law::Closed`] past a loss of contact).
     pub q: f64,
-    /// Unclamped force K δ′|δ′|^{1/2} + c δ̇′ [N] where δ′ > 0 or the law is closed, else 0
+    /// Unclamped force K δ′|δ′|^{1/2} + c δ̇′ \[N\] where δ′ > 0 or the law is closed, else 0
     /// (the contact event function is min(δ′, q_raw/S)).
     pub q_raw: f64,
-    /// Elastic overlap on the (possibly tilted) normal [m] (≤ 0: open).
+    /// Elastic overlap on the (possibly tilted) normal \[m\] (≤ 0: open).
     pub delta: f64,
     /// Hertz constant used [N/m^1.5].
     pub k: f64,
-    /// Force on the ball [N].
+    /// Force on the ball \[N\].
     pub f: V3,
     /// Moment on the ball about its centre [N m].
     pub m: V3,
-    /// Normal force on the ring, Q n [N] (inertial components).
+    /// Normal force on the ring, Q n \[N\] (inertial components).
     pub qn: V3,
     /// The same with the normal in ring-frame components: its moment arm × this is the exact
     /// generalised force conjugate to the small tilt angles (keeps the tilt conservative).
     pub qn_ring: V3,
-    /// Ball centre relative to the groove centre in the ring's (axial, radial) plane [m].
+    /// Ball centre relative to the groove centre in the ring's (axial, radial) plane \[m\].
     pub bx: f64,
     pub br: f64,
     /// True when the spall altered this contact.
@@ -449,13 +449,13 @@ fn evaluate_normal(
 /// `u1 = a1 + ζ b1` (transverse, c1) and `u2 = a2 + ξ s − ζ b2` (rolling direction, c2).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SlipField {
-    /// Normal force Q [N].
+    /// Normal force Q \[N\].
     pub q: f64,
-    /// Semi-major axis a [m].
+    /// Semi-major axis a \[m\].
     pub a: f64,
-    /// Deformed-surface radius R_s [m].
+    /// Deformed-surface radius R_s \[m\].
     pub rs: f64,
-    /// ζ offset `√(R² − a²) − √(R_s² − a²)` [m].
+    /// ζ offset `√(R² − a²) − √(R_s² − a²)` \[m\].
     pub z0: f64,
     /// Slip of the ball centre against the race (c1, c2 components) [m/s].
     pub a1: f64,

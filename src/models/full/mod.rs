@@ -258,7 +258,7 @@ impl FullModel {
         self.lay
     }
 
-    /// Normal forces of the last evaluation: (inner, outer) per ball [N].
+    /// Normal forces of the last evaluation: (inner, outer) per ball \[N\].
     pub fn contact_forces(&self) -> (&[f64], &[f64]) {
         (&self.q_inner, &self.q_outer)
     }
@@ -308,7 +308,7 @@ impl FullModel {
         self.traction.as_ref()
     }
 
-    /// Ball-to-spall angle θ_bd of ball j [rad] (NaN without a spall; diagnostics).
+    /// Ball-to-spall angle θ_bd of ball j \[rad\] (NaN without a spall; diagnostics).
     pub fn ball_theta_bd(&self, y: &[f64], j: usize) -> f64 {
         self.defect
             .as_ref()
@@ -428,7 +428,7 @@ impl FullModel {
         (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
     }
 
-    /// Total mechanical energy [J]: kinetic (balls incl. rotation, inner-ring translation and
+    /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and
     /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts + pedestal springs
     /// − work of the constant loads. Conserved without traction, damping and spall (§10 item 4);
     /// the prescribed spin does no work.
@@ -460,7 +460,7 @@ impl FullModel {
         e
     }
 
-    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts [J] (energy scale).
+    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\] (energy scale).
     pub fn hertz_potential(&self, y: &[f64]) -> f64 {
         let inner = self.inner_pose(y);
         let outer = self.outer_pose(y);

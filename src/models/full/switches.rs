@@ -19,7 +19,7 @@ use crate::geometry::Race;
 /// the continuity of the function matter (the same value as the lumped level's).
 pub const EVENT_FORCE_SCALE: f64 = 1e8;
 
-/// How far beyond its root [m] a stage must find a contact's event function before the step
+/// How far beyond its root \[m\] a stage must find a contact's event function before the step
 /// is suspected of a short loss or touch (located roots sit within ~1e-13 m at rtol 1e-6).
 pub const EVENT_ROOT_TOL: f64 = 1e-10;
 
@@ -426,7 +426,7 @@ pub trait SwitchedModel {
     fn ring_poses(&self, y: &[f64]) -> (RingPose, RingPose);
     /// Ball j's kinematics and orbital rate at state y.
     fn ball_state(&self, y: &[f64], j: usize) -> (BallKin, f64);
-    /// Inner and outer race constants, ball radius [m] and contact damping c_br [N s/m].
+    /// Inner and outer race constants, ball radius \[m\] and contact damping c_br [N s/m].
     fn contact_constants(&self) -> (&RaceConst, &RaceConst, f64, f64);
     /// The spall as seen by ball j on `race` in the frozen interval (orbital rate `w`).
     fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>>;
