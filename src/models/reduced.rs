@@ -45,8 +45,7 @@
 //! reduced to these states.
 
 use super::full::contact::{
-    self, add, cross, dot, scale, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose,
-    Strips, V3,
+    self, add, cross, dot, scale, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3,
 };
 use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
 use super::full::switches::{SwitchedModel, Switches};
@@ -407,20 +406,6 @@ impl ReducedModel {
         (kin, er, et, r, w)
     }
 
-    /// The spall as seen by ball j on `race` in the frozen interval, if it is in the zone.
-    #[inline(always)]
-    fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        self.sw.defect_view(
-            self.defect.as_ref(),
-            j,
-            race,
-            w,
-            self.inputs.shaft_speed,
-            y[self.lay.phi()],
-            self.defect_a_star,
-        )
-    }
-
     /// Rolling traction of one closed contact (single point, rolling component only).
     #[inline(always)]
     fn traction_of(
@@ -577,7 +562,7 @@ impl Model for ReducedModel {
                 self.ball_radius,
                 self.c_br,
                 strip_traction,
-                self.defect_view(y, j, Race::Inner, w),
+                self.spall_view(y, j, Race::Inner, w),
                 self.sw.law(j, 0),
             );
             let co = contact::evaluate_law(
@@ -587,7 +572,7 @@ impl Model for ReducedModel {
                 self.ball_radius,
                 self.c_br,
                 strip_traction,
-                self.defect_view(y, j, Race::Outer, w),
+                self.spall_view(y, j, Race::Outer, w),
                 self.sw.law(j, 1),
             );
             self.sw.note_stage(t, j, &ci, &co);

@@ -18,9 +18,7 @@ pub mod init;
 pub mod layout;
 pub mod switches;
 
-use self::contact::{
-    cross, dot, sub, BallKin, ContactOut, DefectView, RaceConst, RingPose, Strips, V3,
-};
+use self::contact::{cross, dot, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3};
 use self::layout::*;
 use self::switches::{SwitchedModel, Switches};
 use super::Model;
@@ -293,7 +291,7 @@ impl FullModel {
                 rc,
                 self.ball_radius,
                 self.c_br,
-                self.defect_view(y, j, race, w),
+                self.spall_view(y, j, race, w),
                 self.sw.law(j, k),
             )
         };
@@ -369,20 +367,6 @@ impl FullModel {
         (kin, er, et, r, w)
     }
 
-    /// The spall as seen by ball j on `race` in the frozen interval, if it is in the zone.
-    #[inline(always)]
-    fn defect_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        self.sw.defect_view(
-            self.defect.as_ref(),
-            j,
-            race,
-            w,
-            self.inputs.shaft_speed,
-            y[self.lay.phi()],
-            self.defect_a_star,
-        )
-    }
-
     /// Both contacts of ball j.
     #[inline(always)]
     fn contacts_of(
@@ -402,7 +386,7 @@ impl FullModel {
             self.ball_radius,
             self.c_br,
             tr,
-            self.defect_view(y, j, Race::Inner, w),
+            self.spall_view(y, j, Race::Inner, w),
             self.sw.law(j, 0),
         );
         let co = contact::evaluate_law(
@@ -412,7 +396,7 @@ impl FullModel {
             self.ball_radius,
             self.c_br,
             tr,
-            self.defect_view(y, j, Race::Outer, w),
+            self.spall_view(y, j, Race::Outer, w),
             self.sw.law(j, 1),
         );
         (ci, co)
@@ -659,7 +643,7 @@ impl Model for FullModel {
         let mut jac = super::ReactionJacobian::default();
         for j in 0..self.z {
             let (kin, _, _, _, w) = self.ball_kin(y, j);
-            let dv = self.defect_view(y, j, Race::Inner, w);
+            let dv = self.spall_view(y, j, Race::Inner, w);
             let (dfdx, dfdv) = match contact::ring_translation_jacobian(
                 &kin,
                 &inner,

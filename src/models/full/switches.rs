@@ -293,7 +293,8 @@ impl Switches {
 
 /// Implements [`SwitchedModel`] for a ball-level model through the members the full and the
 /// reduced model both have: the fields `z`, `sw`, `defect`, `inner`, `outer`, `ball_radius`,
-/// `c_br` and the methods `inner_pose`, `outer_pose`, `ball_kin`, `defect_view`, `theta_bd`.
+/// `c_br`, `inputs`, `lay`, `defect_a_star` and the methods `inner_pose`, `outer_pose`,
+/// `ball_kin`, `theta_bd`.
 macro_rules! impl_switched_model {
     ($model:ty) => {
         impl $crate::models::full::switches::SwitchedModel for $model {
@@ -357,7 +358,15 @@ macro_rules! impl_switched_model {
                 race: $crate::geometry::Race,
                 w: f64,
             ) -> Option<$crate::models::full::contact::DefectView<'_>> {
-                self.defect_view(y, j, race, w)
+                self.sw.defect_view(
+                    self.defect.as_ref(),
+                    j,
+                    race,
+                    w,
+                    self.inputs.shaft_speed,
+                    y[self.lay.phi()],
+                    self.defect_a_star,
+                )
             }
 
             fn spall_angle(&self, d: &$crate::defect::Defect, y: &[f64], j: usize) -> (f64, f64) {
