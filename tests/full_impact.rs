@@ -8,21 +8,12 @@
 //! rising with Fa.
 
 use raceway::scene::{Fidelity, Scene};
-use raceway::signal::{self, Window};
-use raceway::simulation::{out, Simulation};
+use raceway::signal;
 use std::path::Path;
 
-fn pedestal_az(sc: &Scene, t_end: f64, skip: f64) -> Vec<f64> {
-    let mut sim = Simulation::new(sc).expect("simulation builds");
-    let mut a = Vec::new();
-    sim.advance_sampled(t_end, 1.0 / sc.output.sample_rate, &mut |t, o| {
-        if t >= skip {
-            a.push(o[out::PEDESTAL_A_Z]);
-        }
-    })
-    .expect("simulation runs");
-    a
-}
+#[path = "common/pulse_response.rs"]
+mod pulse_response;
+use pulse_response::pulse_response_spectrum;
 
 /// Response analysed after the pulse \[s\] (decayed well before: fel e-folds in ≈ 1.3 ms).
 const WINDOW: f64 = 0.06;
@@ -39,15 +30,7 @@ fn impact_frequencies(fa: f64) -> (f64, f64) {
     // sampled triangle misses the apex, which moves the broad fel peak (ζ ≈ 0.21) from
     // 592.5 to 600.5 Hz; feh moves by 3 Hz.
     sc.output.sample_rate = 200_000.0;
-    let t0 = sc.pulse.as_ref().expect("a scene with a pulse").t0;
-    let mut quiet = sc.clone();
-    quiet.pulse = None;
-    let with = pedestal_az(&sc, t0 + WINDOW, t0);
-    let without = pedestal_az(&quiet, t0 + WINDOW, t0);
-    let fs = sc.output.sample_rate;
-    let mut d: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a - b).collect();
-    d.resize(fs as usize, 0.0);
-    let s = signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap();
+    let s = pulse_response_spectrum(&sc, WINDOW);
     let fel = signal::dominant_peak(&s, 400.0, 800.0).unwrap().freq;
     let feh = signal::dominant_peak(&s, 3000.0, 9000.0).unwrap().freq;
     (fel, feh)

@@ -11,6 +11,10 @@ use raceway::simulation::{out, Inputs, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
 use std::f64::consts::TAU;
 
+#[path = "common/pulse_response.rs"]
+mod pulse_response;
+use pulse_response::pulse_response_spectrum;
+
 struct Sys<'a>(&'a mut FullModel);
 
 impl System for Sys<'_> {
@@ -252,26 +256,8 @@ fn impact_test_fel_is_the_pedestal_mode() {
     scene.full.lock_tilt = true;
     let t0 = 2e-3;
     scene.pulse.as_mut().unwrap().t0 = t0;
-    let fs = 51_200.0;
-    let t_end = t0 + 0.05;
-    let response = |sc: &Scene| {
-        let mut sim = Simulation::new(sc).unwrap();
-        let mut a = Vec::new();
-        sim.advance_sampled(t_end, 1.0 / fs, &mut |t, o| {
-            if t >= t0 {
-                a.push(o[out::PEDESTAL_A_Z]);
-            }
-        })
-        .unwrap();
-        a
-    };
-    let mut quiet = scene.clone();
-    quiet.pulse = None;
-    let (with, without) = (response(&scene), response(&quiet));
-    let mut d: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a - b).collect();
-    d.resize(fs as usize, 0.0);
-    let s =
-        raceway::signal::amplitude_spectrum(&d, fs, raceway::signal::Window::Rectangular).unwrap();
+    scene.output.sample_rate = 51_200.0;
+    let s = pulse_response_spectrum(&scene, 0.05);
     let fel = raceway::signal::dominant_peak(&s, 400.0, 800.0)
         .unwrap()
         .freq;

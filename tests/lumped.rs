@@ -10,6 +10,10 @@ use raceway::simulation::{out, Inputs, SimError, Simulation};
 use std::f64::consts::TAU;
 use std::path::Path;
 
+#[path = "common/pulse_response.rs"]
+mod pulse_response;
+use pulse_response::pulse_response_spectrum;
+
 fn scene(name: &str) -> Scene {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/scenes")
@@ -108,25 +112,6 @@ fn inner_spall_envelope_shows_bpfi_with_shaft_sidebands() {
             pk
         );
     }
-}
-
-/// Pedestal-acceleration response to the scene's pulse: the run with the pulse minus the same
-/// run without it, over `window` seconds from the pulse on, zero-padded to 1 s (1 Hz bins) for a
-/// smooth amplitude spectrum of the decayed transient.
-fn pulse_response_spectrum(sc: &Scene, window: f64) -> signal::Spectrum {
-    let fs = sc.output.sample_rate;
-    let t0 = sc.pulse.as_ref().expect("a scene with a pulse").t0;
-    let mut quiet = sc.clone();
-    quiet.pulse = None;
-    let (_, with) = run(sc, t0 + window, fs, t0);
-    let (_, without) = run(&quiet, t0 + window, fs, t0);
-    let mut d: Vec<f64> = with
-        .iter()
-        .zip(&without)
-        .map(|(a, b)| a[out::PEDESTAL_A_Z] - b[out::PEDESTAL_A_Z])
-        .collect();
-    d.resize(fs as usize, 0.0);
-    signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap()
 }
 
 /// (fel, feh) of the impact test at axial load `fa`: the peaks of the pulse response (which
