@@ -47,10 +47,10 @@ pub fn run(args: Args) -> Result<(), String> {
     // The cage speed the balls settle to under the traction (the dynamic levels' start and the
     // default cage speed of the kinematic ones); None at rest.
     let inputs = raceway::simulation::Inputs {
-        shaft_speed: args.speed_rpm * std::f64::consts::TAU / 60.0,
-        fx: args.fa,
-        fy: 0.0,
-        fz: -args.fr,
+        shaft_speed: case.speed,
+        fx: case.fa,
+        fy: case.fy,
+        fz: case.fz,
     };
     let traction_cage = raceway::models::traction_cage_speed(&b, &inputs, Some(&q))
         .ok()

@@ -335,8 +335,6 @@ impl KinematicModel {
         let psi = self.phase(y);
         let ring_inner = d.ring() == Race::Inner;
         let theta0 = d.theta0();
-        // cos α only when a threshold is crossed (this runs at every output sample).
-        let mut cos_a = f64::NAN;
         loop {
             let (entry, exit) = (self.entry_thr, self.exit_thr);
             let is_exit = self.next_exit < self.next_entry && exit <= entry;
@@ -351,10 +349,8 @@ impl KinematicModel {
             } else {
                 theta0
             };
-            if cos_a.is_nan() {
-                cos_a = self.table.alpha.cos();
-            }
-            let e_rz = cos_a * theta.cos();
+            // cos α here, where a threshold is crossed, not per call (this runs at every sample).
+            let e_rz = self.table.alpha.cos() * theta.cos();
             if is_exit {
                 // The ball regains its load: the pedestal is pushed again.
                 self.push_event(tk, self.dip * e_rz);

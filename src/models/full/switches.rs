@@ -103,40 +103,6 @@ impl Switches {
         self.modes_set.then(|| self.in_blend[j])
     }
 
-    /// The spall `d` as seen by ball j on `race` in the frozen interval, if the ball is in its
-    /// zone: its frozen half and blend side, the shaft angle `phi`, the rate of θ_bd from the
-    /// ball's orbital rate `w` (less the shaft speed for an inner-race spall, which turns with
-    /// the ring) and the edge's `a_star`.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    pub fn defect_view<'a>(
-        &self,
-        d: Option<&'a Defect>,
-        j: usize,
-        race: Race,
-        w: f64,
-        shaft_speed: f64,
-        phi: f64,
-        a_star: f64,
-    ) -> Option<DefectView<'a>> {
-        let d = d?;
-        if d.ring() != race || self.side(j) == 0.0 {
-            return None;
-        }
-        let rate = match race {
-            Race::Inner => w - shaft_speed,
-            Race::Outer => w,
-        };
-        Some(DefectView {
-            defect: d,
-            side: self.side(j),
-            phi,
-            theta_bd_rate: rate,
-            a_star,
-            blend: self.blend(j),
-        })
-    }
-
     /// The normal-force law of ball j's contact `k` (0 inner, 1 outer) in the frozen mode.
     #[inline(always)]
     pub fn law(&self, j: usize, k: usize) -> Law {
@@ -358,15 +324,23 @@ macro_rules! impl_switched_model {
                 race: $crate::geometry::Race,
                 w: f64,
             ) -> Option<$crate::models::full::contact::DefectView<'_>> {
-                self.sw.defect_view(
-                    self.defect.as_ref(),
-                    j,
-                    race,
-                    w,
-                    self.inputs.shaft_speed,
-                    y[self.lay.phi()],
-                    self.defect_a_star,
-                )
+                let d = self.defect.as_ref()?;
+                if d.ring() != race || self.sw.side(j) == 0.0 {
+                    return None;
+                }
+                // θ_bd turns with the ball, less the shaft for an inner-race spall.
+                let rate = match race {
+                    $crate::geometry::Race::Inner => w - self.inputs.shaft_speed,
+                    $crate::geometry::Race::Outer => w,
+                };
+                Some($crate::models::full::contact::DefectView {
+                    defect: d,
+                    side: self.sw.side(j),
+                    phi: y[self.lay.phi()],
+                    theta_bd_rate: rate,
+                    a_star: self.defect_a_star,
+                    blend: self.sw.blend(j),
+                })
             }
 
             fn spall_angle(&self, d: &$crate::defect::Defect, y: &[f64], j: usize) -> (f64, f64) {
