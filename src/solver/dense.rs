@@ -83,17 +83,26 @@ impl DenseOutput {
     }
 }
 
-/// The multiples k·dt of a sampling grid inside a step: t_start < k·dt ≤ t_end (1 + 1e-15),
-/// ascending. What a fixed-rate sampler interpolates, and what [`Integrator::set_sample_grid`]
-/// builds the dense output for: one definition, so the two cannot disagree.
+/// The multiples k·dt of a sampling grid inside a step: t_start < k·dt ≤ t_end, each bound
+/// widened by a rounding margin of 1e-15 relative, ascending. What a fixed-rate sampler
+/// interpolates, and what [`Integrator::set_sample_grid`] builds the dense output for: one
+/// definition, so the two cannot disagree.
+///
+/// Both bounds use the same margin, so consecutive steps [a, b] and [b, c] partition the grid:
+/// a point k·dt that lies within rounding of b (a stop at t0 + 100 µs against 4020 × 5 µs)
+/// belongs to the first step only. (With the margin at the end alone, such a point was taken by
+/// both steps: a sample written twice, and every later sample one grid step late.)
 ///
 /// [`Integrator::set_sample_grid`]: super::Integrator::set_sample_grid
 pub fn grid_points(dt: f64, t_start: f64, t_end: f64) -> impl Iterator<Item = f64> {
-    let k0 = (t_start / dt).floor() as i64 + 1;
+    // ts is past t beyond rounding.
+    let past = |ts: f64, t: f64| ts > t + t.abs() * 1e-15;
+    // From ⌊t_start/dt⌋: the point there may still lie past t_start (a rounded quotient).
+    let k0 = (t_start / dt).floor() as i64;
     (k0..)
         .map(move |k| k as f64 * dt)
-        .take_while(move |&ts| ts <= t_end * (1.0 + 1e-15))
-        .filter(move |&ts| ts > t_start)
+        .take_while(move |&ts| !past(ts, t_end))
+        .filter(move |&ts| past(ts, t_start))
 }
 
 /// One accepted step as seen by an observer: interval and dense output.

@@ -26,6 +26,13 @@ pub fn pulse_response_spectrum(sc: &Scene, window: f64) -> signal::Spectrum {
     let mut quiet = sc.clone();
     quiet.pulse = None;
     let (with, without) = (pedestal_az(sc), pedestal_az(&quiet));
+    // Sample for sample: the pulse's corners are stops of the first run only, and a sample
+    // written twice at a stop would shift every later one (tests/sampling.rs).
+    assert_eq!(
+        with.len(),
+        without.len(),
+        "the two records must share their sample times"
+    );
     let mut d: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a - b).collect();
     d.resize(fs as usize, 0.0);
     signal::amplitude_spectrum(&d, fs, Window::Rectangular).unwrap()
