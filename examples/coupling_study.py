@@ -275,7 +275,7 @@ def part_b():
         curve.append(row)
     out["curve"] = curve
     # the default (flexible) rotor at 9900 rpm with the interface Jacobian: at H = 1 ms on the
-    # default bearing (its pedestal: 0.526 kg on 15 MN/m) and with a grounded outer ring, and the
+    # default bearing (its pedestal: 0.55 kg on 15 MN/m) and with a grounded outer ring, and the
     # largest stable H on the default bearing
     dr = {}
     for label, extra in (("default bearing", {}), ("grounded outer ring", GROUNDED)):
@@ -844,7 +844,7 @@ def document(results):
         L += [f"- default bearing: largest stable H (bisection, 10 %, 20 ms runs) = "
               f"{d['largest_stable_H_default_bearing'] * 1e6:.1f} µs", "",
               "The instantaneous interface Jacobian linearises the reaction with respect to the "
-              "journal only. The default bearing has a pedestal (0.526 kg on 15 MN/m) inside it: the "
+              "journal only. The default bearing has a pedestal (0.55 kg on 15 MN/m) inside it: the "
               "journal–pedestal mode through the bearing stiffness (≈ 3–4 kHz, damped only by the "
               "contacts) stays explicitly coupled, because the rotor sees the pedestal frozen over the "
               "step: on the default bearing the Jacobian scheme is limited to the step above. With a "

@@ -206,7 +206,7 @@ pub struct Pedestal {
 impl Default for Pedestal {
     fn default() -> Self {
         Self {
-            mass: 0.526,
+            mass: 0.55,
             k_y: 15e6,
             k_z: 15e6,
             c_y: 1800.0,
