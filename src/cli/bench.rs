@@ -64,6 +64,10 @@ pub struct Args {
     /// Simulated time of the throughput measurement on the default scene [s]
     #[arg(long, default_value_t = 1.0)]
     pub throughput_duration: f64,
+    /// PI step-size controller β (`solver.pi_beta`, 0 … 0.2) of the measured runs and the
+    /// throughput runs (not of the references); default: the scene's (0, the I-controller)
+    #[arg(long)]
+    pub pi_beta: Option<f64>,
 }
 
 /// Output sample rate [Hz] and the transient skipped before measuring errors [s].
@@ -388,6 +392,13 @@ fn run_all(args: &Args) -> Result<(), String> {
             SKIP + 0.02
         ));
     }
+    if let Some(b) = args.pi_beta {
+        if !(0.0..=0.2).contains(&b) {
+            return Err(format!(
+                "--pi-beta {b}: must lie in [0, 0.2] (solver.pi_beta)"
+            ));
+        }
+    }
     let rtols: Vec<f64> = match &args.rtols {
         Some(s) => parse_list(s, |x| x.parse().ok().filter(|v: &f64| *v > 0.0), "rtol")?,
         None => (3..=10).map(|k| 10f64.powi(-k)).collect(),
@@ -532,10 +543,14 @@ fn run_all(args: &Args) -> Result<(), String> {
                     &format!("crosscheck {}", status_of(&e)),
                 )?,
             }
+            let mut measured = scene.clone();
+            if let Some(b) = args.pi_beta {
+                measured.solver.pi_beta = b;
+            }
             for &method in &methods {
                 for &rtol in &level_rtols {
                     let (walls, last) =
-                        run_repeated(&scene, method, rtol, duration, limit, level_repeats);
+                        run_repeated(&measured, method, rtol, duration, limit, level_repeats);
                     match last {
                         Some(Ok(r)) => {
                             let e = errors(&r.signal, &reference.signal, fault);
@@ -700,6 +715,9 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
         scene.fidelity = level;
         if let Some(r) = rtol {
             scene.solver.rtol = r;
+        }
+        if let Some(b) = args.pi_beta {
+            scene.solver.pi_beta = b;
         }
         let mut walls = Vec::new();
         let mut cpus = Vec::new();
