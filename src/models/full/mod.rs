@@ -28,7 +28,7 @@ use crate::defect::DefectSpec;
 use crate::geometry::{Bearing, Race};
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
-use crate::simulation::{out, Inputs, SimError};
+use crate::simulation::{Inputs, SimError};
 use std::f64::consts::TAU;
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).
@@ -465,6 +465,12 @@ impl FullModel {
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
     }
+
+    /// Bearing friction (drive) torque of the last right-hand side: minus the moment of the
+    /// contacts on the inner ring about its axis [N m].
+    pub fn friction_torque(&self) -> f64 {
+        -self.ring_moment[0]
+    }
 }
 
 switches::impl_switched_model!(FullModel);
@@ -587,49 +593,7 @@ impl Model for FullModel {
 
     switches::switched_model_events!();
 
-    fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
-        let mut dydt = std::mem::take(&mut self.scratch);
-        self.rhs(t, y, &mut dydt);
-        let p = self.lay.pedestal();
-        let r = self.lay.ring();
-        o[out::PEDESTAL_A_Y] = dydt[p + PVY];
-        o[out::PEDESTAL_A_Z] = dydt[p + PVZ];
-        self.scratch = dydt;
-        o[out::PEDESTAL_Y] = y[p + PY];
-        o[out::PEDESTAL_Z] = y[p + PZ];
-        o[out::PEDESTAL_V_Y] = y[p + PVY];
-        o[out::PEDESTAL_V_Z] = y[p + PVZ];
-        o[out::RING_X] = y[r + RX];
-        o[out::RING_Y] = y[r + RX + 1];
-        o[out::RING_Z] = y[r + RX + 2];
-        o[out::BEARING_F_X] = self.ring_force[0];
-        o[out::BEARING_F_Y] = self.ring_force[1];
-        o[out::BEARING_F_Z] = self.ring_force[2];
-        o[out::FRICTION_TORQUE] = -self.ring_moment[0];
-        o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
-        for j in 0..self.z {
-            o[out::CONTACT_START + j] = self.q_inner[j];
-            o[out::CONTACT_START + self.z + j] = self.q_outer[j];
-            o[out::orbit_speed(self.z, j)] = y[self.lay.ball(j) + BW];
-        }
-        out::set_separation_flags(o, self.z);
-    }
-
-    fn cage_speed(&self) -> f64 {
-        self.cage_ratio * self.inputs.shaft_speed
-    }
-
-    fn ring_states(&self) -> Option<super::RingStates> {
-        let r = self.lay.ring();
-        Some(super::RingStates {
-            pos: [r + RX, r + RX + 1, r + RX + 2],
-            vel: [r + RV, r + RV + 1, r + RV + 2],
-        })
-    }
-
-    fn set_prescribed_ring(&mut self, on: bool) {
-        self.prescribed = on;
-    }
+    switches::ball_model_outputs!();
 
     /// Analytic for frictionless contacts ([`contact::ring_translation_jacobian`] per intact
     /// inner contact; a contact the spall alters by central differences of its normal force).

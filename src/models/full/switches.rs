@@ -393,6 +393,65 @@ macro_rules! switched_model_events {
 }
 pub(crate) use switched_model_events;
 
+/// The output part of [`crate::models::Model`] for the full and the reduced model, whose state
+/// vectors share the ball, ring and pedestal offsets of [`super::layout`]: `outputs` (pedestal
+/// acceleration from the right-hand side, the states, the ring force of the last evaluation, the
+/// per-ball contact forces and orbital speeds), `cage_speed`, `ring_states` and
+/// `set_prescribed_ring`. Expands to methods inside `impl Model for …`; the model provides
+/// `scratch`, `lay`, `ring_force`, `q_inner`, `q_outer`, `z`, `cage_ratio`, `inputs`,
+/// `prescribed`, `mean_orbital_speed(y)` and `friction_torque()`.
+macro_rules! ball_model_outputs {
+    () => {
+        fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+            use $crate::models::full::layout::{BW, PVY, PVZ, PY, PZ, RX};
+            use $crate::simulation::out;
+            let mut dydt = std::mem::take(&mut self.scratch);
+            self.rhs(t, y, &mut dydt);
+            let p = self.lay.pedestal();
+            let r = self.lay.ring();
+            o[out::PEDESTAL_A_Y] = dydt[p + PVY];
+            o[out::PEDESTAL_A_Z] = dydt[p + PVZ];
+            self.scratch = dydt;
+            o[out::PEDESTAL_Y] = y[p + PY];
+            o[out::PEDESTAL_Z] = y[p + PZ];
+            o[out::PEDESTAL_V_Y] = y[p + PVY];
+            o[out::PEDESTAL_V_Z] = y[p + PVZ];
+            o[out::RING_X] = y[r + RX];
+            o[out::RING_Y] = y[r + RX + 1];
+            o[out::RING_Z] = y[r + RX + 2];
+            o[out::BEARING_F_X] = self.ring_force[0];
+            o[out::BEARING_F_Y] = self.ring_force[1];
+            o[out::BEARING_F_Z] = self.ring_force[2];
+            o[out::FRICTION_TORQUE] = self.friction_torque();
+            o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
+            for j in 0..self.z {
+                o[out::CONTACT_START + j] = self.q_inner[j];
+                o[out::CONTACT_START + self.z + j] = self.q_outer[j];
+                o[out::orbit_speed(self.z, j)] = y[self.lay.ball(j) + BW];
+            }
+            out::set_separation_flags(o, self.z);
+        }
+
+        fn cage_speed(&self) -> f64 {
+            self.cage_ratio * self.inputs.shaft_speed
+        }
+
+        fn ring_states(&self) -> Option<$crate::models::RingStates> {
+            use $crate::models::full::layout::{RV, RX};
+            let r = self.lay.ring();
+            Some($crate::models::RingStates {
+                pos: [r + RX, r + RX + 1, r + RX + 2],
+                vel: [r + RV, r + RV + 1, r + RV + 2],
+            })
+        }
+
+        fn set_prescribed_ring(&mut self, on: bool) {
+            self.prescribed = on;
+        }
+    };
+}
+pub(crate) use ball_model_outputs;
+
 /// A ball-level model whose frozen modes live in a [`Switches`] (full and reduced levels): it
 /// gives the per-ball contact geometry, and the contact event functions, the mode update and the
 /// event vector are written once here.
