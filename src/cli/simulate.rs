@@ -67,7 +67,9 @@ pub fn run(args: Args) -> Result<(), String> {
 
     let mut row = vec![0.0; names.len()];
     sim.outputs(&mut row);
-    write_row(&mut w, 0.0, &row).map_err(io)?;
+    // One row is formatted into this buffer, then written whole.
+    let mut line = Vec::with_capacity(24 * (names.len() + 1));
+    write_row(&mut w, &mut line, 0.0, &row).map_err(io)?;
 
     let duration = scene.output.duration;
     let dt = 1.0 / scene.output.sample_rate;
@@ -91,7 +93,7 @@ pub fn run(args: Args) -> Result<(), String> {
         let t_end = duration * c as f64 / chunks as f64;
         let result = sim.advance_sampled(t_end, dt, &mut |t, out| {
             if write_err.is_none() {
-                if let Err(e) = write_row(&mut w, t, out) {
+                if let Err(e) = write_row(&mut w, &mut line, t, out) {
                     write_err = Some(e);
                 }
             }
@@ -178,10 +180,16 @@ pub fn run(args: Args) -> Result<(), String> {
     Ok(())
 }
 
-fn write_row(w: &mut impl Write, t: f64, row: &[f64]) -> std::io::Result<()> {
-    write!(w, "{t:.9}")?;
-    for v in row {
-        write!(w, ",{v:.9e}")?;
+/// One CSV row: the time with 9 decimals, then every output with ten significant digits
+/// (`{:.9e}`, formatted by [`raceway::signal::push_sci10`]: the exact-precision path of
+/// `core::fmt` took longer than the lumped level's integration).
+fn write_row(w: &mut impl Write, line: &mut Vec<u8>, t: f64, row: &[f64]) -> std::io::Result<()> {
+    line.clear();
+    write!(line, "{t:.9}")?;
+    for &v in row {
+        line.push(b',');
+        raceway::signal::push_sci10(line, v);
     }
-    writeln!(w)
+    line.push(b'\n');
+    w.write_all(line)
 }

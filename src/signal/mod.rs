@@ -25,7 +25,7 @@ pub mod spectrum;
 pub mod welch;
 pub mod window;
 
-pub use csvio::{read_csv_column, read_csv_header, write_spectrum_csv, SampledSignal};
+pub use csvio::{push_sci10, read_csv_column, read_csv_header, write_spectrum_csv, SampledSignal};
 pub use envelope::{analytic_signal, bandpass, envelope, envelope_spectrum};
 pub use peaks::{
     dominant_peak, harmonics, peak_near, prominence, refine, sidebands, top_peaks, Peak, Sideband,
