@@ -577,27 +577,45 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+/// The five S2 trajectories of `--strays` and `--slopes`: shaft speeds [rpm].
+const TRAJECTORY_SPEEDS: [f64; 5] = [9500.0, 9700.0, 9900.0, 10_100.0, 10_300.0];
+
+/// (label, fidelity, duration, skip) of the levels in `--strays` and `--slopes`.
+const TRAJECTORY_LEVELS: [(&str, Fidelity, f64, f64); 3] = [
+    ("lumped", Fidelity::Lumped, 0.1, 0.02),
+    ("reduced", Fidelity::Reduced, 0.04, 0.015),
+    ("full", Fidelity::Full, 0.04, 0.015),
+];
+
+/// S2 of `raceway bench`: the default scene.
+fn s2_scene() -> Scene {
+    let mut s2 = Scene::default_scene();
+    s2.name = "S2".into();
+    s2
+}
+
+/// Median of a non-empty slice (the upper one of an even count).
+fn median_of(v: &[f64]) -> f64 {
+    let mut w = v.to_vec();
+    w.sort_by(f64::total_cmp);
+    w[w.len() / 2]
+}
+
 /// `--strays`: how often a run leaves the reference's trajectory at loose tolerances (E1 above
 /// 0.05, a different rattle sequence rather than a small error), with the I-controller and with
 /// PI β = 0.04 / 0.08, over five trajectories (shaft speed 9500 … 10 300 rpm, otherwise S2) per
 /// level, DOP853. Writes `docs/step-control-strays.csv` and `docs/step-control-strays.md`.
 fn strays(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
     const STRAY: f64 = 0.05;
-    let speeds = [9500.0, 9700.0, 9900.0, 10_100.0, 10_300.0];
+    let speeds = TRAJECTORY_SPEEDS;
     let rtols = [1e-3, 1e-4, 1e-5, 1e-6];
     let all = controllers();
     let ctrls: Vec<&Ctrl> = all
         .iter()
         .filter(|c| matches!(c.name, "I" | "PI.04" | "PI.08"))
         .collect();
-    let mut s2 = Scene::default_scene();
-    s2.name = "S2".into();
-    // (label, fidelity, duration, skip)
-    let levels = [
-        ("lumped", Fidelity::Lumped, 0.1, 0.02),
-        ("reduced", Fidelity::Reduced, 0.04, 0.015),
-        ("full", Fidelity::Full, 0.04, 0.015),
-    ];
+    let s2 = s2_scene();
+    let levels = TRAJECTORY_LEVELS;
     let mut csv =
         String::from("level,speed_rpm,rtol,controller,steps,rejected,rhs_evals,events,E1\n");
     // One cell per (level, rtol, controller): E1 and RHS per speed.
@@ -654,11 +672,7 @@ fn strays(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
     }
     let docs = root.join("docs");
     std::fs::write(docs.join("step-control-strays.csv"), &csv)?;
-    let median = |v: &[f64]| {
-        let mut w = v.to_vec();
-        w.sort_by(f64::total_cmp);
-        w[w.len() / 2]
-    };
+    let median = median_of;
     let mut md = String::new();
     writeln!(
         md,
@@ -731,19 +745,14 @@ fn log_slope(pts: &[(f64, f64)]) -> Option<f64> {
 /// every method with the I-controller, per level. Writes `docs/step-control-slopes.csv` and
 /// `docs/step-control-slopes.md`.
 fn slopes(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
-    let speeds = [9500.0, 9700.0, 9900.0, 10_100.0, 10_300.0];
+    let speeds = TRAJECTORY_SPEEDS;
     let rtols = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9];
     let methods = [MethodName::Rkf45, MethodName::Dopri5, MethodName::Dop853];
     let all = controllers();
     let base = &all[0];
     assert_eq!(base.name, "I");
-    let mut s2 = Scene::default_scene();
-    s2.name = "S2".into();
-    let levels = [
-        ("lumped", Fidelity::Lumped, 0.1, 0.02),
-        ("reduced", Fidelity::Reduced, 0.04, 0.015),
-        ("full", Fidelity::Full, 0.04, 0.015),
-    ];
+    let s2 = s2_scene();
+    let levels = TRAJECTORY_LEVELS;
     let mut csv = String::from("level,speed_rpm,method,rtol,steps,rejected,rhs_evals,E1\n");
     // (level, method, per speed the (rtol, E1) sweep).
     type Sweep = Vec<(f64, f64)>;
@@ -786,11 +795,7 @@ fn slopes(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
     }
     let docs = root.join("docs");
     std::fs::write(docs.join("step-control-slopes.csv"), &csv)?;
-    let median = |v: &[f64]| {
-        let mut w = v.to_vec();
-        w.sort_by(f64::total_cmp);
-        w[w.len() / 2]
-    };
+    let median = median_of;
     let ok = |s: f64| (0.7..=1.3).contains(&s);
     let mut md = String::new();
     writeln!(
