@@ -60,3 +60,27 @@ fn samples_at_a_stop_on_the_grid_are_written_once() {
         );
     }
 }
+
+/// `raceway simulate` advances in 1 % chunks of the run; on the default scene (0.5 s at
+/// 51.2 kHz) the chunk ends fall on the sample grid, and three of them (0.235, 0.285, 0.47 s)
+/// rounded so that a sample was written twice, which `raceway spectrum` then refused as
+/// non-uniform sampling. Chunk ends of consecutive advances partition the grid like stops.
+#[test]
+fn chunked_advances_write_every_sample_once() {
+    let mut sc = Scene::default_scene();
+    sc.fidelity = Fidelity::Kinematic;
+    let duration = sc.output.duration;
+    let dt = 1.0 / sc.output.sample_rate;
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut times = Vec::new();
+    let chunks = 100;
+    for c in 1..=chunks {
+        let t_end = duration * c as f64 / chunks as f64;
+        sim.advance_sampled(t_end, dt, &mut |t, _| times.push(t))
+            .unwrap();
+    }
+    assert_eq!(times.len(), (duration / dt).round() as usize);
+    for w in times.windows(2) {
+        assert!(w[1] > w[0], "sample at {} s written twice", w[0]);
+    }
+}
