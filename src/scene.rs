@@ -185,6 +185,9 @@ pub struct SolverSettings {
 /// crawls with 1e-9 s steps (7761 wall s per simulated s) instead of failing.
 pub const MIN_RTOL: f64 = 1e-14;
 
+/// Largest accepted β of the PI step-size controller (`solver.pi_beta`; 0 is the I-controller).
+pub const MAX_PI_BETA: f64 = 0.2;
+
 /// Why [`MIN_RTOL`] exists (for error messages).
 pub const RTOL_FLOOR_WHY: &str =
     "the smallest relative tolerance double precision can honour here (below it the integrator crawls on round-off instead of failing)";
@@ -618,11 +621,11 @@ impl Scene {
         if self.solver.max_steps == 0 {
             return Err(ConfigError::new("solver.max_steps", "must be ≥ 1"));
         }
-        if !(0.0..=0.2).contains(&self.solver.pi_beta) {
+        if !(0.0..=MAX_PI_BETA).contains(&self.solver.pi_beta) {
             return Err(ConfigError::new(
                 "solver.pi_beta",
                 format!(
-                    "{} must be in [0, 0.2] (0: I-controller; 0.04–0.08: PI controller)",
+                    "{} must be in [0, {MAX_PI_BETA}] (0: I-controller; 0.04–0.08: PI controller)",
                     self.solver.pi_beta
                 ),
             ));

@@ -393,11 +393,10 @@ fn run_all(args: &Args) -> Result<(), String> {
         ));
     }
     if let Some(b) = args.pi_beta {
-        if !(0.0..=0.2).contains(&b) {
-            return Err(format!(
-                "--pi-beta {b}: must lie in [0, 0.2] (solver.pi_beta)"
-            ));
-        }
+        // The scene's own check of solver.pi_beta, before any run.
+        let mut s = Scene::default_scene();
+        s.solver.pi_beta = b;
+        s.validate().map_err(|e| format!("--pi-beta {b}: {e}"))?;
     }
     let rtols: Vec<f64> = match &args.rtols {
         Some(s) => parse_list(s, |x| x.parse().ok().filter(|v: &f64| *v > 0.0), "rtol")?,

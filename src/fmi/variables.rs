@@ -383,7 +383,7 @@ impl Param {
                 "Step budget per communication step; when exhausted the step returns fmi2Discard"),
             Param::LumpedCageSpeed => ("lumped.cage_speed", I, None, Some(0.0), Some(1.0),
                 "Cage speed of the kinematic, quasi-static and lumped levels: 0 the balls' steady rotation under the traction (default; the speed the full model settles to), 1 L1's outer-race control"),
-            Param::SolverPiBeta => ("solver.pi_beta", R, None, Some(0.0), Some(0.2),
+            Param::SolverPiBeta => ("solver.pi_beta", R, None, Some(0.0), Some(crate::scene::MAX_PI_BETA),
                 "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work"),
         }
     }
