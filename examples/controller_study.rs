@@ -269,14 +269,10 @@ struct Row {
     conc: f64,
 }
 
-/// Least-squares fit `ln rhs = a + b ln err` over the rows; None unless the error falls with
-/// work (b < 0) and every error is finite and positive.
-fn fit(rows: &[&Row], err: fn(&Row) -> f64) -> Option<(f64, f64)> {
-    let pts: Vec<(f64, f64)> = rows
-        .iter()
-        .map(|r| (err(r).ln(), (r.st.rhs_evals as f64).ln()))
-        .collect();
-    if pts.len() < 2 || pts.iter().any(|p| !p.0.is_finite()) {
+/// Least-squares line `y = a + b x` through the points: (a, b); None with fewer than two
+/// points or no spread in x.
+fn line_fit(pts: &[(f64, f64)]) -> Option<(f64, f64)> {
+    if pts.len() < 2 {
         return None;
     }
     let n = pts.len() as f64;
@@ -288,7 +284,20 @@ fn fit(rows: &[&Row], err: fn(&Row) -> f64) -> Option<(f64, f64)> {
         return None;
     }
     let b = sxy / sxx;
-    (b < 0.0).then_some((my - b * mx, b))
+    Some((my - b * mx, b))
+}
+
+/// Least-squares fit `ln rhs = a + b ln err` over the rows; None unless the error falls with
+/// work (b < 0) and every error is finite and positive.
+fn fit(rows: &[&Row], err: fn(&Row) -> f64) -> Option<(f64, f64)> {
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (err(r).ln(), (r.st.rhs_evals as f64).ln()))
+        .collect();
+    if pts.iter().any(|p| !p.0.is_finite()) {
+        return None;
+    }
+    line_fit(&pts).filter(|&(_, b)| b < 0.0)
 }
 
 /// RHS evaluations of controller `c` at the baseline's accuracy, relative to the baseline,
@@ -731,13 +740,7 @@ fn log_slope(pts: &[(f64, f64)]) -> Option<f64> {
     if p.len() < 3 {
         return None;
     }
-    let n = p.len() as f64;
-    let (mx, my) = (
-        p.iter().map(|q| q.0).sum::<f64>() / n,
-        p.iter().map(|q| q.1).sum::<f64>() / n,
-    );
-    let sxx: f64 = p.iter().map(|q| (q.0 - mx).powi(2)).sum();
-    Some(p.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum::<f64>() / sxx)
+    line_fit(&p).map(|(_, b)| b)
 }
 
 /// `--slopes`: the E1-against-rtol slope of `docs/performance.md` (acceptance 0.7 … 1.3 over
