@@ -136,26 +136,36 @@ def level_chart(rows, path):
     return True
 
 
+def loglog_interp(pts, x):
+    """y at x by log-log interpolation between the neighbours of x in pts, [(x, y)] sorted by x
+    with x, y > 0 (None outside their range)."""
+    for (x_lo, y_lo), (x_hi, y_hi) in zip(pts, pts[1:]):
+        if x_lo <= x <= x_hi and x_hi > x_lo:
+            s = (math.log(x) - math.log(x_lo)) / (math.log(x_hi) - math.log(x_lo))
+            return math.exp(math.log(y_lo) + s * (math.log(y_hi) - math.log(y_lo)))
+    return None
+
+
 def wall_at_error(rs, target, key="wall_s"):
     """Cost (wall time or RHS evaluations) at E1 = target by log-log interpolation along the
     rtol sweep (None outside the measured range)."""
     pts = sorted(((r["E1"], r[key]) for r in rs
                   if not failed(r) and r["E1"] > 0 and r[key] > 0), key=lambda p: p[0])
-    for (e_lo, w_lo), (e_hi, w_hi) in zip(pts, pts[1:]):
-        if e_lo <= target <= e_hi and e_hi > e_lo:
-            s = (math.log(target) - math.log(e_lo)) / (math.log(e_hi) - math.log(e_lo))
-            return math.exp(math.log(w_lo) + s * (math.log(w_hi) - math.log(w_lo)))
-    return None
+    return loglog_interp(pts, target)
+
+
+def log_log_slope(pts, min_points=2):
+    """Least-squares slope of log10(error) against log10(rtol) over [(rtol, error)], or None
+    with fewer than `min_points` points."""
+    if len(pts) < min_points:
+        return None
+    return float(np.polyfit(np.log10([p[0] for p in pts]), np.log10([p[1] for p in pts]), 1)[0])
 
 
 def slope(rs, lo=1e-9, hi=1e-4):
-    pts = [(r["rtol"], r["E1"]) for r in rs
-           if not failed(r) and lo * 0.999 <= r["rtol"] <= hi * 1.001 and r["E1"] > 0]
-    if len(pts) < 2:
-        return None
-    x = np.log10([p[0] for p in pts])
-    y = np.log10([p[1] for p in pts])
-    return float(np.polyfit(x, y, 1)[0])
+    return log_log_slope([(r["rtol"], r["E1"]) for r in rs
+                          if not failed(r) and lo * 0.999 <= r["rtol"] <= hi * 1.001
+                          and r["E1"] > 0])
 
 
 def five_trajectory_slopes(docs):
@@ -169,19 +179,14 @@ def five_trajectory_slopes(docs):
     with open(p, newline="") as f:
         for r in csv.DictReader(f):
             e1[(r["level"], r["method"], float(r["rtol"]))].append(float(r["E1"]))
-    def fit(pts):
-        if len(pts) < 3:
-            return None
-        return float(np.polyfit(np.log10([p[0] for p in pts]),
-                                np.log10([p[1] for p in pts]), 1)[0])
-
     out = {}
     for (level, method) in {(k[0], k[1]) for k in e1}:
         cells = sorted((rt, v) for (lv, m, rt), v in e1.items() if lv == level and m == method
                        and 1e-9 * 0.999 <= rt <= 1e-4 * 1.001)
         pts = [(rt, float(np.median(v))) for rt, v in cells]
         clean = [(rt, float(np.median(v))) for rt, v in cells if max(v) <= 0.05]
-        out[(level, method)] = (fit([p for p in pts if p[1] > 0]), fit(clean))
+        out[(level, method)] = (log_log_slope([p for p in pts if p[1] > 0], 3),
+                                log_log_slope(clean, 3))
     return out
 
 

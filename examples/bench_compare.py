@@ -7,49 +7,26 @@ For every level and method present in both `bench.csv` files, prints a Markdown 
 RHS counts of OTHER's sweep, the E1 of each run (log-log interpolation along BASE's rtol sweep
 for BASE), their ratio, and the E1-against-rtol slope of both sweeps over 1e-4 ... 1e-9 (the
 acceptance measure of performance.md). A ratio below 1 means OTHER is more accurate at equal
-work. Standard library only.
+work. The CSV reading, the interpolation and the slope are those of `bench_charts.py`.
 """
 
 import argparse
-import csv
-import math
+import sys
 from pathlib import Path
 
-
-def load(d):
-    rows = []
-    with open(Path(d) / "bench.csv") as f:
-        for r in csv.DictReader(f):
-            if r["scene"] != "S2" or r["status"] != "ok":
-                continue
-            rows.append((r["level"], r["method"], float(r["rtol"]), float(r["rhs_evals"]),
-                         float(r["E1"])))
-    return rows
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_charts import METHODS, load, loglog_interp, slope, sweep_rows  # noqa: E402
 
 
 def sweep(rows, level, method):
-    return sorted(((rt, n, e) for lv, m, rt, n, e in rows if lv == level and m == method),
-                  key=lambda x: x[1])
+    """The S2 runs that finished (status ok) of one level and method, by rtol, loosest first."""
+    return [r for r in sweep_rows(rows, "S2", level, method) if r["status"] == "ok"]
 
 
 def e1_at(sw, n):
     """E1 at RHS count n by log-log interpolation along the sweep (None outside it)."""
-    for (r0, n0, e0), (r1, n1, e1) in zip(sw, sw[1:]):
-        if n0 <= n <= n1 and e0 > 0 and e1 > 0:
-            f = (math.log(n) - math.log(n0)) / (math.log(n1) - math.log(n0))
-            return math.exp(math.log(e0) + f * (math.log(e1) - math.log(e0)))
-    return None
-
-
-def slope(sw):
-    pts = [(math.log10(rt), math.log10(e)) for rt, n, e in sw
-           if 1e-9 * 0.999 <= rt <= 1e-4 * 1.001 and e > 0]
-    if len(pts) < 3:
-        return None
-    mx = sum(p[0] for p in pts) / len(pts)
-    my = sum(p[1] for p in pts) / len(pts)
-    sxx = sum((p[0] - mx) ** 2 for p in pts)
-    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+    pts = sorted((r["rhs_evals"], r["E1"]) for r in sw if r["E1"] > 0)
+    return loglog_interp(pts, n)
 
 
 def main():
@@ -58,17 +35,18 @@ def main():
     ap.add_argument("other")
     ap.add_argument("--levels", default="reduced,full")
     a = ap.parse_args()
-    base, other = load(a.base), load(a.other)
+    base, other = load(Path(a.base) / "bench.csv"), load(Path(a.other) / "bench.csv")
     print(f"| level | method | rtol ({a.other}) | RHS | E1 {a.other} | E1 {a.base} at equal RHS "
           f"| ratio |")
     print("|---|---|---|---|---|---|---|")
     slopes = []
     for level in a.levels.split(","):
-        for method in ("rkf45", "dopri5", "dop853"):
+        for method in METHODS:
             sb, so = sweep(base, level, method), sweep(other, level, method)
             if not sb or not so:
                 continue
-            for rt, n, e in sorted(so, key=lambda x: -x[0]):
+            for r in so:
+                rt, n, e = r["rtol"], r["rhs_evals"], r["E1"]
                 eb = e1_at(sb, n)
                 ratio = f"{e / eb:.2f}" if eb else "–"
                 ebs = f"{eb:.2e}" if eb else "outside the sweep"
