@@ -1,16 +1,18 @@
-//! Where the full (or reduced) model spends its steps on the default scene: advances in 20 µs
-//! chunks and prints, per chunk, the accepted and rejected steps and the balls in the spall zone.
-//! Usage: `cargo run --release --example step_density -- [full|reduced] [S1|S2] [t0] [t1]`.
+//! Where the full (or reduced, or lumped) model spends its steps on the default scene: advances
+//! in 20 µs chunks (or `chunk` seconds) and prints, per chunk, the accepted and rejected steps
+//! and the balls in the spall zone.
+//! Usage: `cargo run --release --example step_density --
+//! [full|reduced|lumped] [S1|S2] [t0] [t1] [chunk]`.
 use raceway::scene::{Fidelity, Scene};
 use raceway::simulation::Simulation;
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     let mut s = Scene::default_scene();
-    s.fidelity = if a.get(1).is_some_and(|v| v == "reduced") {
-        Fidelity::Reduced
-    } else {
-        Fidelity::Full
+    s.fidelity = match a.get(1).map(String::as_str) {
+        Some("reduced") => Fidelity::Reduced,
+        Some("lumped") => Fidelity::Lumped,
+        _ => Fidelity::Full,
     };
     if a.get(2).is_some_and(|v| v == "S1") {
         s.defect = None;
@@ -20,7 +22,7 @@ fn main() {
     s.solver.max_steps = 50_000_000;
     let mut sim = Simulation::new(&s).expect("scene");
     sim.advance(t0).expect("advance");
-    let dt = 20e-6;
+    let dt: f64 = a.get(5).and_then(|v| v.parse().ok()).unwrap_or(20e-6);
     let mut t = t0;
     let mut last = sim.solver_stats();
     let (mut tot_s, mut tot_r) = (0, 0);

@@ -4,7 +4,7 @@
 
 use raceway::config::TractionSection;
 use raceway::contact::traction::TractionCurve;
-use raceway::models::full::contact::{strip_sums, SlipField, Strips, MAX_STRIPS};
+use raceway::models::full::contact::{strip_sums, SlipField, Strips, TractionBatch, MAX_STRIPS};
 
 /// ∫_{−1}^{1} (3/4)(1 − s²) s^p ds.
 fn moment(p: usize) -> f64 {
@@ -193,6 +193,57 @@ fn strip_sums_equal_the_plain_sum_over_strips() {
                 let e = (x[i] - r[i]).abs() / (c.kappa_max * sf.q * scale[i]);
                 assert!(e < 1e-13, "n {n}, sum {i}: {} vs {} ({e:e})", x[i], r[i]);
             }
+        }
+    }
+}
+
+#[test]
+fn a_batch_of_contacts_gives_each_contact_its_own_strip_sums_bit_for_bit() {
+    // The RHS queues every loaded contact in a TractionBatch; its sums must be exactly those
+    // of strip_sums one contact at a time (the models' results may not depend on batching).
+    // Contacts with slips from sticking (u → 0: the series branch of the law) to gross sliding.
+    let c = curve();
+    let contacts: Vec<SlipField> = (0..9)
+        .map(|i| {
+            let x = i as f64;
+            SlipField {
+                q: 50.0 + 300.0 * x,
+                a: (0.3 + 0.1 * x) * 1e-3,
+                rs: 6.44e-3,
+                z0: -1e-5 * x,
+                a1: if i == 0 { 0.0 } else { 0.02 * (x - 4.0) },
+                a2: if i == 0 { 1e-9 } else { 0.5 * (x - 3.0) },
+                b1: 3.0 - x,
+                b2: 20.0 * (x - 5.0),
+                s: 100.0 * x,
+            }
+        })
+        .collect();
+    let frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut batch = TractionBatch::new(contacts.len());
+    for n in 1..=MAX_STRIPS {
+        for st in [Strips::new(n), Strips::gauss(n)] {
+            // Every other contact, queued in reverse: the slot names, not the order, identify it.
+            batch.clear();
+            let queued: Vec<usize> = (0..contacts.len()).rev().step_by(2).collect();
+            for &k in &queued {
+                batch.push(k, contacts[k], frame);
+            }
+            let mut seen = Vec::new();
+            batch.run(&c, &st, |slot, _, sums| {
+                let one = strip_sums(&c, &st, &contacts[slot]);
+                for i in 0..5 {
+                    assert_eq!(
+                        sums[i].to_bits(),
+                        one[i].to_bits(),
+                        "n {n}, contact {slot}, sum {i}: {} vs {}",
+                        sums[i],
+                        one[i]
+                    );
+                }
+                seen.push(slot);
+            });
+            assert_eq!(seen, queued, "n {n}: every queued contact once, in order");
         }
     }
 }

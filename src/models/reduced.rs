@@ -48,6 +48,7 @@ use super::full::contact::{
     self, add, cross, dot, scale, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3,
 };
 use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
+use super::full::pass::ContactPass;
 use super::full::switches::{SwitchedModel, Switches};
 use super::full::{self as full_model, FullModel, FullOptions};
 use super::Model;
@@ -190,6 +191,8 @@ pub struct ReducedModel {
     /// Coupling mode "motion": the ring translation is prescribed (zero translational
     /// acceleration; `Simulation` writes the journal's position and velocity into the states).
     prescribed: bool,
+    /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
+    pass: ContactPass,
 }
 
 impl ReducedModel {
@@ -270,6 +273,7 @@ impl ReducedModel {
             ring_force: [0.0; 3],
             ring_moment_x: 0.0,
             prescribed: false,
+            pass: ContactPass::new(z),
         };
         m.reduce_initial_state(&full, bearing);
         Ok(m)
@@ -558,29 +562,42 @@ impl Model for ReducedModel {
             (Some(curve), Some(strips)) => Some((curve, strips)),
             _ => None,
         };
+        // Every ball's normal contacts first, then the strip traction of all loaded contacts
+        // in one batch, then the equations of motion.
+        let mut pass = std::mem::take(&mut self.pass);
+        pass.evaluate(
+            self.z,
+            strip_traction,
+            |j| self.ball_kin(y, j),
+            |j, kin, w, slip| {
+                [
+                    contact::evaluate_normal(
+                        kin,
+                        &inner,
+                        &self.inner,
+                        self.ball_radius,
+                        self.c_br,
+                        self.spall_view(y, j, Race::Inner, w),
+                        self.sw.law(j, 0),
+                        slip,
+                    ),
+                    contact::evaluate_normal(
+                        kin,
+                        &outer,
+                        &self.outer,
+                        self.ball_radius,
+                        self.c_br,
+                        self.spall_view(y, j, Race::Outer, w),
+                        self.sw.law(j, 1),
+                        slip,
+                    ),
+                ]
+            },
+        );
         for j in 0..self.z {
             let b = self.lay.ball(j);
-            let (kin, er, et, r, w) = self.ball_kin(y, j);
-            let ci = contact::evaluate_law(
-                &kin,
-                &inner,
-                &self.inner,
-                self.ball_radius,
-                self.c_br,
-                strip_traction,
-                self.spall_view(y, j, Race::Inner, w),
-                self.sw.law(j, 0),
-            );
-            let co = contact::evaluate_law(
-                &kin,
-                &outer,
-                &self.outer,
-                self.ball_radius,
-                self.c_br,
-                strip_traction,
-                self.spall_view(y, j, Race::Outer, w),
-                self.sw.law(j, 1),
-            );
+            let (kin, er, et, r, w) = pass.frames[j];
+            let (ci, co) = pass.contacts[j];
             self.sw.note_stage(t, j, &ci, &co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
@@ -625,6 +642,7 @@ impl Model for ReducedModel {
             f_ring = sub(f_ring, fi);
             f_outer = sub(f_outer, fo);
         }
+        self.pass = pass;
         self.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
         let r = self.lay.ring();

@@ -306,15 +306,33 @@ pub fn evaluate_law(
     defect: Option<DefectView<'_>>,
     law: Law,
 ) -> ContactOut {
-    let (mut out, loaded) = evaluate_normal(ball, ring, race, ball_radius, damping, defect, law);
-    let (Some((curve, strips)), Some((sf, [n, c1, c2]))) = (traction, loaded) else {
+    let (mut out, loaded) = evaluate_normal(
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        defect,
+        law,
+        traction.is_some(),
+    );
+    let (Some((curve, strips)), Some((sf, frame))) = (traction, loaded) else {
         return out;
     };
-    let [f1, f2, mxi2, mze1, mze2] = strip_sums(curve, strips, &sf);
+    apply_traction(&mut out, &frame, strip_sums(curve, strips, &sf));
+    out
+}
+
+/// Adds the strip sums `[f1, f2, Σ ξ f2, Σ ζ f1, Σ ζ f2]` of a loaded contact with frame
+/// (n, c1, c2) to its force and moment on the ball ([`evaluate_law`]'s last step, also the
+/// one of a [`TractionBatch`]).
+#[inline(always)]
+pub fn apply_traction(out: &mut ContactOut, frame: &[V3; 3], sums: [f64; 5]) {
+    let [n, c1, c2] = *frame;
+    let [f1, f2, mxi2, mze1, mze2] = sums;
     out.f = add(out.f, add(scale(c1, f1), scale(c2, f2)));
     // r_cp × F_k = ξ f2 n + ζ f1 c2 − ζ f2 c1 (c1 × c2 = n, n × c1 = c2, n × c2 = −c1).
     out.m = add(scale(n, mxi2), sub(scale(c2, mze1), scale(c1, mze2)));
-    out
 }
 
 /// The slip field of one contact where it carries a normal force (diagnostics: the input of
@@ -329,16 +347,17 @@ pub fn slip_field_law(
     defect: Option<DefectView<'_>>,
     law: Law,
 ) -> Option<SlipField> {
-    evaluate_normal(ball, ring, race, ball_radius, damping, defect, law)
+    evaluate_normal(ball, ring, race, ball_radius, damping, defect, law, true)
         .1
         .map(|(sf, _)| sf)
 }
 
-/// Everything of [`evaluate_law`] but the traction: the contact with its normal force, and
-/// where Q ≠ 0 the slip field and the contact frame (n, c1, c2).
+/// Everything of [`evaluate_law`] but the traction: the contact with its normal force, and,
+/// with `slip` and where Q ≠ 0, the slip field and the contact frame (n, c1, c2) that the
+/// traction needs ([`strip_sums`] and [`apply_traction`], or a [`TractionBatch`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn evaluate_normal(
+pub fn evaluate_normal(
     ball: &BallKin,
     ring: &RingPose,
     race: &RaceConst,
@@ -346,6 +365,7 @@ fn evaluate_normal(
     damping: f64,
     defect: Option<DefectView<'_>>,
     law: Law,
+    slip: bool,
 ) -> (ContactOut, Option<(SlipField, [V3; 3])>) {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
@@ -433,7 +453,7 @@ fn evaluate_normal(
     }
     out.qn = scale(n, q);
     out.qn_ring = scale(n_r, q);
-    if q == 0.0 {
+    if q == 0.0 || !slip {
         return (out, None);
     }
     let c1 = cross(c2, n);
@@ -588,6 +608,162 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
         mze2 += zeta[np] * g2;
     }
     [f1, f2, mxi2, mze1, mze2]
+}
+
+/// The strip traction of many contacts, computed together.
+///
+/// The contacts of one RHS evaluation are independent, but each contact's traction is a chain
+/// of dependent square roots and an `exp` per strip ([`strip_sums`]): one contact at a time,
+/// the processor waits on each link. Here every loaded contact of the evaluation is queued
+/// ([`TractionBatch::push`], after [`evaluate_normal`]) and [`TractionBatch::run`] does each
+/// stage of [`strip_sums`] for all of them in one pass over flat arrays, so that independent
+/// strips of different contacts overlap. Every value is computed by the same operations in
+/// the same order as [`strip_sums`], so the sums are bit for bit the same. The buffers are
+/// sized once ([`TractionBatch::new`]); queuing and running never allocate.
+#[derive(Debug, Clone, Default)]
+pub struct TractionBatch {
+    len: usize,
+    slot: Vec<usize>,
+    sf: Vec<SlipField>,
+    frame: Vec<[V3; 3]>,
+    /// Per contact and strip pair (stride `MAX_STRIPS / 2 + 1`): ζ, u1, u2 of the strip at
+    /// +ξ and at −ξ, and κ(u)/u of both.
+    zeta: Vec<f64>,
+    u1: Vec<f64>,
+    u2p: Vec<f64>,
+    u2m: Vec<f64>,
+    kp: Vec<f64>,
+    km: Vec<f64>,
+}
+
+/// Strip pairs per contact in a [`TractionBatch`]'s arrays (an odd rule's middle strip is
+/// the last "pair", whose −ξ half is unused).
+const PAIRS: usize = MAX_STRIPS / 2 + 1;
+
+impl TractionBatch {
+    /// A batch for up to `contacts` contacts per run.
+    pub fn new(contacts: usize) -> Self {
+        let v = || vec![0.0; contacts * PAIRS];
+        Self {
+            len: 0,
+            slot: vec![0; contacts],
+            sf: vec![SlipField::default(); contacts],
+            frame: vec![[[0.0; 3]; 3]; contacts],
+            zeta: v(),
+            u1: v(),
+            u2p: v(),
+            u2m: v(),
+            kp: v(),
+            km: v(),
+        }
+    }
+
+    /// Empties the queue.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Queues a loaded contact (the slip field and frame [`evaluate_normal`] returned for it);
+    /// `slot` is the caller's name for it, handed back by [`TractionBatch::run`].
+    ///
+    /// # Panics
+    /// When more contacts are queued than [`TractionBatch::new`] was sized for.
+    #[inline]
+    pub fn push(&mut self, slot: usize, sf: SlipField, frame: [V3; 3]) {
+        let i = self.len;
+        self.slot[i] = slot;
+        self.sf[i] = sf;
+        self.frame[i] = frame;
+        self.len = i + 1;
+    }
+
+    /// The strip sums of every queued contact, as [`strip_sums`] gives them; calls
+    /// `each(slot, frame, sums)` for each in the order queued.
+    #[inline]
+    pub fn run(
+        &mut self,
+        curve: &TractionCurve,
+        strips: &Strips,
+        mut each: impl FnMut(usize, &[V3; 3], [f64; 5]),
+    ) {
+        let n = self.len;
+        let nst = strips.n;
+        let np = nst / 2;
+        let half = nst.div_ceil(2);
+        // Slips of every strip (the first pass of strip_sums).
+        for c in 0..n {
+            let SlipField {
+                a,
+                rs,
+                z0,
+                a1,
+                a2,
+                b1,
+                b2,
+                s,
+                ..
+            } = self.sf[c];
+            let rs2 = rs * rs;
+            let o = c * PAIRS;
+            for p in 0..half {
+                let xi = a * strips.s[p];
+                let z = (rs2 - xi * xi).sqrt() + z0;
+                let t = xi * s;
+                let zb2 = z * b2;
+                self.zeta[o + p] = z;
+                self.u1[o + p] = a1 + z * b1;
+                self.u2p[o + p] = (a2 + t) - zb2;
+                self.u2m[o + p] = (a2 - t) - zb2;
+            }
+        }
+        // Slip speeds, then κ(u)/u, over all strips of all contacts at once.
+        for c in 0..n {
+            let o = c * PAIRS;
+            for i in o..o + half {
+                let v = self.u1[i] * self.u1[i];
+                self.kp[i] = (v + self.u2p[i] * self.u2p[i]).sqrt();
+                self.km[i] = (v + self.u2m[i] * self.u2m[i]).sqrt();
+            }
+        }
+        for c in 0..n {
+            let o = c * PAIRS;
+            for i in o..o + half {
+                self.kp[i] = curve.kappa_over_u(self.kp[i]);
+            }
+            for i in o..o + np {
+                self.km[i] = curve.kappa_over_u(self.km[i]);
+            }
+        }
+        // Sums, per contact in strip order (the last pass of strip_sums).
+        for c in 0..n {
+            let (q, a) = (self.sf[c].q, self.sf[c].a);
+            let o = c * PAIRS;
+            let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            for p in 0..np {
+                let i = o + p;
+                let qw = -q * strips.w[p];
+                let (gp, gm) = (qw * self.kp[i], qw * self.km[i]);
+                let g1 = (gp + gm) * self.u1[i];
+                let (g2p, g2m) = (gp * self.u2p[i], gm * self.u2m[i]);
+                f1 += g1;
+                f2 += g2p + g2m;
+                mxi2 += a * strips.s[p] * (g2p - g2m);
+                mze1 += self.zeta[i] * g1;
+                mze2 += self.zeta[i] * (g2p + g2m);
+            }
+            if nst % 2 == 1 {
+                let i = o + np;
+                let g = -q * strips.w[np] * self.kp[i];
+                let (g1, g2) = (g * self.u1[i], g * self.u2p[i]);
+                f1 += g1;
+                f2 += g2;
+                mze1 += self.zeta[i] * g1;
+                mze2 += self.zeta[i] * g2;
+            }
+            each(self.slot[c], &self.frame[c], [f1, f2, mxi2, mze1, mze2]);
+        }
+    }
 }
 
 /// A 3×3 matrix, rows first.

@@ -16,6 +16,7 @@
 pub mod contact;
 pub mod init;
 pub mod layout;
+pub mod pass;
 pub mod switches;
 
 use self::contact::{cross, dot, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3};
@@ -96,6 +97,8 @@ pub struct FullModel {
     /// Coupling mode "motion": the ring translation is prescribed (zero translational
     /// acceleration); the tilt stays a free degree of freedom (or held by `lock_tilt`).
     prescribed: bool,
+    /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
+    pass: pass::ContactPass,
 }
 
 /// Per-race constants from the bearing (spec §2.1, §2.3, C7).
@@ -226,6 +229,7 @@ impl FullModel {
             ring_force: [0.0; 3],
             ring_moment: [0.0; 3],
             prescribed: false,
+            pass: pass::ContactPass::new(z),
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
         init::initial_state(&mut m, bearing, l1)?;
@@ -402,6 +406,44 @@ impl FullModel {
         (ci, co)
     }
 
+    /// [`Self::contacts_of`] without the traction, which [`pass::ContactPass`] adds in one
+    /// batch: the normal contacts and, with `slip`, the slip fields of the loaded ones.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn normal_contacts(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        inner: &RingPose,
+        outer: &RingPose,
+        slip: bool,
+    ) -> [pass::Normal; 2] {
+        [
+            contact::evaluate_normal(
+                kin,
+                inner,
+                &self.inner,
+                self.ball_radius,
+                self.c_br,
+                self.spall_view(y, j, Race::Inner, w),
+                self.sw.law(j, 0),
+                slip,
+            ),
+            contact::evaluate_normal(
+                kin,
+                outer,
+                &self.outer,
+                self.ball_radius,
+                self.c_br,
+                self.spall_view(y, j, Race::Outer, w),
+                self.sw.law(j, 1),
+                slip,
+            ),
+        ]
+    }
+
     /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
     fn theta_bd(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
         let (kin, _, _, _, w) = self.ball_kin(y, j);
@@ -529,10 +571,19 @@ impl Model for FullModel {
         let mut m_ring: V3 = [0.0; 3];
         let mut f_outer: V3 = [0.0; 3];
         let (m, jb) = (self.ball_mass, self.ball_inertia);
+        // Every ball's normal contacts first, then the strip traction of all loaded contacts
+        // in one batch, then the equations of motion.
+        let mut pass = std::mem::take(&mut self.pass);
+        pass.evaluate(
+            self.z,
+            self.traction.as_ref().map(|(c, s)| (c, s)),
+            |j| self.ball_kin(y, j),
+            |j, kin, w, slip| self.normal_contacts(y, j, kin, w, &inner, &outer, slip),
+        );
         for j in 0..self.z {
             let b = self.lay.ball(j);
-            let (kin, er, et, r, w) = self.ball_kin(y, j);
-            let (ci, co) = self.contacts_of(y, j, &kin, w, &inner, &outer);
+            let (kin, er, et, r, w) = pass.frames[j];
+            let (ci, co) = pass.contacts[j];
             self.sw.note_stage(t, j, &ci, &co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
@@ -559,6 +610,7 @@ impl Model for FullModel {
             m_ring = sub(sub(m_ring, cross(arm, f_t)), ci.m);
             f_outer = sub(f_outer, co.f);
         }
+        self.pass = pass;
         self.ring_force = f_ring;
         self.ring_moment = m_ring;
         let r = self.lay.ring();

@@ -1,0 +1,80 @@
+//! The contacts of one RHS evaluation of a per-ball model (full or reduced), in stages: every
+//! ball's kinematics and normal contacts ([`contact::evaluate_normal`]), then the strip
+//! traction of all loaded contacts in one [`TractionBatch`], which lets the independent
+//! contacts overlap. The models then read each ball's frame and finished contacts. The buffers
+//! are sized once per model; an evaluation never allocates.
+
+use super::contact::{self, BallKin, ContactOut, SlipField, Strips, TractionBatch, V3};
+use crate::contact::traction::TractionCurve;
+
+/// A ball's kinematics with its cylindrical triad (e_r, e_θ), radius and orbital rate, as the
+/// models' `ball_kin` return them.
+pub type BallFrame = (BallKin, V3, V3, f64, f64);
+
+/// One contact from [`contact::evaluate_normal`]: the contact and, where loaded and traction
+/// is wanted, its slip field and frame (n, c1, c2).
+pub type Normal = (ContactOut, Option<(SlipField, [V3; 3])>);
+
+/// Scratch of the staged contact evaluation (see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub struct ContactPass {
+    /// Each ball's frame.
+    pub frames: Vec<BallFrame>,
+    /// Each ball's (inner, outer) contact, traction included.
+    pub contacts: Vec<(ContactOut, ContactOut)>,
+    batch: TractionBatch,
+}
+
+impl ContactPass {
+    /// Scratch for `z` balls.
+    pub fn new(z: usize) -> Self {
+        let still = BallKin {
+            p: [0.0; 3],
+            v: [0.0; 3],
+            omega: [0.0; 3],
+        };
+        Self {
+            frames: vec![(still, [0.0; 3], [0.0; 3], 0.0, 0.0); z],
+            contacts: vec![Default::default(); z],
+            batch: TractionBatch::new(2 * z),
+        }
+    }
+
+    /// Evaluates the contacts of balls `0..z`: `frame(j)` gives ball j's frame and
+    /// `normals(j, kin, w, slip)` its (inner, outer) normal contacts, with the slip fields when
+    /// `slip` (traction on). The strip traction of every loaded contact follows in one batch.
+    pub fn evaluate(
+        &mut self,
+        z: usize,
+        traction: Option<(&TractionCurve, &Strips)>,
+        mut frame: impl FnMut(usize) -> BallFrame,
+        mut normals: impl FnMut(usize, &BallKin, f64, bool) -> [Normal; 2],
+    ) {
+        self.batch.clear();
+        let slip = traction.is_some();
+        for j in 0..z {
+            let f = frame(j);
+            let [(ci, li), (co, lo)] = normals(j, &f.0, f.4, slip);
+            if let Some((sf, fr)) = li {
+                self.batch.push(2 * j, sf, fr);
+            }
+            if let Some((sf, fr)) = lo {
+                self.batch.push(2 * j + 1, sf, fr);
+            }
+            self.frames[j] = f;
+            self.contacts[j] = (ci, co);
+        }
+        if let Some((curve, strips)) = traction {
+            let contacts = &mut self.contacts;
+            self.batch.run(curve, strips, |slot, fr, sums| {
+                let pair = &mut contacts[slot / 2];
+                let c = if slot % 2 == 0 {
+                    &mut pair.0
+                } else {
+                    &mut pair.1
+                };
+                contact::apply_traction(c, fr, sums);
+            });
+        }
+    }
+}
