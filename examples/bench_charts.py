@@ -232,6 +232,13 @@ def main():
     docs = d.parent
     rows = load(d / "bench.csv")
     thr = load(d / "throughput.csv") if (d / "throughput.csv").exists() else []
+    for r in thr:
+        # "all": every output; "bearing": the bearing-level outputs only (no per-ball block).
+        # Files written before the column existed measured every output.
+        r["outputs"] = r.get("outputs") or "all"
+    thr_all = [r for r in thr if r["outputs"] == "all"]
+    thr_bearing = {r["level"]: num(r["wall_per_simulated_s"]) for r in thr
+                   if r["outputs"] == "bearing"}
     chart(rows, "wall_s", "wall time [s] (median of 3)", docs / "bench_error_vs_wall.png",
           "Error against wall time")
     chart(rows, "rhs_evals", "RHS evaluations", docs / "bench_error_vs_rhs.png",
@@ -279,11 +286,17 @@ def main():
     if thr:
         w("## Wall seconds per simulated second (default scene)\n")
         w("`examples/scenes/default.toml` (outer spall, DOP853, rtol 1e-6), sampled at 51.2 kHz, "
-          "median of 3 runs, release, one thread.\n")
+          "median of 3 runs, release, one thread. Outputs \"all\": the sampler gets every "
+          "output (the 14 bearing-level ones and the 56 per-ball contact forces, orbital speeds "
+          "and separation flags); \"bearing\": the 14 bearing-level ones only, what a spectrum of "
+          "`pedestal.a.z` needs (`Simulation::set_ball_outputs(false)`, `raceway simulate "
+          "--columns` without a per-ball column): the models then skip the per-ball work at "
+          "every sample. The states, and so the bearing-level outputs, are bit for bit the same "
+          "(tests/ball_outputs.rs).\n")
         targets = {"kinematic": 0.005, "lumped": 0.02, "reduced": 1.0, "full": 5.0}
-        w("| level | rtol | simulated s | steps | RHS evals | wall s | wall s per simulated s | "
+        w("| level | outputs | rtol | simulated s | steps | RHS evals | wall s | wall s per simulated s | "
           "thread CPU s per simulated s | set-up s | advance wall s per simulated s | target | status |")
-        w("|---|---|---|---|---|---|---|---|---|---|---|---|")
+        w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in thr:
             t = targets.get(r["level"]) if (r["level"] != "lumped" or abs(r["rtol"] - 1e-6) < 1e-12) else targets.get("lumped")
             v = num(r["wall_per_simulated_s"])
@@ -298,7 +311,7 @@ def main():
                 verdict = " (met by the advance; missed with the set-up)"
             else:
                 verdict = " (missed)"
-            w(f"| {r['level']} | {fmt(r['rtol'], '.0e')} | {r['simulated_s']} | {fmt(r['steps'], '.0f')} | "
+            w(f"| {r['level']} | {r['outputs']} | {fmt(r['rtol'], '.0e')} | {r['simulated_s']} | {fmt(r['steps'], '.0f')} | "
               f"{fmt(r['rhs_evals'], '.0f')} | {fmt(num(r['wall_s']), '.4f')} | {fmt(v, '.4f')} | "
               f"{fmt(c, '.4f')} | {fmt(su, '.4f')} | {fmt(adv, '.4f')} | "
               f"{('≤ ' + str(t) + verdict) if t else '–'} | {r['status']} |")
@@ -309,7 +322,7 @@ def main():
           "(`Simulation::new` plus the advance); \"set-up s\" is `Simulation::new` alone (the L1 "
           "solve and, with a spall, its 2001-node drop table: a fixed cost per run) and \"advance\" "
           "the rest per simulated second, the cost of every further simulated second.\n")
-        lum = next((r for r in thr if r["level"] == "lumped" and r["status"] == "ok"
+        lum = next((r for r in thr_all if r["level"] == "lumped" and r["status"] == "ok"
                     and abs(r["rtol"] - 1e-6) < 1e-12), None)
         if lum and num(lum["rhs_evals"]) > 0:
             per = num(lum["cpu_s"]) / num(lum["rhs_evals"]) if "cpu_s" in lum else math.nan
@@ -452,7 +465,8 @@ def main():
     lv_path = docs / "bench-levels" / "bench.csv"
     lv = load(lv_path) if lv_path.exists() else []
     lv_thr_path = docs / "bench-levels" / "throughput.csv"
-    lv_thr = load(lv_thr_path) if lv_thr_path.exists() else []
+    lv_thr = [r for r in (load(lv_thr_path) if lv_thr_path.exists() else [])
+              if (r.get("outputs") or "all") == "all"]
     full_rows = [r for r in lv if r["level"] == "full"]
     vs_full = [r for r in rows if r["status"] == "vs_full"]
     bin_hz = None
@@ -513,7 +527,7 @@ def main():
     # Which level and method for which question.
     w("## Which level and method for which question\n")
     cmp = {(r["scene"], r["level"]): r for r in rows if r["status"].startswith("vs_")}
-    thr_of = {r["level"]: num(r["wall_per_simulated_s"]) for r in thr
+    thr_of = {r["level"]: num(r["wall_per_simulated_s"]) for r in thr_all
               if r["level"] != "lumped" or abs(r["rtol"] - 1e-6) < 1e-12}
     lvl_default = default.get("lumped", "dop853")
 
@@ -535,12 +549,13 @@ def main():
           f"{fmt(k2['E2'], '.0%')} (S2) and {fmt(k3['E2'], '.0%') if k3 else '–'} (S3), "
           f"E1 {fmt(k2['E1'], '.2f')} / {fmt(k3['E1'], '.2f') if k3 else '–'} | "
           f"{fmt(thr_of.get('kinematic'), '.4f')} wall s per "
-          f"simulated s |")
+          f"simulated s ({fmt(thr_bearing.get('kinematic'), '.4f')} with the bearing-level "
+          f"outputs only) |")
     loose = next((r for r in sweep_rows(rows, "S2", "lumped", lvl_default)
                   if not failed(r) and abs(r["rtol"] - 1e-3) < 1e-12), None)
     loose3 = next((r for r in sweep_rows(rows, "S3", "lumped", lvl_default)
                    if not failed(r) and abs(r["rtol"] - 1e-3) < 1e-12), None)
-    thr_loose = next((num(r["wall_per_simulated_s"]) for r in thr
+    thr_loose = next((num(r["wall_per_simulated_s"]) for r in thr_all
                       if r["level"] == "lumped" and abs(r["rtol"] - 1e-3) < 1e-12), None)
     if loose:
         w(f"| fault frequencies with the ring and pedestal dynamics (load-zone modulation, "
@@ -685,7 +700,8 @@ def main():
                        f"**not met** by a 1-s run with its {fmt(num(r.get('setup_s')) * 1e3, '.1f')} ms set-up")
         else:
             verdict = "**not met**"
-        w(f"| {r['level']} ≤ {t} wall s per simulated s (default scene, rtol {fmt(r['rtol'], '.0e')}) | "
+        w(f"| {r['level']} ≤ {t} wall s per simulated s (default scene, rtol {fmt(r['rtol'], '.0e')}, "
+          f"{'every output' if r['outputs'] == 'all' else 'bearing-level outputs'}) | "
           f"{fmt(v, '.4f')} ({fmt(num(r.get('cpu_per_simulated_s')), '.4f')} CPU) | {verdict} |")
     if full_rows or lv_thr:
         for r in lv_thr:

@@ -168,6 +168,17 @@ pub mod out {
     /// First of the z inner contact forces, then z outer ones; then the z ball orbital speeds
     /// ([`orbit_speed`]) and the z separation flags ([`separated`]).
     pub const CONTACT_START: usize = 14;
+    /// Number of bearing-level outputs (pedestal, ring, bearing force, torque, cage speed): an
+    /// output vector of this length has no per-ball block
+    /// ([`super::Simulation::set_ball_outputs`]).
+    pub const BEARING_OUTPUTS: usize = CONTACT_START;
+
+    /// True when `o` has room for the per-ball block of a bearing with `z` balls (models fill
+    /// it only then).
+    #[inline]
+    pub fn has_ball_block(o: &[f64], z: usize) -> bool {
+        o.len() >= separated(z, z)
+    }
 
     /// Index of ball j's orbital speed θ̇ (j from 0) in a bearing with `z` balls.
     #[inline]
@@ -307,6 +318,9 @@ pub struct Simulation {
     /// One interpolated state and one output vector (no allocation per advance).
     y_scratch: Vec<f64>,
     out_scratch: Vec<f64>,
+    /// Length of the output vector the samplers see: the whole table, or
+    /// [`out::BEARING_OUTPUTS`] without the per-ball block ([`Simulation::set_ball_outputs`]).
+    sampled_outputs: usize,
     /// Motion coupling: the journal, when it was set, and the loads of the start (the loads
     /// the model keeps: `load.F*` act only at initialization in this mode).
     journal: Journal,
@@ -412,6 +426,7 @@ impl Simulation {
             sample_times: Vec::new(),
             y_scratch: vec![0.0; n],
             out_scratch: vec![0.0; n_out],
+            sampled_outputs: n_out,
             journal: Journal::default(),
             journal_t: 0.0,
             start_loads: [inputs.fx, inputs.fy, inputs.fz],
@@ -705,8 +720,29 @@ impl Simulation {
         self.advance_impl(t_end, None)
     }
 
+    /// Whether the samplers ([`Simulation::advance_sampled`] and
+    /// [`Simulation::advance_sampled_with_model`]) get the per-ball outputs (contact forces,
+    /// orbital speeds, separation flags; on by default). Off, they get the first
+    /// [`out::BEARING_OUTPUTS`] outputs only (pedestal, ring, bearing force, friction torque,
+    /// cage speed), and the models skip the per-ball work at every sample: for callers that
+    /// want a signal such as `pedestal.a.z` (spectra, sweeps). The states, and so every output,
+    /// are the same either way.
+    pub fn set_ball_outputs(&mut self, on: bool) {
+        self.sampled_outputs = if on {
+            self.out_scratch.len()
+        } else {
+            out::BEARING_OUTPUTS.min(self.out_scratch.len())
+        };
+    }
+
+    /// True when the samplers get the per-ball outputs ([`Simulation::set_ball_outputs`]).
+    pub fn ball_outputs(&self) -> bool {
+        self.sampled_outputs == self.out_scratch.len()
+    }
+
     /// Advances to `t_end` and calls `sample(t, outputs)` at every multiple of `dt` in
-    /// (current time, t_end], from the integrator's dense output (no extra steps).
+    /// (current time, t_end], from the integrator's dense output (no extra steps). `outputs`
+    /// is the whole output vector, or its bearing-level part ([`Simulation::set_ball_outputs`]).
     pub fn advance_sampled(
         &mut self,
         t_end: f64,
@@ -815,18 +851,13 @@ impl Simulation {
             if let Some((_, cb)) = sampling.as_mut() {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
-                    self.model.outputs(ts, y, &mut self.out_scratch);
+                    let o = &mut self.out_scratch[..self.sampled_outputs];
+                    self.model.outputs(ts, y, o);
                     if let Some(qs) = self.qs_motion.as_mut() {
                         let x = self.journal.at(ts - self.journal_t);
-                        qs_motion_outputs(
-                            qs,
-                            &self.bearing,
-                            self.inputs.shaft_speed,
-                            x,
-                            &mut self.out_scratch,
-                        )?;
+                        qs_motion_outputs(qs, &self.bearing, self.inputs.shaft_speed, x, o)?;
                     }
-                    cb(ts, &self.out_scratch, self.model.as_ref());
+                    cb(ts, o, self.model.as_ref());
                 }
             }
             let event = match result {

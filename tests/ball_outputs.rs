@@ -202,3 +202,74 @@ fn traction_cage_speed_is_where_the_full_model_settles() {
     );
     assert!((70.42 / settled - 1.0).abs() > 5e-3);
 }
+
+/// The default scene's outer spall on a scene of `level`.
+fn spalled(level: Fidelity) -> Scene {
+    let mut s = scene(level, 9900.0, 4000.0, 1000.0);
+    let mut d = Scene::default_scene()
+        .defect
+        .expect("the default scene has a spall");
+    d.ring = Race::Outer;
+    s.defect = Some(d);
+    s
+}
+
+#[test]
+fn bearing_outputs_alone_are_the_same_numbers_without_the_per_ball_block() {
+    // Simulation::set_ball_outputs(false) (`raceway simulate --columns` without a per-ball
+    // column) hands the samplers the bearing-level outputs only and the models skip the
+    // per-ball work: every bearing-level output must keep its bits, at every level, across a
+    // spall pass (the lumped level takes its bearing force from the RHS then).
+    for (level, t_end) in [
+        (Fidelity::Kinematic, 0.02),
+        (Fidelity::QuasiStatic, 0.005),
+        (Fidelity::Lumped, 0.02),
+        (Fidelity::Reduced, 0.003),
+        (Fidelity::Full, 0.003),
+    ] {
+        let sc = spalled(level);
+        let all = run(&sc, t_end, 1.0 / 51200.0);
+        let mut sim = Simulation::new(&sc).unwrap();
+        assert!(sim.ball_outputs(), "{level:?}: on by default");
+        sim.set_ball_outputs(false);
+        assert!(!sim.ball_outputs());
+        let mut bearing = Vec::new();
+        sim.advance_sampled(t_end, 1.0 / 51200.0, &mut |t, o| {
+            bearing.push((t, o.to_vec()))
+        })
+        .unwrap();
+        assert_eq!(bearing.len(), all.len(), "{level:?}: samples");
+        assert!(all.len() > 100, "{level:?}: {} samples", all.len());
+        for ((ta, a), (tb, b)) in all.iter().zip(&bearing) {
+            assert_eq!(a.len(), output_table(Z).len(), "{level:?}");
+            assert_eq!(
+                b.len(),
+                out::BEARING_OUTPUTS,
+                "{level:?}: no per-ball block"
+            );
+            assert_eq!(ta.to_bits(), tb.to_bits());
+            for i in 0..out::BEARING_OUTPUTS {
+                assert_eq!(
+                    a[i].to_bits(),
+                    b[i].to_bits(),
+                    "{level:?} at t = {ta}: output {} {} vs {}",
+                    output_table(Z)[i].name,
+                    a[i],
+                    b[i]
+                );
+            }
+        }
+        // The acceleration moves (the spall is felt), so the comparison is not of constants.
+        let az: Vec<f64> = bearing.iter().map(|(_, o)| o[out::PEDESTAL_A_Z]).collect();
+        let spread = az.iter().cloned().fold(f64::MIN, f64::max)
+            - az.iter().cloned().fold(f64::MAX, f64::min);
+        if level != Fidelity::QuasiStatic {
+            assert!(spread > 0.1, "{level:?}: pedestal.a.z spread {spread} m/s²");
+        }
+        sim.set_ball_outputs(true);
+        let mut len = 0;
+        sim.advance_sampled(t_end + 1e-4, 1.0 / 51200.0, &mut |_, o| len = o.len())
+            .unwrap();
+        assert_eq!(len, output_table(Z).len(), "{level:?}: back on");
+    }
+}

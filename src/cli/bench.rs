@@ -680,7 +680,9 @@ fn run_all(args: &Args) -> Result<(), String> {
 
 /// Wall seconds per simulated second of the default scene (examples/scenes/default.toml) at each
 /// available level, DOP853 at the scene's rtol, sampled at 51.2 kHz, median of the repeats
-/// (reduced and full: at most 50 ms, one run).
+/// (reduced and full: at most 50 ms, one run). Each point twice, side by side: with every output
+/// (`all`) and with the bearing-level outputs only (`bearing`, what a spectrum of
+/// `pedestal.a.z` needs: [`Simulation::set_ball_outputs`]`(false)`).
 fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
     let path = args.out.join("throughput.csv");
     let mut w = std::io::BufWriter::new(
@@ -688,20 +690,21 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
     );
     writeln!(
         w,
-        "scene,level,method,rtol,simulated_s,steps,rhs_evals,wall_s,wall_per_simulated_s,cpu_s,cpu_per_simulated_s,status,setup_s,advance_per_simulated_s"
+        "scene,level,method,rtol,simulated_s,steps,rhs_evals,wall_s,wall_per_simulated_s,cpu_s,cpu_per_simulated_s,status,setup_s,advance_per_simulated_s,outputs"
     )
     .map_err(|e| e.to_string())?;
     // The lumped level also at the loose tolerances that keep the fault lines in their bins
     // (E2_df = 0 at rtol 1e-3 in the sweep): the cost of the "fault frequencies only" question.
-    let mut points: Vec<(Fidelity, Option<f64>)> = Vec::new();
+    let mut points: Vec<(Fidelity, Option<f64>, bool)> = Vec::new();
     for &level in levels {
-        points.push((level, None));
+        points.push((level, None, true));
+        points.push((level, None, false));
         if level == Fidelity::Lumped {
-            points.push((level, Some(1e-3)));
-            points.push((level, Some(1e-4)));
+            points.push((level, Some(1e-3), true));
+            points.push((level, Some(1e-4), true));
         }
     }
-    for (level, rtol) in points {
+    for (level, rtol, ball_outputs) in points {
         // The expensive levels (reduced, full) are timed over at most 50 ms, once.
         let expensive = matches!(level, Fidelity::Reduced | Fidelity::Full);
         let d = if expensive {
@@ -732,6 +735,7 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
             let mut setup = f64::NAN;
             let result = Simulation::new(&scene).and_then(|mut sim| {
                 setup = start.elapsed().as_secs_f64();
+                sim.set_ball_outputs(ball_outputs);
                 let mut acc = 0.0;
                 sim.advance_sampled(d, 1.0 / FS, &mut |_, o| acc += o[out::PEDESTAL_A_Z])?;
                 std::hint::black_box(acc);
@@ -762,9 +766,10 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
         let (steps, evals) = stats.map_or((String::new(), String::new()), |s| {
             (s.steps.to_string(), s.rhs_evals.to_string())
         });
+        let outputs = if ball_outputs { "all" } else { "bearing" };
         eprintln!(
-            "default scene, {}: {} wall s ({} CPU s) per simulated s, of which set-up {} s and \
-             advance {} s per simulated s ({status})",
+            "default scene, {} ({outputs} outputs): {} wall s ({} CPU s) per simulated s, of \
+             which set-up {} s and advance {} s per simulated s ({status})",
             level.name(),
             fmt(wall / d),
             fmt(cpu / d),
@@ -773,7 +778,7 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
         );
         writeln!(
             w,
-            "default,{},{},{:e},{d},{steps},{evals},{},{},{},{},{status},{},{}",
+            "default,{},{},{:e},{d},{steps},{evals},{},{},{},{},{status},{},{},{outputs}",
             level.name(),
             scene.solver.method.name(),
             scene.solver.rtol,

@@ -2,7 +2,7 @@
 
 use raceway::kinematics;
 use raceway::scene::{Fidelity, MethodName, Scene};
-use raceway::simulation::Simulation;
+use raceway::simulation::{out, Simulation};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -30,9 +30,40 @@ pub struct Args {
     /// written beside it
     #[arg(long)]
     pub out: PathBuf,
+    /// Comma-separated output columns to write after `time` (default: all), e.g.
+    /// `pedestal.a.z,bearing.F.z`. Without a per-ball column the models skip the per-ball work
+    /// at every sample.
+    #[arg(long, value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
     /// No progress bar and no statistics
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// Indices of the requested columns in the output table `names` (all when `None`), in the order
+/// asked; an unknown or repeated name is an error that names it.
+fn select_columns(names: &[String], wanted: Option<&[String]>) -> Result<Vec<usize>, String> {
+    let Some(wanted) = wanted else {
+        return Ok((0..names.len()).collect());
+    };
+    let mut picked = Vec::with_capacity(wanted.len());
+    for w in wanted {
+        let w = w.trim();
+        let i = names.iter().position(|n| n == w).ok_or_else(|| {
+            format!(
+                "--columns: unknown output '{w}'; the outputs are: {}",
+                names.join(", ")
+            )
+        })?;
+        if picked.contains(&i) {
+            return Err(format!("--columns: '{w}' is asked for twice"));
+        }
+        picked.push(i);
+    }
+    if picked.is_empty() {
+        return Err("--columns: no column given".into());
+    }
+    Ok(picked)
 }
 
 pub fn run(args: Args) -> Result<(), String> {
@@ -58,18 +89,22 @@ pub fn run(args: Args) -> Result<(), String> {
     scene.validate().map_err(|e| e.to_string())?;
 
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
-    let names: Vec<String> = sim.output_table().into_iter().map(|o| o.name).collect();
+    let all: Vec<String> = sim.output_table().into_iter().map(|o| o.name).collect();
+    let columns = select_columns(&all, args.columns.as_deref())?;
+    // Only bearing-level columns: the samplers get (and the models compute) no per-ball block.
+    sim.set_ball_outputs(columns.iter().any(|&i| i >= out::BEARING_OUTPUTS));
+    let names: Vec<&str> = columns.iter().map(|&i| all[i].as_str()).collect();
     let file = std::fs::File::create(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     let mut w = BufWriter::new(file);
     let io = |e: std::io::Error| format!("writing {}: {e}", args.out.display());
     writeln!(w, "time,{}", names.join(",")).map_err(io)?;
 
-    let mut row = vec![0.0; names.len()];
+    let mut row = vec![0.0; all.len()];
     sim.outputs(&mut row);
     // One row is formatted into this buffer, then written whole.
     let mut line = Vec::with_capacity(24 * (names.len() + 1));
-    write_row(&mut w, &mut line, 0.0, &row).map_err(io)?;
+    write_row(&mut w, &mut line, 0.0, &row, &columns).map_err(io)?;
 
     let duration = scene.output.duration;
     let dt = 1.0 / scene.output.sample_rate;
@@ -93,7 +128,7 @@ pub fn run(args: Args) -> Result<(), String> {
         let t_end = duration * c as f64 / chunks as f64;
         let result = sim.advance_sampled(t_end, dt, &mut |t, out| {
             if write_err.is_none() {
-                if let Err(e) = write_row(&mut w, &mut line, t, out) {
+                if let Err(e) = write_row(&mut w, &mut line, t, out, &columns) {
                     write_err = Some(e);
                 }
             }
@@ -180,15 +215,21 @@ pub fn run(args: Args) -> Result<(), String> {
     Ok(())
 }
 
-/// One CSV row: the time with 9 decimals, then every output with ten significant digits
-/// (`{:.9e}`, formatted by [`raceway::signal::push_sci10`]: the exact-precision path of
-/// `core::fmt` took longer than the lumped level's integration).
-fn write_row(w: &mut impl Write, line: &mut Vec<u8>, t: f64, row: &[f64]) -> std::io::Result<()> {
+/// One CSV row: the time with 9 decimals, then the outputs `columns` of `row` with ten
+/// significant digits (`{:.9e}`, formatted by [`raceway::signal::push_sci10`]: the
+/// exact-precision path of `core::fmt` took longer than the lumped level's integration).
+fn write_row(
+    w: &mut impl Write,
+    line: &mut Vec<u8>,
+    t: f64,
+    row: &[f64],
+    columns: &[usize],
+) -> std::io::Result<()> {
     line.clear();
     write!(line, "{t:.9}")?;
-    for &v in row {
+    for &i in columns {
         line.push(b',');
-        raceway::signal::push_sci10(line, v);
+        raceway::signal::push_sci10(line, row[i]);
     }
     line.push(b'\n');
     w.write_all(line)

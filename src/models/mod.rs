@@ -145,7 +145,10 @@ pub trait Model: Send {
     /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.
     fn event_fired(&mut self, _index: usize) {}
 
-    /// Fills the output vector (layout of [`crate::simulation::output_table`]).
+    /// Fills the output vector (layout of [`crate::simulation::output_table`]). `out` is either
+    /// the whole vector or its first [`crate::simulation::out::BEARING_OUTPUTS`] entries (the
+    /// bearing-level outputs, without the per-ball block): then the per-ball quantities are
+    /// not computed ([`crate::simulation::Simulation::set_ball_outputs`]).
     fn outputs(&mut self, t: f64, y: &[f64], out: &mut [f64]);
 
     /// Model quantities that are not states but must survive a save/restore.

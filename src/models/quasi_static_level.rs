@@ -148,7 +148,7 @@ pub(crate) fn static_outputs(
     o[out::FRICTION_TORQUE] = 0.0;
     o[out::CAGE_SPEED] = table.cage_speed;
     let z = bearing.z;
-    if table.q_inner.len() != z || z == 0 {
+    if table.q_inner.len() != z || z == 0 || !out::has_ball_block(o, z) {
         return;
     }
     // The balls are equally spaced like L1's: ball j sits j table entries after ball 0, with the

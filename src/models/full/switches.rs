@@ -424,6 +424,9 @@ macro_rules! ball_model_outputs {
             o[out::BEARING_F_Z] = self.ring_force[2];
             o[out::FRICTION_TORQUE] = self.friction_torque();
             o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
+            if !out::has_ball_block(o, self.z) {
+                return;
+            }
             for j in 0..self.z {
                 o[out::CONTACT_START + j] = self.q_inner[j];
                 o[out::CONTACT_START + self.z + j] = self.q_outer[j];
