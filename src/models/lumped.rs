@@ -50,6 +50,8 @@ struct Approach {
     /// Approach δ [m], groove-centre distance |a| [m], the rates of a along e_x and e_r [m/s]
     /// and the ball's orbital rate θ̇ [rad/s].
     delta: f64,
+    /// The unclamped contact force k·δ·|δ|^½ + c·δ̇ [N] ([`LumpedModel::unclamped_force`]).
+    q_raw: f64,
     delta_rate: f64,
     len: f64,
     dax: f64,
@@ -117,6 +119,9 @@ pub struct LumpedModel {
     /// Force of the bearing on the inner ring at the last RHS evaluation [N].
     ring_force: [f64; 3],
 }
+
+/// Balls per chunk of [`LumpedModel::approaches`].
+const CHUNK: usize = 8;
 
 /// Scale turning the unclamped contact force [N] into the length unit of the contact event
 /// function [m] (any positive constant gives the same roots; this one makes both branches of
@@ -296,14 +301,7 @@ impl LumpedModel {
     #[inline]
     fn contacts(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, f64, f64, f64, f64, f64)) {
         self.approaches(t, y, |j, a| {
-            each(
-                j,
-                self.normal_force(j, a.k, a.delta, a.delta_rate),
-                a.sa,
-                a.ca,
-                a.ery,
-                a.erz,
-            )
+            each(j, self.normal_force(j, a), a.sa, a.ca, a.ery, a.erz)
         });
     }
 
@@ -318,15 +316,15 @@ impl LumpedModel {
     /// law max(0, k δ^1.5 + c δ̇) for δ > 0; afterwards the frozen mode decides: in contact the
     /// unclamped force, out of contact 0. The switches are located as state events.
     #[inline(always)]
-    fn normal_force(&self, j: usize, k: f64, delta: f64, delta_rate: f64) -> f64 {
+    fn normal_force(&self, j: usize, a: &Approach) -> f64 {
         if !self.modes_set {
-            if delta > 0.0 {
-                self.unclamped_force(k, delta, delta_rate).max(0.0)
+            if a.delta > 0.0 {
+                a.q_raw.max(0.0)
             } else {
                 0.0
             }
         } else if self.in_contact[j] {
-            self.unclamped_force(k, delta, delta_rate)
+            a.q_raw
         } else {
             0.0
         }
@@ -336,11 +334,17 @@ impl LumpedModel {
     /// positive force (δ > 0 and k δ^1.5 + c δ̇ > 0); it is continuous, so loss (F reaching 0)
     /// and regain (δ reaching 0 with the damping jump c δ̇, or F rising through 0) are roots.
     #[inline(always)]
-    fn contact_event(&self, k: f64, delta: f64, delta_rate: f64) -> f64 {
-        delta.min(self.unclamped_force(k, delta, delta_rate) / EVENT_FORCE_SCALE)
+    fn contact_event(a: &Approach) -> f64 {
+        a.delta.min(a.q_raw / EVENT_FORCE_SCALE)
     }
 
-    /// Approach of every ball; calls `each(j, approach)`.
+    /// Approach of every ball; calls `each(j, approach)` in ball order.
+    ///
+    /// The balls go in chunks of [`CHUNK`]: first the approach of every ball of the chunk as if
+    /// none were in the spall, in straight-line loops over fixed-size arrays (the compiler packs
+    /// the square roots and divisions of neighbouring balls), then, ball by ball, the spall's
+    /// change for the balls inside it and the call. Per ball the operations are those of a
+    /// one-ball-at-a-time loop, in the same order.
     #[inline]
     fn approaches(&self, t: f64, y: &[f64], mut each: impl FnMut(usize, &Approach)) {
         let _ = t;
@@ -358,75 +362,97 @@ impl LumpedModel {
         // The axial part of the groove-centre distance is the same for every ball.
         let ax = self.bd * self.sin_a0 + dx;
         let ar0 = self.bd * self.cos_a0;
-        for j in 0..self.z {
-            // Equally spaced balls (no jitter): the angle itself is needed only inside the spall.
-            let (theta, theta_rate) = if equal_spacing {
-                (f64::NAN, cage_rate)
+        let (k0, c_b) = (self.k_series, self.c_b);
+        for base in (0..self.z).step_by(CHUNK) {
+            let m = CHUNK.min(self.z - base);
+            // Per ball of the chunk: (sin θ, cos θ), θ and θ̇ (θ only with jitter).
+            let mut sn = [0.0; CHUNK];
+            let mut cs = [1.0; CHUNK];
+            let mut theta = [f64::NAN; CHUNK];
+            let mut theta_rate = [cage_rate; CHUNK];
+            if equal_spacing {
+                for (i, (s, c)) in sn.iter_mut().zip(cs.iter_mut()).enumerate().take(m) {
+                    let (sj, cj) = self.ball_offsets[base + i];
+                    (*s, *c) = (s0 * cj + c0 * sj, c0 * cj - s0 * sj);
+                }
             } else {
-                self.ball_angle(j, y[CAGE], cage_rate)
-            };
-            let (s, c) = if equal_spacing {
-                let (sj, cj) = self.ball_offsets[j];
-                (s0 * cj + c0 * sj, c0 * cj - s0 * sj)
-            } else {
-                theta.sin_cos()
-            };
-            // e_r(θ) = (0, −sin θ, cos θ); de_r/dθ = e_θ = (0, −cos θ, −sin θ).
-            let (ery, erz) = (-s, c);
-            let ar = ar0 + dy * ery + dz * erz;
-            let dax = vx;
-            let dar = vy * ery + vz * erz + (dy * (-c) + dz * (-s)) * theta_rate;
-            let len = (ax * ax + ar * ar).sqrt();
-            let inv_len = 1.0 / len;
-            let mut delta = len - self.bd_touch;
-            let mut delta_rate = (ax * dax + ar * dar) * inv_len;
-            let mut k = self.k_series;
-            if let (Some(d), zone) = (&self.defect, self.zones[j]) {
-                if zone != Zone::Outside {
-                    let (theta, theta_rate) = if equal_spacing {
-                        self.ball_angle(j, y[CAGE], cage_rate)
-                    } else {
-                        (theta, theta_rate)
-                    };
-                    let (tbd, tbd_rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                    let mut y_b = d.along_track(tbd);
-                    let y_rate = d.along_track_rate(tbd, tbd_rate);
-                    // The frozen half decides the branch at the kink y_b = 0: the first half lies
-                    // behind the centre along the motion, the second ahead of it.
-                    let ahead = if tbd_rate >= 0.0 { 1.0 } else { -1.0 };
-                    let side = if zone == Zone::FirstHalf {
-                        -ahead
-                    } else {
-                        ahead
-                    };
-                    if y_b * side <= 0.0 {
-                        y_b = side * 1e-15;
-                    }
-                    if let Some(c) = d.contact_at(y_b) {
-                        delta -= c.g;
-                        delta_rate -= c.dg_dy * y_rate;
-                        // Series constant with the defective race's blended compliance.
-                        let c_sum = c.k_edge.powf(-2.0 / 3.0) + self.c_other;
-                        k = 1.0 / (c_sum * c_sum.sqrt());
-                    }
+                for i in 0..m {
+                    let (th, rate) = self.ball_angle(base + i, y[CAGE], cage_rate);
+                    (sn[i], cs[i]) = th.sin_cos();
+                    (theta[i], theta_rate[i]) = (th, rate);
                 }
             }
-            each(
-                j,
-                &Approach {
-                    sa: ax * inv_len,
-                    ca: ar * inv_len,
-                    ery,
-                    erz,
-                    k,
-                    delta,
-                    delta_rate,
-                    len,
-                    dax,
-                    dar,
-                    theta_rate,
-                },
-            );
+            // e_r(θ) = (0, −sin θ, cos θ); de_r/dθ = e_θ = (0, −cos θ, −sin θ).
+            let mut ar = [0.0; CHUNK];
+            let mut dar = [0.0; CHUNK];
+            let mut len = [0.0; CHUNK];
+            let mut inv_len = [0.0; CHUNK];
+            let mut delta = [0.0; CHUNK];
+            let mut delta_rate = [0.0; CHUNK];
+            let mut q_raw = [0.0; CHUNK];
+            for i in 0..CHUNK {
+                let (ery, erz) = (-sn[i], cs[i]);
+                ar[i] = ar0 + dy * ery + dz * erz;
+                dar[i] = vy * ery + vz * erz + (dy * (-cs[i]) + dz * (-sn[i])) * theta_rate[i];
+                len[i] = (ax * ax + ar[i] * ar[i]).sqrt();
+                inv_len[i] = 1.0 / len[i];
+                delta[i] = len[i] - self.bd_touch;
+                delta_rate[i] = (ax * vx + ar[i] * dar[i]) * inv_len[i];
+                q_raw[i] = k0 * delta[i] * delta[i].abs().sqrt() + c_b * delta_rate[i];
+            }
+            for i in 0..m {
+                let j = base + i;
+                let (mut delta, mut delta_rate, mut k, mut q_raw) =
+                    (delta[i], delta_rate[i], k0, q_raw[i]);
+                if let (Some(d), zone) = (&self.defect, self.zones[j]) {
+                    if zone != Zone::Outside {
+                        let (theta, theta_rate) = if equal_spacing {
+                            self.ball_angle(j, y[CAGE], cage_rate)
+                        } else {
+                            (theta[i], theta_rate[i])
+                        };
+                        let (tbd, tbd_rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
+                        let mut y_b = d.along_track(tbd);
+                        let y_rate = d.along_track_rate(tbd, tbd_rate);
+                        // The frozen half decides the branch at the kink y_b = 0: the first half
+                        // lies behind the centre along the motion, the second ahead of it.
+                        let ahead = if tbd_rate >= 0.0 { 1.0 } else { -1.0 };
+                        let side = if zone == Zone::FirstHalf {
+                            -ahead
+                        } else {
+                            ahead
+                        };
+                        if y_b * side <= 0.0 {
+                            y_b = side * 1e-15;
+                        }
+                        if let Some(c) = d.contact_at(y_b) {
+                            delta -= c.g;
+                            delta_rate -= c.dg_dy * y_rate;
+                            // Series constant with the defective race's blended compliance.
+                            let c_sum = c.k_edge.powf(-2.0 / 3.0) + self.c_other;
+                            k = 1.0 / (c_sum * c_sum.sqrt());
+                            q_raw = self.unclamped_force(k, delta, delta_rate);
+                        }
+                    }
+                }
+                each(
+                    j,
+                    &Approach {
+                        sa: ax * inv_len[i],
+                        ca: ar[i] * inv_len[i],
+                        ery: -sn[i],
+                        erz: cs[i],
+                        k,
+                        delta,
+                        q_raw,
+                        delta_rate,
+                        len: len[i],
+                        dax: vx,
+                        dar: dar[i],
+                        theta_rate: theta_rate[i],
+                    },
+                );
+            }
         }
     }
 
@@ -694,7 +720,7 @@ impl Model for LumpedModel {
             modes[j] = if was_set && self.fired[j] {
                 !modes[j]
             } else {
-                let g = self.contact_event(a.k, a.delta, a.delta_rate);
+                let g = Self::contact_event(a);
                 g > 0.0 || (g == 0.0 && a.delta_rate > 0.0)
             };
         });
@@ -715,7 +741,7 @@ impl Model for LumpedModel {
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         self.approaches(t, y, |j, a| {
-            g[j] = self.contact_event(a.k, a.delta, a.delta_rate);
+            g[j] = Self::contact_event(a);
         });
     }
 
@@ -813,7 +839,7 @@ impl Model for LumpedModel {
         let mut jac = super::ReactionJacobian::default();
         let c_b = self.c_b;
         self.approaches(t, y, |j, c| {
-            let q = self.normal_force(j, c.k, c.delta, c.delta_rate);
+            let q = self.normal_force(j, c);
             if q <= 0.0 || c.delta <= 0.0 {
                 return;
             }
