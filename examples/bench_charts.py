@@ -341,6 +341,10 @@ def main():
               f"--release --example lumped_controller` and at every level by `cargo run --release "
               f"--example controller_study` (docs/step-control.md): at the lumped level it does "
               f"not pay.\n")
+        w("Where the time of each dynamic level goes, the least a run of its step count can cost "
+          "with its right-hand side (the accepted steps' stages alone) and what each target would "
+          "ask of the RHS: `docs/speed-floor.md` (`cargo run --release --example speed_floor -- "
+          "--out docs/speed-floor.md`).\n")
 
     # References.
     w("## References and their cross-check\n")
