@@ -569,30 +569,7 @@ impl Model for ReducedModel {
             self.z,
             strip_traction,
             |j| self.ball_kin(y, j),
-            |j, kin, w, slip| {
-                [
-                    contact::evaluate_normal(
-                        kin,
-                        &inner,
-                        &self.inner,
-                        self.ball_radius,
-                        self.c_br,
-                        self.spall_view(y, j, Race::Inner, w),
-                        self.sw.law(j, 0),
-                        slip,
-                    ),
-                    contact::evaluate_normal(
-                        kin,
-                        &outer,
-                        &self.outer,
-                        self.ball_radius,
-                        self.c_br,
-                        self.spall_view(y, j, Race::Outer, w),
-                        self.sw.law(j, 1),
-                        slip,
-                    ),
-                ]
-            },
+            |j, kin, w, slip| self.normal_contacts(y, j, kin, w, &inner, &outer, slip),
         );
         for j in 0..self.z {
             let b = self.lay.ball(j);

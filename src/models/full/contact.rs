@@ -535,17 +535,6 @@ fn slip_field(
 /// the ball in (c1, c2) components and the three moment sums.
 #[inline(always)]
 pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f64; 5] {
-    let SlipField {
-        q,
-        a,
-        rs,
-        z0,
-        a1,
-        a2,
-        b1,
-        b2,
-        s,
-    } = *sf;
     // The strips are symmetric (s_{n−1−k} = −s_k, w_{n−1−k} = w_k), so a mirrored pair shares
     // ζ, the transverse slip u1 = a1 + ζ b1 and u2 up to the sign of ξ s: pair p holds strip p
     // (ξ_p = a s_p) and strip n−1−p (−ξ_p); an odd n has its middle strip at ξ = 0. The slips,
@@ -554,7 +543,6 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
     const HALF: usize = MAX_STRIPS / 2;
     let nst = strips.n;
     let np = nst / 2;
-    let rs2 = rs * rs;
     let mut zeta = [0.0; HALF + 1];
     let mut u1 = [0.0; HALF + 1];
     let mut u2p = [0.0; HALF + 1];
@@ -562,15 +550,10 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
     let mut kp = [0.0; HALF + 1];
     let mut km = [0.0; HALF];
     for p in 0..nst.div_ceil(2) {
-        let xi = a * strips.s[p];
-        let z = (rs2 - xi * xi).sqrt() + z0;
-        let t = xi * s;
-        let zb2 = z * b2;
-        zeta[p] = z;
-        u1[p] = a1 + z * b1;
-        u2p[p] = (a2 + t) - zb2;
+        let (z, v1, vp, vm) = pair_slip(sf, strips, p);
+        (zeta[p], u1[p], u2p[p]) = (z, v1, vp);
         if p < np {
-            u2m[p] = (a2 - t) - zb2;
+            u2m[p] = vm;
         }
     }
     for p in 0..nst.div_ceil(2) {
@@ -586,6 +569,37 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
     for k in km.iter_mut().take(np) {
         *k = curve.kappa_over_u(*k);
     }
+    sum_strips(sf.q, sf.a, strips, &zeta, &u1, &u2p, &u2m, &kp, &km)
+}
+
+/// Slips of strip pair p of a contact: ζ, the transverse slip u1 and the rolling slips u2 at
+/// +ξ_p and at −ξ_p (the first pass of [`strip_sums`]).
+#[inline(always)]
+fn pair_slip(sf: &SlipField, strips: &Strips, p: usize) -> (f64, f64, f64, f64) {
+    let xi = sf.a * strips.s[p];
+    let z = (sf.rs * sf.rs - xi * xi).sqrt() + sf.z0;
+    let t = xi * sf.s;
+    let zb2 = z * sf.b2;
+    (z, sf.a1 + z * sf.b1, (sf.a2 + t) - zb2, (sf.a2 - t) - zb2)
+}
+
+/// The last pass of [`strip_sums`]: the traction sums of one contact from the slips of its
+/// strip pairs (pair p: ζ, u1, u2 at +ξ_p and −ξ_p, κ(u)/u at both) and, for an odd rule, the
+/// middle strip at index n/2 (ξ = 0: no spin moment).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn sum_strips(
+    q: f64,
+    a: f64,
+    strips: &Strips,
+    zeta: &[f64],
+    u1: &[f64],
+    u2p: &[f64],
+    u2m: &[f64],
+    kp: &[f64],
+    km: &[f64],
+) -> [f64; 5] {
+    let np = strips.n / 2;
     let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for p in 0..np {
         let qw = -q * strips.w[p];
@@ -598,8 +612,7 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
         mze1 += zeta[p] * g1;
         mze2 += zeta[p] * (g2p + g2m);
     }
-    if nst % 2 == 1 {
-        // The middle strip (ξ = 0: no spin moment).
+    if strips.n % 2 == 1 {
         let g = -q * strips.w[np] * kp[np];
         let (g1, g2) = (g * u1[np], g * u2p[np]);
         f1 += g1;
@@ -693,28 +706,11 @@ impl TractionBatch {
         let half = nst.div_ceil(2);
         // Slips of every strip (the first pass of strip_sums).
         for c in 0..n {
-            let SlipField {
-                a,
-                rs,
-                z0,
-                a1,
-                a2,
-                b1,
-                b2,
-                s,
-                ..
-            } = self.sf[c];
-            let rs2 = rs * rs;
             let o = c * PAIRS;
             for p in 0..half {
-                let xi = a * strips.s[p];
-                let z = (rs2 - xi * xi).sqrt() + z0;
-                let t = xi * s;
-                let zb2 = z * b2;
-                self.zeta[o + p] = z;
-                self.u1[o + p] = a1 + z * b1;
-                self.u2p[o + p] = (a2 + t) - zb2;
-                self.u2m[o + p] = (a2 - t) - zb2;
+                let i = o + p;
+                (self.zeta[i], self.u1[i], self.u2p[i], self.u2m[i]) =
+                    pair_slip(&self.sf[c], strips, p);
             }
         }
         // Slip speeds, then κ(u)/u, over all strips of all contacts at once.
@@ -737,31 +733,19 @@ impl TractionBatch {
         }
         // Sums, per contact in strip order (the last pass of strip_sums).
         for c in 0..n {
-            let (q, a) = (self.sf[c].q, self.sf[c].a);
-            let o = c * PAIRS;
-            let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for p in 0..np {
-                let i = o + p;
-                let qw = -q * strips.w[p];
-                let (gp, gm) = (qw * self.kp[i], qw * self.km[i]);
-                let g1 = (gp + gm) * self.u1[i];
-                let (g2p, g2m) = (gp * self.u2p[i], gm * self.u2m[i]);
-                f1 += g1;
-                f2 += g2p + g2m;
-                mxi2 += a * strips.s[p] * (g2p - g2m);
-                mze1 += self.zeta[i] * g1;
-                mze2 += self.zeta[i] * (g2p + g2m);
-            }
-            if nst % 2 == 1 {
-                let i = o + np;
-                let g = -q * strips.w[np] * self.kp[i];
-                let (g1, g2) = (g * self.u1[i], g * self.u2p[i]);
-                f1 += g1;
-                f2 += g2;
-                mze1 += self.zeta[i] * g1;
-                mze2 += self.zeta[i] * g2;
-            }
-            each(self.slot[c], &self.frame[c], [f1, f2, mxi2, mze1, mze2]);
+            let r = c * PAIRS..(c + 1) * PAIRS;
+            let sums = sum_strips(
+                self.sf[c].q,
+                self.sf[c].a,
+                strips,
+                &self.zeta[r.clone()],
+                &self.u1[r.clone()],
+                &self.u2p[r.clone()],
+                &self.u2m[r.clone()],
+                &self.kp[r.clone()],
+                &self.km[r],
+            );
+            each(self.slot[c], &self.frame[c], sums);
         }
     }
 }

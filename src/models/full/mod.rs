@@ -371,8 +371,8 @@ impl FullModel {
         (kin, er, et, r, w)
     }
 
-    /// Both contacts of ball j.
-    #[inline(always)]
+    /// Both contacts of ball j, traction included (one ball at a time, as
+    /// [`contact::evaluate_law`] does it).
     fn contacts_of(
         &self,
         y: &[f64],
@@ -382,66 +382,17 @@ impl FullModel {
         inner: &RingPose,
         outer: &RingPose,
     ) -> (ContactOut, ContactOut) {
-        let tr = self.traction.as_ref().map(|(c, s)| (c, s));
-        let ci = contact::evaluate_law(
-            kin,
-            inner,
-            &self.inner,
-            self.ball_radius,
-            self.c_br,
-            tr,
-            self.spall_view(y, j, Race::Inner, w),
-            self.sw.law(j, 0),
-        );
-        let co = contact::evaluate_law(
-            kin,
-            outer,
-            &self.outer,
-            self.ball_radius,
-            self.c_br,
-            tr,
-            self.spall_view(y, j, Race::Outer, w),
-            self.sw.law(j, 1),
-        );
+        let tr = self.traction.as_ref();
+        let [(mut ci, li), (mut co, lo)] =
+            self.normal_contacts(y, j, kin, w, inner, outer, tr.is_some());
+        if let Some((curve, strips)) = tr {
+            for (c, loaded) in [(&mut ci, li), (&mut co, lo)] {
+                if let Some((sf, frame)) = loaded {
+                    contact::apply_traction(c, &frame, contact::strip_sums(curve, strips, &sf));
+                }
+            }
+        }
         (ci, co)
-    }
-
-    /// [`Self::contacts_of`] without the traction, which [`pass::ContactPass`] adds in one
-    /// batch: the normal contacts and, with `slip`, the slip fields of the loaded ones.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn normal_contacts(
-        &self,
-        y: &[f64],
-        j: usize,
-        kin: &BallKin,
-        w: f64,
-        inner: &RingPose,
-        outer: &RingPose,
-        slip: bool,
-    ) -> [pass::Normal; 2] {
-        [
-            contact::evaluate_normal(
-                kin,
-                inner,
-                &self.inner,
-                self.ball_radius,
-                self.c_br,
-                self.spall_view(y, j, Race::Inner, w),
-                self.sw.law(j, 0),
-                slip,
-            ),
-            contact::evaluate_normal(
-                kin,
-                outer,
-                &self.outer,
-                self.ball_radius,
-                self.c_br,
-                self.spall_view(y, j, Race::Outer, w),
-                self.sw.law(j, 1),
-                slip,
-            ),
-        ]
     }
 
     /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).

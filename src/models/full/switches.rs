@@ -478,6 +478,47 @@ pub trait SwitchedModel {
     /// Ball-to-spall angle θ_bd of ball j and its rate.
     fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64);
 
+    /// Both normal contacts of ball j (inner, outer) under the frozen laws, with the slip fields
+    /// of the loaded ones when `slip` (traction on): the first stage of a
+    /// [`super::pass::ContactPass`], or of [`contact::evaluate_law`] one ball at a time.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn normal_contacts(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        inner: &RingPose,
+        outer: &RingPose,
+        slip: bool,
+    ) -> [super::pass::Normal; 2] {
+        let (race_in, race_out, radius, c_br) = self.contact_constants();
+        let sw = self.switches();
+        [
+            contact::evaluate_normal(
+                kin,
+                inner,
+                race_in,
+                radius,
+                c_br,
+                self.spall_view(y, j, Race::Inner, w),
+                sw.law(j, 0),
+                slip,
+            ),
+            contact::evaluate_normal(
+                kin,
+                outer,
+                race_out,
+                radius,
+                c_br,
+                self.spall_view(y, j, Race::Outer, w),
+                sw.law(j, 1),
+                slip,
+            ),
+        ]
+    }
+
     /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
     /// force K δ′|δ′|^{1/2} + c δ̇′ under the frozen spall half and blend side. Positive exactly
     /// where the clamped law has a positive force; continuous, so the loss of a contact (Q
