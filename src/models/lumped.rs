@@ -118,6 +118,8 @@ pub struct LumpedModel {
     prescribed: bool,
     /// Force of the bearing on the inner ring at the last RHS evaluation [N].
     ring_force: [f64; 3],
+    /// Each ball's normal force at the last RHS evaluation [N] (for the outputs).
+    q_ball: Vec<f64>,
 }
 
 /// Balls per chunk of [`LumpedModel::approaches`].
@@ -181,6 +183,7 @@ impl LumpedModel {
             fired: vec![false; bearing.z],
             prescribed: false,
             ring_force: [0.0; 3],
+            q_ball: vec![0.0; bearing.z],
         };
         m.theta_start = m.choose_theta_start();
         m.solve_l1(bearing, inputs)?;
@@ -633,11 +636,14 @@ impl Model for LumpedModel {
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let mut f_ring = [0.0; 3];
-        self.contacts(t, y, |_, q, sa, ca, ery, erz| {
+        let mut q_ball = std::mem::take(&mut self.q_ball);
+        self.contacts(t, y, |j, q, sa, ca, ery, erz| {
             f_ring[0] -= q * sa;
             f_ring[1] -= q * ca * ery;
             f_ring[2] -= q * ca * erz;
+            q_ball[j] = q;
         });
+        self.q_ball = q_ball;
         self.ring_force = f_ring;
         let pulse = self.pulse.as_ref().map_or(0.0, |p| p.force(t));
         dydt[X] = y[VX];
@@ -750,16 +756,16 @@ impl Model for LumpedModel {
         let mut dydt = [0.0; 14];
         let n = self.dim();
         self.rhs(t, y, &mut dydt[..n]);
-        // The bearing force of this RHS evaluation; the per-ball block only when asked for.
+        // The bearing force and the ball forces of this RHS evaluation.
         let f_ring = self.ring_force;
         let balls = out::has_ball_block(o, z);
         if balls {
-            self.contacts(t, y, |j, q, _, _, _, _| {
+            for (j, &q) in self.q_ball.iter().enumerate() {
                 // Inside a step the frozen contact law may give a round-off-small negative
                 // force just before a located loss of contact: report it as 0.
                 o[out::CONTACT_START + j] = q.max(0.0);
                 o[out::CONTACT_START + z + j] = q.max(0.0);
-            });
+            }
         }
         o[out::PEDESTAL_A_Y] = dydt[VYP];
         o[out::PEDESTAL_A_Z] = dydt[VZP];
