@@ -511,11 +511,10 @@ impl Model for KinematicModel {
         o[out::PEDESTAL_Z] += x;
         o[out::PEDESTAL_V_Z] = v;
         o[out::PEDESTAL_A_Z] = a;
-        if let Some(d) = self
-            .defect
-            .as_ref()
-            .filter(|_| out::has_ball_block(o, self.bearing.z))
-        {
+        if !out::has_ball_block(o, self.bearing.z) {
+            return;
+        }
+        if let Some(d) = &self.defect {
             if self.next_exit < self.next_entry {
                 // The ball over the spall carries ΔQ less.
                 let z = self.bearing.z;

@@ -495,27 +495,21 @@ pub trait SwitchedModel {
     ) -> [super::pass::Normal; 2] {
         let (race_in, race_out, radius, c_br) = self.contact_constants();
         let sw = self.switches();
+        let normal = |k: usize, pose: &RingPose, race: &RaceConst, ring: Race| {
+            contact::evaluate_normal(
+                kin,
+                pose,
+                race,
+                radius,
+                c_br,
+                self.spall_view(y, j, ring, w),
+                sw.law(j, k),
+                slip,
+            )
+        };
         [
-            contact::evaluate_normal(
-                kin,
-                inner,
-                race_in,
-                radius,
-                c_br,
-                self.spall_view(y, j, Race::Inner, w),
-                sw.law(j, 0),
-                slip,
-            ),
-            contact::evaluate_normal(
-                kin,
-                outer,
-                race_out,
-                radius,
-                c_br,
-                self.spall_view(y, j, Race::Outer, w),
-                sw.law(j, 1),
-                slip,
-            ),
+            normal(0, inner, race_in, Race::Inner),
+            normal(1, outer, race_out, Race::Outer),
         ]
     }
 
