@@ -24,6 +24,7 @@
 
 use raceway::models;
 use raceway::scene::{Fidelity, Scene};
+use raceway::signal::median;
 use raceway::simulation::{out, Inputs, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
 use std::fmt::Write as _;
@@ -92,12 +93,6 @@ fn steps_per_period(tol: f64) -> (f64, f64) {
     (s.steps as f64 / periods, err)
 }
 
-/// Median of a few values.
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
-}
-
 fn main() {
     let mut a: Vec<String> = std::env::args().skip(1).collect();
     let out_path = a.iter().position(|v| v == "--out").map(|i| {
@@ -143,7 +138,7 @@ fn main() {
                 s.rhs_evals - s0.rhs_evals,
             );
         }
-        let wall = median(walls);
+        let wall = median(walls).expect("three timed runs");
         let per_s = |n: u64| n as f64 / measured;
         let rhs_per_s = per_s(work.2);
         // Bare RHS at the quasi-static start (modes set as the simulation sets them at t = 0).

@@ -28,7 +28,8 @@ pub mod window;
 pub use csvio::{push_sci10, read_csv_column, read_csv_header, write_spectrum_csv, SampledSignal};
 pub use envelope::{analytic_signal, bandpass, envelope, envelope_spectrum};
 pub use peaks::{
-    dominant_peak, harmonics, peak_near, prominence, refine, sidebands, top_peaks, Peak, Sideband,
+    dominant_peak, harmonics, median, peak_near, prominence, refine, sidebands, top_peaks, Peak,
+    Sideband,
 };
 pub use spectrum::{amplitude_spectrum, Spectrum, SpectrumKind};
 pub use welch::{welch_psd, WelchConfig};

@@ -87,7 +87,8 @@ fn offset_from_ratio(window: Window, r: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
+/// Median of `v` (the mean of the two middle values for an even count); `None` when empty.
+pub fn median(mut v: Vec<f64>) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
