@@ -588,6 +588,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
 /// The five S2 trajectories of `--strays` and `--slopes`: shaft speeds [rpm].
 const TRAJECTORY_SPEEDS: [f64; 5] = [9500.0, 9700.0, 9900.0, 10_100.0, 10_300.0];
+// An odd count: the median over the trajectories is one of them ([`median_of`]).
+const _: () = assert!(TRAJECTORY_SPEEDS.len() % 2 == 1);
 
 /// (label, fidelity, duration, skip) of the levels in `--strays` and `--slopes`.
 const TRAJECTORY_LEVELS: [(&str, Fidelity, f64, f64); 3] = [
@@ -603,11 +605,9 @@ fn s2_scene() -> Scene {
     s2
 }
 
-/// Median of a non-empty slice (the upper one of an even count).
+/// Median over the trajectories (an odd count: the middle value), by the library's median.
 fn median_of(v: &[f64]) -> f64 {
-    let mut w = v.to_vec();
-    w.sort_by(f64::total_cmp);
-    w[w.len() / 2]
+    raceway::signal::median(v.to_vec()).expect("a value per trajectory")
 }
 
 /// `--strays`: how often a run leaves the reference's trajectory at loose tolerances (E1 above
