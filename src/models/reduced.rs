@@ -569,13 +569,15 @@ impl Model for ReducedModel {
             self.z,
             strip_traction,
             |j| self.ball_kin(y, j),
-            |j, kin, w, slip| self.normal_contacts(y, j, kin, w, &inner, &outer, slip),
+            |j, kin, w, slip, out| {
+                self.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, out)
+            },
         );
         for j in 0..self.z {
             let b = self.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
-            let (ci, co) = pass.contacts[j];
-            self.sw.note_stage(t, j, &ci, &co);
+            let (ci, co) = &pass.contacts[j];
+            self.sw.note_stage(t, j, ci, co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
             self.q_inner[j] = ci.q.max(0.0);
@@ -591,8 +593,8 @@ impl Model for ReducedModel {
             } else {
                 let (ti, to) = match &self.traction {
                     Some(curve) => (
-                        self.traction_of(curve, &kin, &inner, &ci),
-                        self.traction_of(curve, &kin, &outer, &co),
+                        self.traction_of(curve, &kin, &inner, ci),
+                        self.traction_of(curve, &kin, &outer, co),
                     ),
                     None => (Traction::default(), Traction::default()),
                 };

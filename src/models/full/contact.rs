@@ -367,6 +367,37 @@ pub fn evaluate_normal(
     law: Law,
     slip: bool,
 ) -> (ContactOut, Option<(SlipField, [V3; 3])>) {
+    let mut out = ContactOut::default();
+    let loaded = evaluate_normal_into(
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        defect,
+        law,
+        slip,
+        &mut out,
+    );
+    (out, loaded)
+}
+
+/// [`evaluate_normal`] writing the contact into `out` (the RHS's own slot, so that the
+/// 150-byte contact is not built on the stack and copied there) and returning the slip field
+/// and frame of a loaded contact.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn evaluate_normal_into(
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    defect: Option<DefectView<'_>>,
+    law: Law,
+    slip: bool,
+    out: &mut ContactOut,
+) -> Option<(SlipField, [V3; 3])> {
     let rbr = sub(ball.p, ring.p);
     let rr = ring.to_ring(rbr);
     let rho = (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
@@ -375,7 +406,7 @@ pub fn evaluate_normal(
     let br = rho - race.rg;
     let l = (bx * bx + br * br).sqrt();
     let mut delta = l - race.e;
-    let mut out = ContactOut {
+    *out = ContactOut {
         delta,
         bx,
         br,
@@ -385,7 +416,7 @@ pub fn evaluate_normal(
     let open =
         |d: f64| law != Law::Closed && d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
     if open(delta) {
-        return (out, None);
+        return None;
     }
     let (n1, n3) = (bx / l, br / l);
     let mut n_r = [n1, n3 * ey, n3 * ez];
@@ -429,7 +460,7 @@ pub fn evaluate_normal(
             out.delta = delta;
             out.k = k;
             if open(delta) {
-                return (out, None);
+                return None;
             }
         }
     }
@@ -454,13 +485,13 @@ pub fn evaluate_normal(
     out.qn = scale(n, q);
     out.qn_ring = scale(n_r, q);
     if q == 0.0 || !slip {
-        return (out, None);
+        return None;
     }
     let c1 = cross(c2, n);
     // a = a* Q_e^{1/3} = a* K^{1/3} δ^{1/2}.
     let a = (a_star * k_cbrt * sd).min(0.9 * ball_radius.min(rs));
     let sf = slip_field(ball, ring, rbr, q, a, rs, ball_radius, n, c1, c2);
-    (out, Some((sf, [n, c1, c2])))
+    Some((sf, [n, c1, c2]))
 }
 
 /// Slip of a loaded contact along its major axis, in contact-frame components (§3.1–3.2): the

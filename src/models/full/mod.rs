@@ -529,13 +529,15 @@ impl Model for FullModel {
             self.z,
             self.traction.as_ref().map(|(c, s)| (c, s)),
             |j| self.ball_kin(y, j),
-            |j, kin, w, slip| self.normal_contacts(y, j, kin, w, &inner, &outer, slip),
+            |j, kin, w, slip, out| {
+                self.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, out)
+            },
         );
         for j in 0..self.z {
             let b = self.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
-            let (ci, co) = pass.contacts[j];
-            self.sw.note_stage(t, j, &ci, &co);
+            let (ci, co) = &pass.contacts[j];
+            self.sw.note_stage(t, j, ci, co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
             self.q_inner[j] = ci.q.max(0.0);

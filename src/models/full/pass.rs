@@ -11,9 +11,12 @@ use crate::contact::traction::TractionCurve;
 /// models' `ball_kin` return them.
 pub type BallFrame = (BallKin, V3, V3, f64, f64);
 
+/// The slip field and frame (n, c1, c2) of a loaded contact, where traction is wanted.
+pub type Loaded = (SlipField, [V3; 3]);
+
 /// One contact from [`contact::evaluate_normal`]: the contact and, where loaded and traction
-/// is wanted, its slip field and frame (n, c1, c2).
-pub type Normal = (ContactOut, Option<(SlipField, [V3; 3])>);
+/// is wanted, its slip field and frame.
+pub type Normal = (ContactOut, Option<Loaded>);
 
 /// Scratch of the staged contact evaluation (see the module documentation).
 #[derive(Debug, Clone, Default)]
@@ -41,28 +44,34 @@ impl ContactPass {
     }
 
     /// Evaluates the contacts of balls `0..z`: `frame(j)` gives ball j's frame and
-    /// `normals(j, kin, w, slip)` its (inner, outer) normal contacts, with the slip fields when
-    /// `slip` (traction on). The strip traction of every loaded contact follows in one batch.
+    /// `normals(j, kin, w, slip, out)` writes its (inner, outer) normal contacts into `out` and
+    /// returns the slip fields of the loaded ones when `slip` (traction on). The strip
+    /// traction of every loaded contact follows in one batch.
     pub fn evaluate(
         &mut self,
         z: usize,
         traction: Option<(&TractionCurve, &Strips)>,
         mut frame: impl FnMut(usize) -> BallFrame,
-        mut normals: impl FnMut(usize, &BallKin, f64, bool) -> [Normal; 2],
+        mut normals: impl FnMut(
+            usize,
+            &BallKin,
+            f64,
+            bool,
+            &mut (ContactOut, ContactOut),
+        ) -> [Option<Loaded>; 2],
     ) {
         self.batch.clear();
         let slip = traction.is_some();
         for j in 0..z {
-            let f = frame(j);
-            let [(ci, li), (co, lo)] = normals(j, &f.0, f.4, slip);
+            self.frames[j] = frame(j);
+            let f = &self.frames[j];
+            let [li, lo] = normals(j, &f.0, f.4, slip, &mut self.contacts[j]);
             if let Some((sf, fr)) = li {
                 self.batch.push(2 * j, sf, fr);
             }
             if let Some((sf, fr)) = lo {
                 self.batch.push(2 * j + 1, sf, fr);
             }
-            self.frames[j] = f;
-            self.contacts[j] = (ci, co);
         }
         if let Some((curve, strips)) = traction {
             let contacts = &mut self.contacts;

@@ -479,8 +479,9 @@ pub trait SwitchedModel {
     fn spall_angle(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64);
 
     /// Both normal contacts of ball j (inner, outer) under the frozen laws, with the slip fields
-    /// of the loaded ones when `slip` (traction on): the first stage of a
-    /// [`super::pass::ContactPass`], or of [`contact::evaluate_law`] one ball at a time.
+    /// of the loaded ones when `slip` (traction on): the first stage of [`contact::evaluate_law`]
+    /// one ball at a time ([`SwitchedModel::normal_contacts_into`] for a
+    /// [`super::pass::ContactPass`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn normal_contacts(
@@ -493,23 +494,45 @@ pub trait SwitchedModel {
         outer: &RingPose,
         slip: bool,
     ) -> [super::pass::Normal; 2] {
+        let mut out = Default::default();
+        let [li, lo] = self.normal_contacts_into(y, j, kin, w, inner, outer, slip, &mut out);
+        [(out.0, li), (out.1, lo)]
+    }
+
+    /// [`SwitchedModel::normal_contacts`] writing the two contacts into `out` (inner, outer)
+    /// and returning the slip fields and frames of the loaded ones.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn normal_contacts_into(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        inner: &RingPose,
+        outer: &RingPose,
+        slip: bool,
+        out: &mut (ContactOut, ContactOut),
+    ) -> [Option<super::pass::Loaded>; 2] {
         let (race_in, race_out, radius, c_br) = self.contact_constants();
         let sw = self.switches();
-        let normal = |k: usize, pose: &RingPose, race: &RaceConst, ring: Race| {
-            contact::evaluate_normal(
-                kin,
-                pose,
-                race,
-                radius,
-                c_br,
-                self.spall_view(y, j, ring, w),
-                sw.law(j, k),
-                slip,
-            )
-        };
+        let normal =
+            |k: usize, pose: &RingPose, race: &RaceConst, ring: Race, c: &mut ContactOut| {
+                contact::evaluate_normal_into(
+                    kin,
+                    pose,
+                    race,
+                    radius,
+                    c_br,
+                    self.spall_view(y, j, ring, w),
+                    sw.law(j, k),
+                    slip,
+                    c,
+                )
+            };
         [
-            normal(0, inner, race_in, Race::Inner),
-            normal(1, outer, race_out, Race::Outer),
+            normal(0, inner, race_in, Race::Inner, &mut out.0),
+            normal(1, outer, race_out, Race::Outer, &mut out.1),
         ]
     }
 
