@@ -169,6 +169,14 @@ impl TractionCurve {
         }
     }
 
+    /// [`TractionCurve::kappa_over_u`] of every element of `u`, in place (one flat pass, so
+    /// that the independent `exp` calls and divisions of many strips overlap: what the strip
+    /// traction of all contacts of an RHS evaluation needs).
+    #[inline]
+    pub fn kappa_over_u_in_place(&self, u: &mut [f64]) {
+        u.iter_mut().for_each(|v| *v = self.kappa_over_u(*v));
+    }
+
     /// Initial slope dκ/du at u = 0⁺ \[s/m\]: B − C·A (ADORE; 0.486 s/m by default) or κm/u_m
     /// (piecewise). It sets the slip relaxation rate (spec §9.1).
     pub fn dkappa_du0(&self) -> f64 {

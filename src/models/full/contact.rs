@@ -670,35 +670,35 @@ pub struct TractionBatch {
     slot: Vec<usize>,
     sf: Vec<SlipField>,
     frame: Vec<[V3; 3]>,
-    /// Per contact and strip pair (stride `MAX_STRIPS / 2 + 1`): ζ, u1, u2 of the strip at
-    /// +ξ and at −ξ, and κ(u)/u of both.
+    /// Per contact and strip pair (contact c's pairs at `c·h .. (c + 1)·h`, h = ⌈n/2⌉ pairs
+    /// of the rule in use): ζ, u1, u2 of the strip at +ξ and at −ξ.
     zeta: Vec<f64>,
     u1: Vec<f64>,
     u2p: Vec<f64>,
     u2m: Vec<f64>,
-    kp: Vec<f64>,
-    km: Vec<f64>,
+    /// The slip speeds, then κ(u)/u, of the strips at +ξ (the first `len·h`) and at −ξ (the
+    /// next `len·h`): one slice for [`TractionCurve::kappa_over_u_in_place`].
+    kappa: Vec<f64>,
 }
 
-/// Strip pairs per contact in a [`TractionBatch`]'s arrays (an odd rule's middle strip is
-/// the last "pair", whose −ξ half is unused).
+/// Strip pairs per contact at most (an odd rule's middle strip is the last "pair", whose −ξ
+/// half is unused).
 const PAIRS: usize = MAX_STRIPS / 2 + 1;
 
 impl TractionBatch {
     /// A batch for up to `contacts` contacts per run.
     pub fn new(contacts: usize) -> Self {
-        let v = || vec![0.0; contacts * PAIRS];
+        let v = |k: usize| vec![0.0; k * contacts * PAIRS];
         Self {
             len: 0,
             slot: vec![0; contacts],
             sf: vec![SlipField::default(); contacts],
             frame: vec![[[0.0; 3]; 3]; contacts],
-            zeta: v(),
-            u1: v(),
-            u2p: v(),
-            u2m: v(),
-            kp: v(),
-            km: v(),
+            zeta: v(1),
+            u1: v(1),
+            u2p: v(1),
+            u2m: v(1),
+            kappa: v(2),
         }
     }
 
@@ -732,39 +732,32 @@ impl TractionBatch {
         mut each: impl FnMut(usize, &[V3; 3], [f64; 5]),
     ) {
         let n = self.len;
-        let nst = strips.n;
-        let np = nst / 2;
-        let half = nst.div_ceil(2);
+        let h = strips.n.div_ceil(2);
+        let m = n * h;
         // Slips of every strip (the first pass of strip_sums).
-        for c in 0..n {
-            let o = c * PAIRS;
-            for p in 0..half {
-                let i = o + p;
-                (self.zeta[i], self.u1[i], self.u2p[i], self.u2m[i]) =
-                    pair_slip(&self.sf[c], strips, p);
+        for (c, sf) in self.sf[..n].iter().enumerate() {
+            for p in 0..h {
+                let i = c * h + p;
+                (self.zeta[i], self.u1[i], self.u2p[i], self.u2m[i]) = pair_slip(sf, strips, p);
             }
         }
-        // Slip speeds, then κ(u)/u, over all strips of all contacts at once.
-        for c in 0..n {
-            let o = c * PAIRS;
-            for i in o..o + half {
-                let v = self.u1[i] * self.u1[i];
-                self.kp[i] = (v + self.u2p[i] * self.u2p[i]).sqrt();
-                self.km[i] = (v + self.u2m[i] * self.u2m[i]).sqrt();
-            }
+        // Slip speeds, then κ(u)/u, over all strips of all contacts at once (an odd rule's
+        // unused −ξ half of the middle strip included: it is never summed).
+        let (kp, km) = self.kappa[..2 * m].split_at_mut(m);
+        for (((kp, km), u1), (u2p, u2m)) in kp
+            .iter_mut()
+            .zip(km.iter_mut())
+            .zip(&self.u1[..m])
+            .zip(self.u2p[..m].iter().zip(&self.u2m[..m]))
+        {
+            let v = u1 * u1;
+            *kp = (v + u2p * u2p).sqrt();
+            *km = (v + u2m * u2m).sqrt();
         }
-        for c in 0..n {
-            let o = c * PAIRS;
-            for i in o..o + half {
-                self.kp[i] = curve.kappa_over_u(self.kp[i]);
-            }
-            for i in o..o + np {
-                self.km[i] = curve.kappa_over_u(self.km[i]);
-            }
-        }
+        curve.kappa_over_u_in_place(&mut self.kappa[..2 * m]);
         // Sums, per contact in strip order (the last pass of strip_sums).
         for c in 0..n {
-            let r = c * PAIRS..(c + 1) * PAIRS;
+            let r = c * h..(c + 1) * h;
             let sums = sum_strips(
                 self.sf[c].q,
                 self.sf[c].a,
@@ -773,8 +766,8 @@ impl TractionBatch {
                 &self.u1[r.clone()],
                 &self.u2p[r.clone()],
                 &self.u2m[r.clone()],
-                &self.kp[r.clone()],
-                &self.km[r],
+                &self.kappa[r.clone()],
+                &self.kappa[m + r.start..m + r.end],
             );
             each(self.slot[c], &self.frame[c], sums);
         }
