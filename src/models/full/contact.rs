@@ -398,13 +398,88 @@ pub fn evaluate_normal_into(
     slip: bool,
     out: &mut ContactOut,
 ) -> Option<(SlipField, [V3; 3])> {
-    let rbr = sub(ball.p, ring.p);
+    evaluate_normal_at(
+        &groove_pos(ball.p, ring, race),
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        defect,
+        law,
+        slip,
+        out,
+    )
+}
+
+/// Where a ball centre sits in a ring's groove: the start of every contact evaluation
+/// (§2.2), which depends on no spall and no law. The ball centre relative to the ring centre
+/// in inertial (`rbr`) and ring-frame (`rr`) components, its distance ρ from the ring axis and
+/// the radial unit vector's ring-frame components (e_y, e_z), and its offset (b_x, b_r) from
+/// the groove-centre circle with length l.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct GroovePos {
+    pub rbr: V3,
+    pub rr: V3,
+    pub rho: f64,
+    pub ey: f64,
+    pub ez: f64,
+    pub bx: f64,
+    pub br: f64,
+    pub l: f64,
+}
+
+/// The [`GroovePos`] of a ball centre `p` in a ring's groove. A
+/// [`super::pass::ContactPass`] computes it for every contact of an RHS evaluation before
+/// the rest of the contacts ([`evaluate_normal_at`]), so that the square roots and divisions
+/// of different contacts overlap instead of heading each contact's chain.
+#[inline(always)]
+pub fn groove_pos(p: V3, ring: &RingPose, race: &RaceConst) -> GroovePos {
+    let rbr = sub(p, ring.p);
     let rr = ring.to_ring(rbr);
     let rho = (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
     let (ey, ez) = (rr[1] / rho, rr[2] / rho);
     let bx = rr[0] - race.xg;
     let br = rho - race.rg;
     let l = (bx * bx + br * br).sqrt();
+    GroovePos {
+        rbr,
+        rr,
+        rho,
+        ey,
+        ez,
+        bx,
+        br,
+        l,
+    }
+}
+
+/// [`evaluate_normal_into`] from the ball's [`GroovePos`] in this ring (which must be
+/// [`groove_pos`] of `ball.p`, `ring` and `race`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn evaluate_normal_at(
+    g: &GroovePos,
+    ball: &BallKin,
+    ring: &RingPose,
+    race: &RaceConst,
+    ball_radius: f64,
+    damping: f64,
+    defect: Option<DefectView<'_>>,
+    law: Law,
+    slip: bool,
+    out: &mut ContactOut,
+) -> Option<(SlipField, [V3; 3])> {
+    let GroovePos {
+        rbr,
+        rr,
+        rho,
+        ey,
+        ez,
+        bx,
+        br,
+        l,
+    } = *g;
     let mut delta = l - race.e;
     *out = ContactOut {
         delta,

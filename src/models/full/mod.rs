@@ -525,12 +525,15 @@ impl Model for FullModel {
         // Every ball's normal contacts first, then the strip traction of all loaded contacts
         // in one batch, then the equations of motion.
         let mut pass = std::mem::take(&mut self.pass);
+        let (race_in, race_out, _, _) = self.contact_constants();
         pass.evaluate(
             self.z,
             self.traction.as_ref().map(|(c, s)| (c, s)),
+            [&inner, &outer],
+            [race_in, race_out],
             |j| self.ball_kin(y, j),
-            |j, kin, w, slip, out| {
-                self.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, out)
+            |j, kin, w, slip, grooves, out| {
+                self.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
             },
         );
         for j in 0..self.z {

@@ -4,7 +4,9 @@
 //! contacts overlap. The models then read each ball's frame and finished contacts. The buffers
 //! are sized once per model; an evaluation never allocates.
 
-use super::contact::{self, BallKin, ContactOut, SlipField, Strips, TractionBatch, V3};
+use super::contact::{
+    self, BallKin, ContactOut, GroovePos, RaceConst, RingPose, SlipField, Strips, TractionBatch, V3,
+};
 use crate::contact::traction::TractionCurve;
 
 /// A ball's kinematics with its cylindrical triad (e_r, e_θ), radius and orbital rate, as the
@@ -23,6 +25,8 @@ pub type Normal = (ContactOut, Option<Loaded>);
 pub struct ContactPass {
     /// Each ball's frame.
     pub frames: Vec<BallFrame>,
+    /// Each ball's place in the (inner, outer) groove.
+    grooves: Vec<[GroovePos; 2]>,
     /// Each ball's (inner, outer) contact, traction included.
     pub contacts: Vec<(ContactOut, ContactOut)>,
     batch: TractionBatch,
@@ -38,34 +42,49 @@ impl ContactPass {
         };
         Self {
             frames: vec![(still, [0.0; 3], [0.0; 3], 0.0, 0.0); z],
+            grooves: vec![Default::default(); z],
             contacts: vec![Default::default(); z],
             batch: TractionBatch::new(2 * z),
         }
     }
 
-    /// Evaluates the contacts of balls `0..z`: `frame(j)` gives ball j's frame and
-    /// `normals(j, kin, w, slip, out)` writes its (inner, outer) normal contacts into `out` and
-    /// returns the slip fields of the loaded ones when `slip` (traction on). The strip
-    /// traction of every loaded contact follows in one batch.
+    /// Evaluates the contacts of balls `0..z` with the (inner, outer) rings `rings` and race
+    /// constants `races`: `frame(j)` gives ball j's frame; then every ball's place in both
+    /// grooves ([`contact::groove_pos`]), for all balls at once; then `normals(j, kin, w, slip,
+    /// grooves, out)` writes ball j's (inner, outer) normal contacts into `out` and returns the
+    /// slip fields of the loaded ones when `slip` (traction on). The strip traction of every
+    /// loaded contact follows in one batch.
+    #[allow(clippy::type_complexity)]
     pub fn evaluate(
         &mut self,
         z: usize,
         traction: Option<(&TractionCurve, &Strips)>,
+        rings: [&RingPose; 2],
+        races: [&RaceConst; 2],
         mut frame: impl FnMut(usize) -> BallFrame,
         mut normals: impl FnMut(
             usize,
             &BallKin,
             f64,
             bool,
+            &[GroovePos; 2],
             &mut (ContactOut, ContactOut),
         ) -> [Option<Loaded>; 2],
     ) {
         self.batch.clear();
         let slip = traction.is_some();
+        for (j, f) in self.frames[..z].iter_mut().enumerate() {
+            *f = frame(j);
+        }
+        for (g, f) in self.grooves[..z].iter_mut().zip(&self.frames[..z]) {
+            *g = [
+                contact::groove_pos(f.0.p, rings[0], races[0]),
+                contact::groove_pos(f.0.p, rings[1], races[1]),
+            ];
+        }
         for j in 0..z {
-            self.frames[j] = frame(j);
             let f = &self.frames[j];
-            let [li, lo] = normals(j, &f.0, f.4, slip, &mut self.contacts[j]);
+            let [li, lo] = normals(j, &f.0, f.4, slip, &self.grooves[j], &mut self.contacts[j]);
             if let Some((sf, fr)) = li {
                 self.batch.push(2 * j, sf, fr);
             }

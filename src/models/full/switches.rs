@@ -494,13 +494,20 @@ pub trait SwitchedModel {
         outer: &RingPose,
         slip: bool,
     ) -> [super::pass::Normal; 2] {
+        let (race_in, race_out, _, _) = self.contact_constants();
+        let grooves = [
+            contact::groove_pos(kin.p, inner, race_in),
+            contact::groove_pos(kin.p, outer, race_out),
+        ];
         let mut out = Default::default();
-        let [li, lo] = self.normal_contacts_into(y, j, kin, w, inner, outer, slip, &mut out);
+        let [li, lo] =
+            self.normal_contacts_into(y, j, kin, w, inner, outer, slip, &grooves, &mut out);
         [(out.0, li), (out.1, lo)]
     }
 
-    /// [`SwitchedModel::normal_contacts`] writing the two contacts into `out` (inner, outer)
-    /// and returning the slip fields and frames of the loaded ones.
+    /// [`SwitchedModel::normal_contacts`] from the ball's place in both grooves
+    /// ([`contact::groove_pos`], inner and outer), writing the two contacts into `out` (inner,
+    /// outer) and returning the slip fields and frames of the loaded ones.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn normal_contacts_into(
@@ -512,13 +519,15 @@ pub trait SwitchedModel {
         inner: &RingPose,
         outer: &RingPose,
         slip: bool,
+        grooves: &[contact::GroovePos; 2],
         out: &mut (ContactOut, ContactOut),
     ) -> [Option<super::pass::Loaded>; 2] {
         let (race_in, race_out, radius, c_br) = self.contact_constants();
         let sw = self.switches();
         let normal =
             |k: usize, pose: &RingPose, race: &RaceConst, ring: Race, c: &mut ContactOut| {
-                contact::evaluate_normal_into(
+                contact::evaluate_normal_at(
+                    &grooves[k],
                     kin,
                     pose,
                     race,
