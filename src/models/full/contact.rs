@@ -416,7 +416,7 @@ pub fn evaluate_normal_into(
 /// (§2.2), which depends on no spall and no law. The ball centre relative to the ring centre
 /// in inertial (`rbr`) and ring-frame (`rr`) components, its distance ρ from the ring axis and
 /// the radial unit vector's ring-frame components (e_y, e_z), and its offset (b_x, b_r) from
-/// the groove-centre circle with length l.
+/// the groove-centre circle with length l and direction (n1, n3) = (b_x, b_r)/l.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct GroovePos {
     pub rbr: V3,
@@ -427,6 +427,8 @@ pub struct GroovePos {
     pub bx: f64,
     pub br: f64,
     pub l: f64,
+    pub n1: f64,
+    pub n3: f64,
 }
 
 /// The [`GroovePos`] of a ball centre `p` in a ring's groove. A
@@ -451,6 +453,8 @@ pub fn groove_pos(p: V3, ring: &RingPose, race: &RaceConst) -> GroovePos {
         bx,
         br,
         l,
+        n1: bx / l,
+        n3: br / l,
     }
 }
 
@@ -479,6 +483,8 @@ pub fn evaluate_normal_at(
         bx,
         br,
         l,
+        n1,
+        n3,
     } = *g;
     let mut delta = l - race.e;
     *out = ContactOut {
@@ -493,7 +499,6 @@ pub fn evaluate_normal_at(
     if open(delta) {
         return None;
     }
-    let (n1, n3) = (bx / l, br / l);
     let mut n_r = [n1, n3 * ey, n3 * ez];
     let c2_r = [0.0, -ez, ey];
     let mut n = ring.to_inertial(n_r);
@@ -541,8 +546,9 @@ pub fn evaluate_normal_at(
     }
     // δ > 0 here except under the frozen closed law past a loss of contact (then √ of 0).
     let sd = delta.max(0.0).sqrt();
-    // (δ|δ|^½ equals δ·√δ bit for bit where δ > 0.)
-    let q_raw = k * delta * delta.abs().sqrt() + damping * ddelta;
+    // |δ|^½: the same √δ where δ > 0 (one square root), so δ|δ|^½ equals δ·√δ bit for bit.
+    let sa = if delta > 0.0 { sd } else { delta.abs().sqrt() };
+    let q_raw = k * delta * sa + damping * ddelta;
     let q = match law {
         Law::Clamped => q_raw.max(0.0),
         Law::Closed => q_raw,
@@ -810,10 +816,20 @@ impl TractionBatch {
         let h = strips.n.div_ceil(2);
         let m = n * h;
         // Slips of every strip (the first pass of strip_sums).
-        for (c, sf) in self.sf[..n].iter().enumerate() {
-            for p in 0..h {
-                let i = c * h + p;
-                (self.zeta[i], self.u1[i], self.u2p[i], self.u2m[i]) = pair_slip(sf, strips, p);
+        let pairs = self.zeta[..m]
+            .chunks_exact_mut(h)
+            .zip(self.u1[..m].chunks_exact_mut(h))
+            .zip(self.u2p[..m].chunks_exact_mut(h))
+            .zip(self.u2m[..m].chunks_exact_mut(h));
+        for ((((zeta, u1), u2p), u2m), sf) in pairs.zip(&self.sf[..n]) {
+            for (p, (((z, v1), vp), vm)) in zeta
+                .iter_mut()
+                .zip(u1.iter_mut())
+                .zip(u2p.iter_mut())
+                .zip(u2m.iter_mut())
+                .enumerate()
+            {
+                (*z, *v1, *vp, *vm) = pair_slip(sf, strips, p);
             }
         }
         // Slip speeds, then κ(u)/u, over all strips of all contacts at once (an odd rule's
