@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Side-by-side check of a change against an earlier revision (not part of CI): are the outputs
+# the same, and how much faster or slower is it?
+#
+#   scripts/compare_builds.sh REV [runs]
+#
+# Builds REV (a commit, tag or branch) in a git worktree under target/compare/ and this checkout
+# (release, `raceway` only), then
+#  1. writes the CSV of every dynamic level (kinematic, lumped, reduced, full) on the outer- and
+#     inner-spall scenes of paper Sec. 3.5 (examples/scenes/sec3.5-*.toml; 0.1 s for the cheap
+#     levels, 0.03 s for the per-ball ones) with both builds and compares them byte for byte;
+#  2. times `raceway simulate` of the default scene (DOP853, rtol 1e-6, only pedestal.a.z
+#     written) at each level, the two builds interleaved `runs` times (default 5), and prints
+#     the minimum and median wall seconds per simulated second of each (the figure `simulate`
+#     prints, CSV writing included) and the ratio of the medians. The host is
+#     shared: compare the two columns of one run, not numbers from different runs.
+#
+# Exit status 1 when an output differs (the timings are printed either way).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rev="${1:?usage: scripts/compare_builds.sh REV [runs]}"
+runs="${2:-5}"
+sha="$(git rev-parse --verify "$rev^{commit}")"
+short="${sha:0:10}"
+root="$PWD"
+tree="$root/target/compare/$short"
+if [ ! -d "$tree" ]; then
+  git worktree add --detach --force "$tree" "$sha" >/dev/null
+fi
+echo "building $short and this checkout (release) ..."
+(cd "$tree" && CARGO_TARGET_DIR="$root/target/compare/target" cargo build --release --quiet --bin raceway)
+cargo build --release --quiet --bin raceway
+old="$root/target/compare/target/release/raceway"
+new="$root/target/release/raceway"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+echo
+echo "== outputs of $short and this checkout"
+status=0
+for scene in sec3.5-outer sec3.5-inner; do
+  for level in kinematic lumped reduced full; do
+    case "$level" in reduced | full) d=0.03 ;; *) d=0.1 ;; esac
+    args=(simulate "examples/scenes/$scene.toml" --fidelity "$level" --duration "$d" --quiet)
+    "$old" "${args[@]}" --out "$work/old.csv"
+    "$new" "${args[@]}" --out "$work/new.csv"
+    if cmp -s "$work/old.csv" "$work/new.csv"; then
+      echo "$scene $level ($d s): byte-equal ($(wc -l <"$work/new.csv") lines)"
+    else
+      echo "$scene $level ($d s): DIFFERENT"
+      status=1
+    fi
+  done
+done
+
+echo
+echo "== wall seconds per simulated second of raceway simulate, default scene, $runs interleaved runs each"
+wall() { "$1" simulate examples/scenes/default.toml --fidelity "$2" --duration "$3" \
+  --columns pedestal.a.z --out "$work/t.csv" 2>&1 | sed -n 's/.* s wall (\([0-9.e+-]*\) s per simulated s).*/\1/p'; }
+stats() { sort -g | awk '{a[NR] = $1} END {printf "%.4g %.4g\n", a[1], a[int((NR + 1) / 2)]}'; }
+printf '%-10s %10s %14s %14s %14s %14s %18s\n' level simulated_s "$short min" "$short median" \
+  "new min" "new median" "new/old (median)"
+for level in kinematic lumped reduced full; do
+  case "$level" in reduced | full) d=0.04 ;; *) d=1 ;; esac
+  : >"$work/old.t"
+  : >"$work/new.t"
+  for _ in $(seq "$runs"); do
+    wall "$old" "$level" "$d" >>"$work/old.t"
+    wall "$new" "$level" "$d" >>"$work/new.t"
+  done
+  read -r omin omed < <(stats <"$work/old.t")
+  read -r nmin nmed < <(stats <"$work/new.t")
+  printf '%-10s %10s %14s %14s %14s %14s %18s\n' "$level" "$d" "$omin" "$omed" "$nmin" "$nmed" \
+    "$(awk -v a="$nmed" -v b="$omed" 'BEGIN {printf "%.3f", a / b}')"
+done
+exit "$status"
