@@ -368,7 +368,8 @@ pub fn evaluate_normal(
     slip: bool,
 ) -> (ContactOut, Option<(SlipField, [V3; 3])>) {
     let mut out = ContactOut::default();
-    let loaded = evaluate_normal_into(
+    let loaded = evaluate_normal_at(
+        &groove_pos(ball.p, ring, race),
         ball,
         ring,
         race,
@@ -380,36 +381,6 @@ pub fn evaluate_normal(
         &mut out,
     );
     (out, loaded)
-}
-
-/// [`evaluate_normal`] writing the contact into `out` (the RHS's own slot, so that the
-/// 150-byte contact is not built on the stack and copied there) and returning the slip field
-/// and frame of a loaded contact.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub fn evaluate_normal_into(
-    ball: &BallKin,
-    ring: &RingPose,
-    race: &RaceConst,
-    ball_radius: f64,
-    damping: f64,
-    defect: Option<DefectView<'_>>,
-    law: Law,
-    slip: bool,
-    out: &mut ContactOut,
-) -> Option<(SlipField, [V3; 3])> {
-    evaluate_normal_at(
-        &groove_pos(ball.p, ring, race),
-        ball,
-        ring,
-        race,
-        ball_radius,
-        damping,
-        defect,
-        law,
-        slip,
-        out,
-    )
 }
 
 /// Where a ball centre sits in a ring's groove: the start of every contact evaluation
@@ -458,8 +429,10 @@ pub fn groove_pos(p: V3, ring: &RingPose, race: &RaceConst) -> GroovePos {
     }
 }
 
-/// [`evaluate_normal_into`] from the ball's [`GroovePos`] in this ring (which must be
-/// [`groove_pos`] of `ball.p`, `ring` and `race`).
+/// [`evaluate_normal`] from the ball's [`GroovePos`] in this ring (which must be
+/// [`groove_pos`] of `ball.p`, `ring` and `race`), writing the contact into `out` (the RHS's
+/// own slot, so that the 150-byte contact is not built on the stack and copied there) and
+/// returning the slip field and frame of a loaded contact.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn evaluate_normal_at(
