@@ -19,9 +19,9 @@ fn main() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(20);
-    let mut w = None;
+    let mut w = f64::NAN;
     for _ in 0..reps {
-        w = models::traction_cage_speed(&bearing, &inputs, Some(&l1)).unwrap();
+        w = models::traction_cage_speed(&bearing, &inputs, Some(&l1), None).unwrap();
     }
     let dt = t0.elapsed().as_secs_f64() / reps as f64;
     let tau = std::f64::consts::TAU;
@@ -30,8 +30,8 @@ fn main() {
         "L1 cage {:.4} Hz (BPFO {:.2}); traction cage {:.4} Hz (BPFO {:.2}); solve {:.3} ms",
         l1.cage_speed / tau,
         z * l1.cage_speed / tau,
-        w.unwrap_or(f64::NAN) / tau,
-        z * w.unwrap_or(f64::NAN) / tau,
+        w / tau,
+        z * w / tau,
         dt * 1e3
     );
 }

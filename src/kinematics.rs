@@ -105,6 +105,29 @@ pub fn outer_race_control(b: &Bearing, alpha_i: f64, alpha_o: f64) -> RaceContro
     }
 }
 
+/// Cage speed over shaft speed, ω_c/Ω, for pure rolling at both contacts with the ball's spin
+/// axis at attitude `beta` (outer ring fixed; Harris, Rolling Bearing Analysis, the ball-speed
+/// relations with the attitude angle):
+/// `ω_c/Ω = 1 / (1 + [(1 + γ' cos α_o)(cos α_i + tan β sin α_i)] / [(1 − γ' cos α_i)(cos α_o +
+/// tan β sin α_o)])`, γ' = D/dm. With β of [`outer_race_control`] it is its cage ratio.
+pub fn rolling_cage_ratio(b: &Bearing, alpha_i: f64, alpha_o: f64, beta: f64) -> f64 {
+    let g = b.d / b.dm;
+    let tb = beta.tan();
+    let num = (1.0 + g * alpha_o.cos()) * (alpha_i.cos() + tb * alpha_i.sin());
+    let den = (1.0 - g * alpha_i.cos()) * (alpha_o.cos() + tb * alpha_o.sin());
+    1.0 / (1.0 + num / den)
+}
+
+/// Inner-race control: no spin at the inner contact, `tan β = sin α_i/(cos α_i − D/dm)`; the
+/// cage ratio of pure rolling at that attitude ([`rolling_cage_ratio`]). With
+/// [`outer_race_control`] it bounds the kinematic cage speeds of a ball between its two
+/// race-control limits.
+pub fn inner_race_control_cage_ratio(b: &Bearing, alpha_i: f64, alpha_o: f64) -> f64 {
+    let (si, ci) = alpha_i.sin_cos();
+    let beta = si.atan2(ci - b.d / b.dm);
+    rolling_cage_ratio(b, alpha_i, alpha_o, beta)
+}
+
 /// Frequencies from a cage ratio ω_c/Ω and a spin ratio ω_R/Ω (e.g. from L1):
 /// `FTF = ratio·fs`, `BPFO = z·FTF`, `BPFI = z(fs − FTF)`, `BSF = |ω_R/Ω|·fs`.
 pub fn frequencies_from_cage(
@@ -146,6 +169,32 @@ pub fn hz_to_rad_s(hz: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rolling_ratio_at_the_outer_control_attitude_is_outer_control() {
+        // Two derivations of the same kinematics: Jones' g/h form and Harris' attitude form.
+        let b = Bearing::load("niu2014-table1").unwrap();
+        for (ai, ao) in [
+            (30.0_f64, 30.0_f64),
+            (43.5, 25.4),
+            (31.2, 30.9),
+            (10.0, 40.0),
+        ] {
+            let (ai, ao) = (ai.to_radians(), ao.to_radians());
+            let rc = outer_race_control(&b, ai, ao);
+            let r = rolling_cage_ratio(&b, ai, ao, rc.beta);
+            assert!(
+                (r - rc.cage_ratio).abs() < 1e-13,
+                "{r} vs {}",
+                rc.cage_ratio
+            );
+            // Equal angles: both controls are pure rolling, (1 − γ)/2.
+            if ai == ao {
+                let irc = inner_race_control_cage_ratio(&b, ai, ao);
+                assert!((irc - 0.5 * (1.0 - b.gamma(ai))).abs() < 1e-13);
+            }
+        }
+    }
 
     #[test]
     fn loaded_formula_reduces_to_pure_rolling() {

@@ -136,9 +136,10 @@ pub struct QuasiStatic {
     pub delta_z: f64,
     /// One entry per ball, j = 0..z−1.
     pub balls: Vec<BallEquilibrium>,
-    /// Mean ω_c over the loaded balls (see [`is_loaded`]) [rad/s].
+    /// Mean ω_c over the loaded balls, weighted by their inner contact loads [rad/s] (a ball
+    /// entering the load zone counts as much as it carries, so the mean has no jump there).
     pub cage_speed: f64,
-    /// Mean ω_R over the loaded balls [rad/s].
+    /// Mean ω_R over the loaded balls, weighted as `cage_speed` [rad/s].
     pub spin_speed: f64,
     /// Stiffness ∂F_i/∂δ_j of the ball set acting on the inner ring, in (x, y, z) [N/m], balls
     /// re-equilibrated: analytic (implicit-function theorem over the ball equilibria), equal to
@@ -1059,9 +1060,7 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
     }
     check_limits(b, &re)?;
 
-    let n = loaded.len() as f64;
-    let cage_speed = loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n;
-    let spin_speed = loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n;
+    let (cage_speed, spin_speed) = load_weighted_rates(&loaded);
     xs = re.balls.iter().map(|e| e.eq.x).collect();
     let stiffness = ring_jacobian(&g, omega, &u, &re.balls, &xs, STIFFNESS_STEP, [true; 3])?;
     Ok(QuasiStatic {
@@ -1076,6 +1075,22 @@ pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticErr
         iterations: it + it_convex,
         residual: rn,
     })
+}
+
+/// Means of ω_c and ω_R over `loaded`, weighted by the inner contact loads ((0, 0) if none).
+fn load_weighted_rates(loaded: &[&BallEquilibrium]) -> (f64, f64) {
+    let (q, c, s) = loaded.iter().fold((0.0, 0.0, 0.0), |(q, c, s), e| {
+        (
+            q + e.q_inner,
+            c + e.q_inner * e.cage_speed,
+            s + e.q_inner * e.spin_speed,
+        )
+    });
+    if q > 0.0 {
+        (c / q, s / q)
+    } else {
+        (0.0, 0.0)
+    }
 }
 
 fn check_limits(b: &Bearing, re: &RingEval) -> Result<(), QuasiStaticError> {
@@ -1258,14 +1273,14 @@ pub fn displacement_controlled(
         .map(|e| &e.eq)
         .filter(|e| is_loaded(e.q_inner))
         .collect();
-    let n = loaded.len().max(1) as f64;
+    let (cage_speed, spin_speed) = load_weighted_rates(&loaded);
     Ok(QuasiStatic {
         speed,
         delta_axial: u[0],
         delta_y: u[1],
         delta_z: u[2],
-        cage_speed: loaded.iter().map(|e| e.cage_speed).sum::<f64>() / n,
-        spin_speed: loaded.iter().map(|e| e.spin_speed).sum::<f64>() / n,
+        cage_speed,
+        spin_speed,
         balls: re.balls.iter().map(|e| e.eq).collect(),
         stiffness,
         iterations: 0,

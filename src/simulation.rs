@@ -479,14 +479,14 @@ impl Simulation {
         } else if let Some(qs) = self.qs_motion.as_mut() {
             // L0/L1: the model runs at the load the displaced ring needs.
             let load = qs.solve(self.inputs.shaft_speed, j.x)?.load;
-            qs.applied_load = load;
             let eff = Inputs {
                 fx: load[0],
                 fy: load[1],
                 fz: load[2],
                 ..self.inputs
             };
-            self.model.set_inputs(&eff, t, self.integrator.y());
+            self.model.set_inputs(&eff, t, self.integrator.y())?;
+            qs.applied_load = load;
         }
         self.journal = j;
         self.journal_t = t;
@@ -612,9 +612,12 @@ impl Simulation {
             return Ok(());
         }
         let t = self.integrator.t();
-        let eff = self.effective_inputs(&inputs, t)?;
+        let (eff, applied) = self.effective_inputs(&inputs, t)?;
+        self.model.set_inputs(&eff, t, self.integrator.y())?;
+        if let (Some(qs), Some(load)) = (self.qs_motion.as_mut(), applied) {
+            qs.applied_load = load;
+        }
         self.inputs = inputs;
-        self.model.set_inputs(&eff, t, self.integrator.y());
         self.model.update_mode(t, self.integrator.y());
         self.integrator.discontinuity();
         Ok(())
@@ -623,15 +626,21 @@ impl Simulation {
     /// The inputs the model runs on: the given ones in force mode; in motion mode with the
     /// start's loads (L2, L4: the prescribed ring ignores loads; the L1 cage-speed update on a
     /// speed change is [`Simulation::update_l1_point`]), or the load the displaced ring needs in
-    /// quasi-static equilibrium (L0, L1).
-    fn effective_inputs(&mut self, inputs: &Inputs, t: f64) -> Result<Inputs, SimError> {
+    /// quasi-static equilibrium (L0, L1), returned as well (the caller records it as the load
+    /// the model runs on once the model has taken the inputs).
+    fn effective_inputs(
+        &mut self,
+        inputs: &Inputs,
+        t: f64,
+    ) -> Result<(Inputs, Option<[f64; 3]>), SimError> {
         let mut eff = *inputs;
+        let mut applied = None;
         if self.scene.coupling == CouplingMode::Motion {
             let load = match self.qs_motion.as_mut() {
                 Some(qs) => {
                     let x = self.journal.at(t - self.journal_t);
                     let load = qs.solve(inputs.shaft_speed, x)?.load;
-                    qs.applied_load = load;
+                    applied = Some(load);
                     load
                 }
                 None => self.start_loads,
@@ -640,7 +649,7 @@ impl Simulation {
             eff.fy = load[1];
             eff.fz = load[2];
         }
-        Ok(eff)
+        Ok((eff, applied))
     }
 
     /// Motion coupling, levels with ring states (L2, L4): when the shaft speed has moved by more
@@ -649,13 +658,13 @@ impl Simulation {
     /// Called at the start of every advance, so it sees the state after all inputs of the
     /// communication point are set, whatever their order, and a speed ramp re-solves L1 once
     /// per [`L1_SPEED_STEP`] of speed, not once per step.
-    fn update_l1_point(&mut self) {
+    fn update_l1_point(&mut self) -> Result<(), SimError> {
         if self.scene.coupling != CouplingMode::Motion || self.qs_motion.is_some() {
-            return;
+            return Ok(());
         }
         let speed = self.inputs.shaft_speed;
         if (speed - self.l1_speed).abs() <= L1_SPEED_STEP * self.l1_speed.abs().max(1.0) {
-            return;
+            return Ok(());
         }
         let t = self.integrator.t();
         let o = &mut self.out_scratch;
@@ -676,10 +685,11 @@ impl Simulation {
             fz,
             ..self.inputs
         };
-        self.model.update_operating_point(&point);
+        self.model.update_operating_point(&point)?;
         self.l1_speed = speed;
         self.model.update_mode(t, self.integrator.y());
         self.integrator.discontinuity();
+        Ok(())
     }
 
     /// Changes the relative tolerance (absolute tolerances follow: rtol × nominal).
@@ -778,7 +788,7 @@ impl Simulation {
                 "cannot advance backwards from t = {t0} s to {t_end} s"
             )));
         }
-        self.update_l1_point();
+        self.update_l1_point()?;
         // The sampler below reads the dense output only at multiples of dt: the integrator
         // builds it only for the steps that contain one (or need it for an event).
         self.integrator
@@ -977,8 +987,11 @@ impl Simulation {
         if let Some(s) = snap.l1_speed {
             self.l1_speed = s;
         }
-        let eff = self.effective_inputs(&snap.inputs, t)?;
-        self.model.set_inputs(&eff, t, self.integrator.y());
+        let (eff, applied) = self.effective_inputs(&snap.inputs, t)?;
+        self.model.set_inputs(&eff, t, self.integrator.y())?;
+        if let (Some(qs), Some(load)) = (self.qs_motion.as_mut(), applied) {
+            qs.applied_load = load;
+        }
         self.model
             .set_discrete_state(&snap.model)
             .map_err(SimError::State)?;

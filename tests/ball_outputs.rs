@@ -173,14 +173,17 @@ fn separation_flag_is_set_exactly_while_a_ball_flies_through_a_spall() {
     }
 }
 
-/// The traction cage speed of the kinematic levels (a Newton solve of the balls' steady
-/// rotation, `models::traction_cage_speed`) is the speed the full model's balls settle to when
-/// integrated in time from the L1 start (healthy, tilt held, 9900 rpm, Fa 4000 N, Fr 1000 N):
-/// the mean orbital speed over 25–35 ms, against the solve, within 0.05 %. L1's outer-race
-/// control (70.42 Hz) is 0.65 % away from both.
+/// The traction cage speed of the kinematic levels (`models::traction_cage_speed`: the common
+/// orbital rate at which the traction's orbital torques on the balls cancel) is the speed the
+/// full model's balls settle to when integrated in time from the L1 start (healthy, tilt held,
+/// 9900 rpm, Fa 4000 N). Under a pure axial load every ball is alike, so a cage changes
+/// nothing and the cage-less full model is the independent reference: the mean orbital speed
+/// over 25–35 ms against the solve, within 0.05 %. L1's outer-race control (70.38 Hz) is
+/// 0.6 % away from both. (Under a radial load the cage-less model's balls each run at their
+/// own rate; `tests/cage_speed.rs` covers the caged balance there.)
 #[test]
 fn traction_cage_speed_is_where_the_full_model_settles() {
-    let mut full = scene(Fidelity::Full, 9900.0, 4000.0, 1000.0);
+    let mut full = scene(Fidelity::Full, 9900.0, 4000.0, 0.0);
     full.full.lock_tilt = true;
     let rows = run(&full, 0.035, 2e-5);
     let late: Vec<f64> = rows
@@ -189,18 +192,14 @@ fn traction_cage_speed_is_where_the_full_model_settles() {
         .map(|(_, o)| o[out::CAGE_SPEED])
         .collect();
     let settled = late.iter().sum::<f64>() / late.len() as f64 / TAU;
-    let kin = run(
-        &scene(Fidelity::Kinematic, 9900.0, 4000.0, 1000.0),
-        1e-3,
-        1e-3,
-    );
+    let kin = run(&scene(Fidelity::Kinematic, 9900.0, 4000.0, 0.0), 1e-3, 1e-3);
     let solved = kin[0].1[out::CAGE_SPEED] / TAU;
-    eprintln!("full model settles at {settled:.4} Hz, the traction solve gives {solved:.4} Hz");
+    eprintln!("full model settles at {settled:.5} Hz, the traction solve gives {solved:.5} Hz");
     assert!(
         (solved / settled - 1.0).abs() < 5e-4,
         "{solved} vs {settled}"
     );
-    assert!((70.42 / settled - 1.0).abs() > 5e-3);
+    assert!((70.38 / settled - 1.0).abs() > 5e-3);
 }
 
 /// The default scene's outer spall on a scene of `level`.

@@ -42,19 +42,24 @@ pub fn run(args: Args) -> Result<(), String> {
     }
     let b = Bearing::load(&args.bearing).map_err(|e| e.to_string())?;
     let case = LoadCase::from_fa_fr_rpm(args.fa, args.fr, args.speed_rpm);
-    let q = solve(&b, &case).map_err(|e| e.to_string())?;
-    let freq = q.frequencies(&b);
-    // The cage speed the balls settle to under the traction (the dynamic levels' start and the
-    // default cage speed of the kinematic ones); None at rest.
     let inputs = raceway::simulation::Inputs {
         shaft_speed: case.speed,
         fx: case.fa,
         fy: case.fy,
         fz: case.fz,
     };
-    let traction_cage = raceway::models::traction_cage_speed(&b, &inputs, Some(&q))
-        .ok()
-        .flatten();
+    // The same input rules as the simulation and the FMU.
+    inputs.check().map_err(|e| e.to_string())?;
+    let q = solve(&b, &case).map_err(|e| e.to_string())?;
+    let freq = q.frequencies(&b);
+    // The cage speed under the traction (the default of the kinematic levels); None at rest.
+    // Where the traction has no equilibrium the reason is printed instead.
+    let traction = (case.speed > 0.0)
+        .then(|| raceway::models::traction_cage_speed(&b, &inputs, Some(&q), None));
+    let traction_cage = traction.as_ref().and_then(|r| r.as_ref().ok().copied());
+    let traction_error = traction
+        .as_ref()
+        .and_then(|r| r.as_ref().err().map(|e| e.to_string()));
     let name = if b.file.name.is_empty() {
         args.bearing.clone()
     } else {
@@ -95,6 +100,7 @@ pub fn run(args: Args) -> Result<(), String> {
             "stiffness": q.stiffness,
             "cage_speed": q.cage_speed,
             "traction_cage_speed": traction_cage,
+            "traction_cage_error": traction_error,
             "spin_speed": q.spin_speed,
             "frequencies": freq,
             "iterations": q.iterations,
@@ -187,12 +193,15 @@ pub fn run(args: Args) -> Result<(), String> {
             "  FTF {:.3} Hz   BPFO {:.2} Hz   BPFI {:.2} Hz   BSF {:.2} Hz   2BSF {:.2} Hz",
             freq.ftf, freq.bpfo, freq.bpfi, freq.bsf, freq.two_bsf
         );
+        if let Some(e) = &traction_error {
+            let _ = writeln!(out, "Cage speed under the traction: none ({e})");
+        }
         if let Some(w) = traction_cage {
             let (ftf, z, fs) = (w / std::f64::consts::TAU, b.z as f64, args.speed_rpm / 60.0);
             let _ = writeln!(
                 out,
-                "Steady rotation under the traction (where the full model's balls settle; the \
-                 levels' default cage speed): cage {w:.3} rad/s"
+                "Cage speed under the traction (a caged bearing's balls in their steady spin; \
+                 the levels' default cage speed): cage {w:.3} rad/s"
             );
             let _ = writeln!(
                 out,

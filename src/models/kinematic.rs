@@ -109,7 +109,7 @@ struct Memo {
 impl KinematicModel {
     /// Builds the generator for a scene (L1 at the scene's inputs).
     pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
-        let table = L1Table::solve(bearing, inputs, scene.lumped.cage_speed)?;
+        let table = L1Table::solve(bearing, inputs, scene.lumped.cage_speed, None)?;
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);
@@ -469,17 +469,26 @@ impl Model for KinematicModel {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) {
+    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) -> Result<(), SimError> {
+        let table = if self.table.moved(inputs) {
+            Some(L1Table::solve(
+                &self.bearing,
+                inputs,
+                self.table.cage,
+                Some(&self.table),
+            )?)
+        } else {
+            None
+        };
         // Steps reached under the old speed are registered with the old rates first.
         self.catch_up(t, y);
         self.inputs = *inputs;
-        if self.table.moved(inputs) {
-            if let Ok(t) = L1Table::solve(&self.bearing, inputs, self.table.cage) {
-                self.table = t;
-                self.modes = self.compute_modes();
-                self.memo.valid = false;
-            }
+        if let Some(table) = table {
+            self.table = table;
+            self.modes = self.compute_modes();
+            self.memo.valid = false;
         }
+        Ok(())
     }
 
     fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
@@ -530,12 +539,12 @@ impl Model for KinematicModel {
     }
 
     fn discrete_state(&self) -> Vec<f64> {
-        let i = &self.table.inputs;
+        let t = self.table.state();
         let mut s = vec![
-            i.shaft_speed,
-            i.fx,
-            i.fy,
-            i.fz,
+            t[0],
+            t[1],
+            t[2],
+            t[3],
             self.next_entry as f64,
             self.next_exit as f64,
             self.dip,
@@ -544,27 +553,21 @@ impl Model for KinematicModel {
         for acc in &self.acc {
             s.extend_from_slice(&[acc.0, acc.1, acc.2]);
         }
+        s.push(t[4]);
         s
     }
 
     fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
-        if s.len() != 14 || s.iter().any(|v| !v.is_finite()) {
+        if !(14..=15).contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
             return Err(format!(
-                "kinematic model state has 14 finite values, got {}",
+                "kinematic model state has 15 finite values, got {}",
                 s.len()
             ));
         }
-        let inputs = Inputs {
-            shaft_speed: s[0],
-            fx: s[1],
-            fy: s[2],
-            fz: s[3],
-        };
-        if inputs != self.table.inputs {
-            self.table = L1Table::solve(&self.bearing, &inputs, self.table.cage)
-                .map_err(|e| e.to_string())?;
-            self.modes = self.compute_modes();
-        }
+        // The table's inputs, then (since the cage speed is kept) its cage speed at the end.
+        let table: Vec<f64> = s[..4].iter().chain(s.get(14)).copied().collect();
+        self.table.restore(&self.bearing, &table)?;
+        self.modes = self.compute_modes();
         self.next_entry = s[4] as i64;
         self.next_exit = s[5] as i64;
         self.dip = s[6];

@@ -202,11 +202,14 @@ impl LumpedModel {
             .unwrap_or(0.5 * spacing)
     }
 
-    /// L1 at the given inputs: the cage-speed ratio and the static ring offset.
+    /// L1 at the given inputs: the cage-speed ratio and the static ring offset (the traction
+    /// solve starts from the last ratio, solved nearby along a ramp).
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
-        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) start")?;
+        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) operating point")?;
+        let previous = (self.cage_ratio > 0.0).then_some(self.cage_ratio);
         self.cage_ratio = if inputs.shaft_speed > 0.0 {
-            super::kinematic_levels_cage_speed(bearing, inputs, &qs, self.cage) / inputs.shaft_speed
+            super::kinematic_levels_cage_speed(bearing, inputs, &qs, self.cage, previous)?
+                / inputs.shaft_speed
         } else {
             kinematic_cage_ratio(bearing, &qs)
         };
@@ -610,14 +613,14 @@ impl Model for LumpedModel {
         self.static_ring(y);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
-        self.inputs = *inputs;
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         if self.prescribed {
             // Motion coupling: the simulation moves the L1 point (update_operating_point).
-            return;
+            self.inputs = *inputs;
+            return Ok(());
         }
         // Re-solve L1 for the cage-speed ratio when the operating point has moved by more than
-        // 2 % since the last solve; if L1 cannot solve there (e.g. no load), keep the last ratio.
+        // 2 % since the last solve (an operating point without equilibrium is an error).
         let old = self.l1_inputs;
         let load = |i: &Inputs| (i.fx * i.fx + i.fy * i.fy + i.fz * i.fz).sqrt();
         let moved = (inputs.shaft_speed - old.shaft_speed).abs()
@@ -630,8 +633,10 @@ impl Model for LumpedModel {
             }) > 0.02 * load(&old).max(1.0);
         if moved {
             let bearing = self.bearing.clone();
-            let _ = self.solve_l1(&bearing, inputs);
+            self.solve_l1(&bearing, inputs)?;
         }
+        self.inputs = *inputs;
+        Ok(())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -820,10 +825,9 @@ impl Model for LumpedModel {
         })
     }
 
-    fn update_operating_point(&mut self, inputs: &Inputs) {
-        // If L1 cannot solve there (e.g. no load), keep the last ratio.
+    fn update_operating_point(&mut self, inputs: &Inputs) -> Result<(), SimError> {
         let bearing = self.bearing.clone();
-        let _ = self.solve_l1(&bearing, inputs);
+        self.solve_l1(&bearing, inputs)
     }
 
     fn set_prescribed_ring(&mut self, on: bool) {

@@ -32,10 +32,22 @@ pub fn solve_l1(
     };
     crate::quasi_static::solve(bearing, &case).map_err(|e| {
         SimError::Input(format!(
-            "{purpose} failed at shaft.speed = {:.3} rad/s, load = ({}, {}, {}) N: {e}",
-            inputs.shaft_speed, inputs.fx, inputs.fy, inputs.fz
+            "{purpose} failed at {}: {e}",
+            operating_point(inputs)
         ))
     })
+}
+
+/// The operating point for messages: "shaft.speed = … rad/s (… rpm), load = (…, …, …) N".
+pub fn operating_point(inputs: &Inputs) -> String {
+    format!(
+        "shaft.speed = {:.3} rad/s ({:.1} rpm), load = ({}, {}, {}) N",
+        inputs.shaft_speed,
+        inputs.shaft_speed * 30.0 / std::f64::consts::PI,
+        inputs.fx,
+        inputs.fy,
+        inputs.fz
+    )
 }
 
 /// Builds the model of the scene's fidelity level (one arm per level).
@@ -107,8 +119,9 @@ pub trait Model: Send {
     /// The initial state at t = 0 (from L1 equilibrium, spec §7).
     fn initial_state(&self, y: &mut [f64]);
 
-    /// New inputs, constant from time `t` on (state `y` at that time).
-    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]);
+    /// New inputs, constant from time `t` on (state `y` at that time). On an error (no
+    /// equilibrium at the new inputs, named in the message) the model is unchanged.
+    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) -> Result<(), SimError>;
 
     /// Right-hand side; must not allocate.
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
@@ -177,8 +190,11 @@ pub trait Model: Send {
     /// (speed and the load the ring carries) from which the level takes its cage speed. Called
     /// at the start of a communication step when the speed has moved by more than
     /// [`crate::simulation::L1_SPEED_STEP`] since the last call; levels without an L1 cage speed
-    /// ignore it. (In force mode the level follows its own inputs.)
-    fn update_operating_point(&mut self, _inputs: &Inputs) {}
+    /// ignore it. (In force mode the level follows its own inputs.) On an error the level
+    /// keeps its operating point.
+    fn update_operating_point(&mut self, _inputs: &Inputs) -> Result<(), SimError> {
+        Ok(())
+    }
 
     /// Analytic linearization of `bearing.F` with respect to the ring's displacement and
     /// velocity at state `y` (everything else held: pedestal, balls, cage). `None` = not
@@ -196,44 +212,56 @@ pub trait Model: Send {
 }
 
 /// Cage speed [rad/s] of the levels with kinematic balls at a positive shaft speed, from the L1
-/// solution `qs` at `inputs`: the traction solve ([`traction_cage_speed`]) or L1's outer-race
-/// control, as `cage` selects. A bearing the full model cannot set up keeps L1's.
+/// solution `qs` at `inputs`: the traction solve ([`traction_cage_speed`], started from
+/// `previous`, a cage-to-shaft ratio solved nearby, for continuation along a ramp) or L1's
+/// outer-race control, as `cage` selects. An operating point where the traction has no
+/// equilibrium is an error naming it (never a silent switch to outer-race control).
 pub fn kinematic_levels_cage_speed(
     bearing: &Bearing,
     inputs: &Inputs,
     qs: &crate::quasi_static::QuasiStatic,
     cage: crate::scene::CageSpeed,
-) -> f64 {
-    let traction = match cage {
-        crate::scene::CageSpeed::Traction => traction_cage_speed(bearing, inputs, Some(qs))
-            .ok()
-            .flatten(),
-        crate::scene::CageSpeed::OuterRaceControl => None,
-    };
-    traction.unwrap_or(qs.cage_speed)
+    previous: Option<f64>,
+) -> Result<f64, SimError> {
+    match cage {
+        crate::scene::CageSpeed::Traction => {
+            traction_cage_speed(bearing, inputs, Some(qs), previous)
+        }
+        crate::scene::CageSpeed::OuterRaceControl => Ok(qs.cage_speed),
+    }
 }
 
-/// Cage speed [rad/s] at which the balls roll under the strip traction: the mean orbital rate
-/// of the balls' steady rotation ([`full::init::settle_ball_rotation`]) on the healthy bearing
-/// at `inputs`, the ring and pedestal at the L1 start with the tilt held. This is the cage
-/// speed the full model settles to (69.965 Hz against L4's 69.96–70.03 Hz on the §3.5 scene),
-/// where L1's outer-race control gives 70.42 Hz. None at zero speed or if the solve does not
-/// converge; the caller then keeps L1's. The Newton tolerance 1e-6 (scaled residual) changes
-/// the cage speed by < 1e-6 relative against 1e-9 and saves ≈ 0.03 ms (0.11 ms per solve on the
-/// Table-1 bearing, `cargo run --release --example cage_probe`), which the kinematic level's
-/// 5-ms budget per simulated second needs.
+/// Cage speed [rad/s] at which the strip traction drives the balls of a caged bearing: the
+/// common orbital rate at which the traction's orbital torques on the balls cancel, each ball
+/// in its steady spin ([`full::steady::steady_rotation`], [`full::steady::Orbit::Caged`]), on
+/// the healthy bearing at `inputs` with the ring and pedestal at the L1 start, the tilt held
+/// (`l1`, if given, must be the L1 solution at `inputs`). `ratio`, a cage-to-shaft speed ratio
+/// solved nearby, starts the search (else L1's outer-race control). 0 at zero speed. An error
+/// names the operating point and the reason when there is no equilibrium.
 pub fn traction_cage_speed(
     bearing: &Bearing,
     inputs: &Inputs,
     l1: Option<&crate::quasi_static::QuasiStatic>,
-) -> Result<Option<f64>, SimError> {
+    ratio: Option<f64>,
+) -> Result<f64, SimError> {
     if inputs.shaft_speed <= 0.0 {
-        return Ok(None);
+        return Ok(0.0);
     }
     let options = full::FullOptions {
         traction: true,
         lock_tilt: true,
     };
-    let m = full::FullModel::healthy(bearing, inputs, options, l1)?;
-    Ok(m.settle_report().map(|r| r.mean_orbital_rate))
+    let mut m = full::FullModel::healthy(bearing, inputs, options, l1)?;
+    let mut y = vec![0.0; m.dim()];
+    m.initial_state(&mut y);
+    m.update_mode(0.0, &y);
+    let guess = ratio.map(|r| r * inputs.shaft_speed);
+    full::steady::steady_rotation(&mut m, &mut y, full::steady::Orbit::Caged, guess)
+        .map(|r| r.cage_speed)
+        .map_err(|e| {
+            SimError::Input(format!(
+                "the traction cage speed at {}: {e}",
+                operating_point(inputs)
+            ))
+        })
 }

@@ -49,15 +49,51 @@ pub struct L1Table {
 }
 
 impl L1Table {
-    /// Solves L1 at `inputs`, with the cage speed from `cage`.
-    pub fn solve(bearing: &Bearing, inputs: &Inputs, cage: CageSpeed) -> Result<Self, SimError> {
+    /// Solves L1 at `inputs`, with the cage speed from `cage` (the traction solve starts from
+    /// `previous`'s cage-to-shaft ratio, a table solved nearby, if given).
+    pub fn solve(
+        bearing: &Bearing,
+        inputs: &Inputs,
+        cage: CageSpeed,
+        previous: Option<&L1Table>,
+    ) -> Result<Self, SimError> {
         let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) solve")?;
         let mut t = Self::from_solution(bearing, &qs, inputs);
         t.cage = cage;
         if inputs.shaft_speed > 0.0 {
-            t.cage_speed = super::kinematic_levels_cage_speed(bearing, inputs, &qs, cage);
+            let ratio = previous
+                .filter(|p| p.inputs.shaft_speed > 0.0 && p.cage_speed > 0.0)
+                .map(|p| p.cage_speed / p.inputs.shaft_speed);
+            t.cage_speed = super::kinematic_levels_cage_speed(bearing, inputs, &qs, cage, ratio)?;
         }
         Ok(t)
+    }
+
+    /// The table's part of a model's discrete state: the inputs it was solved at and its cage
+    /// speed (kept, so that a restored run continues with the same bits whatever guess the
+    /// traction solve would start from now).
+    pub fn state(&self) -> [f64; 5] {
+        let i = &self.inputs;
+        [i.shaft_speed, i.fx, i.fy, i.fz, self.cage_speed]
+    }
+
+    /// Restores [`L1Table::state`] (the cage speed may be missing in states saved before it was
+    /// kept; it is then solved again).
+    pub fn restore(&mut self, bearing: &Bearing, s: &[f64]) -> Result<(), String> {
+        let inputs = Inputs {
+            shaft_speed: s[0],
+            fx: s[1],
+            fy: s[2],
+            fz: s[3],
+        };
+        if inputs != self.inputs {
+            *self = L1Table::solve(bearing, &inputs, self.cage, Some(self))
+                .map_err(|e| e.to_string())?;
+        }
+        if let Some(&w) = s.get(4) {
+            self.cage_speed = w;
+        }
+        Ok(())
     }
 
     fn from_solution(bearing: &Bearing, qs: &QuasiStatic, inputs: &Inputs) -> Self {
@@ -209,7 +245,7 @@ impl QuasiStaticModel {
     pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
         Ok(Self {
             bearing: bearing.clone(),
-            table: L1Table::solve(bearing, inputs, scene.lumped.cage_speed)?,
+            table: L1Table::solve(bearing, inputs, scene.lumped.cage_speed, None)?,
             inputs: *inputs,
         })
     }
@@ -233,13 +269,12 @@ impl Model for QuasiStaticModel {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
-        self.inputs = *inputs;
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         if self.table.moved(inputs) {
-            if let Ok(t) = L1Table::solve(&self.bearing, inputs, self.table.cage) {
-                self.table = t;
-            }
+            self.table = L1Table::solve(&self.bearing, inputs, self.table.cage, Some(&self.table))?;
         }
+        self.inputs = *inputs;
+        Ok(())
     }
 
     fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
@@ -258,28 +293,17 @@ impl Model for QuasiStaticModel {
     }
 
     fn discrete_state(&self) -> Vec<f64> {
-        let i = &self.table.inputs;
-        vec![i.shaft_speed, i.fx, i.fy, i.fz]
+        self.table.state().to_vec()
     }
 
     fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
-        if s.len() != 4 {
+        if !(4..=5).contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
             return Err(format!(
-                "quasi-static model state has 4 values, got {}",
+                "quasi-static model state has 5 finite values, got {}",
                 s.len()
             ));
         }
-        let inputs = Inputs {
-            shaft_speed: s[0],
-            fx: s[1],
-            fy: s[2],
-            fz: s[3],
-        };
-        if inputs != self.table.inputs {
-            self.table = L1Table::solve(&self.bearing, &inputs, self.table.cage)
-                .map_err(|e| e.to_string())?;
-        }
-        Ok(())
+        self.table.restore(&self.bearing, s)
     }
 
     fn cage_speed(&self) -> f64 {

@@ -31,7 +31,7 @@
 //!
 //! The attitude β is not L1's outer-race control (25.8° on the §3.5 bearing) but the one the
 //! traction sets: the balls' steady rotation solved on the full model at the start
-//! ([`full_model::init::settle_ball_rotation`], 33.6°; L4's balls settle to 33.4° within
+//! ([`full_model::steady::steady_rotation`], 33.6°; L4's balls settle to 33.4° within
 //! ≈ 20 ms). With it L3's cage runs at 69.964 Hz against L4's 69.957 Hz (tilt held), and its
 //! friction torque is 0.203 against 0.202 N m (with L1's attitude: 70.121 Hz, 0.311 N m).
 //!
@@ -174,7 +174,7 @@ pub struct ReducedModel {
     attitude: (f64, f64),
     /// The Newton solve of the balls' steady rotation behind the attitude (None without
     /// traction or at zero speed).
-    settle: Option<full_model::init::SettleReport>,
+    settle: Option<full_model::steady::SteadyReport>,
     /// Frozen spall halves, blend sides and contact modes, and their switches (as in the
     /// full model).
     sw: Switches,
@@ -343,8 +343,8 @@ impl ReducedModel {
         self.lay
     }
 
-    /// The Newton solve of the balls' steady rotation (None without traction or at zero speed).
-    pub fn settle_report(&self) -> Option<full_model::init::SettleReport> {
+    /// The solve of the balls' steady rotation (None without traction or at zero speed).
+    pub fn settle_report(&self) -> Option<full_model::steady::SteadyReport> {
         self.settle
     }
 
@@ -545,8 +545,9 @@ impl Model for ReducedModel {
         y.copy_from_slice(&self.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.inputs = *inputs;
+        Ok(())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {

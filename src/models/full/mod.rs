@@ -17,6 +17,7 @@ pub mod contact;
 pub mod init;
 pub mod layout;
 pub mod pass;
+pub mod steady;
 pub mod switches;
 
 use self::contact::{cross, dot, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3};
@@ -79,7 +80,10 @@ pub struct FullModel {
     /// Reference cage speed ratio ψ̇/Ω.
     cage_ratio: f64,
     /// The steady-rotation solve of the start ([`FullModel::settle_report`]).
-    settle: Option<init::SettleReport>,
+    settle: Option<steady::SteadyReport>,
+    /// Each ball's orbital rate under L1's outer-race control [rad/s] (where the
+    /// steady-rotation solve starts).
+    l1_orbit: Vec<f64>,
     /// Azimuth of ball 0 at ψ = 0 [rad].
     theta_start: f64,
     /// Frozen spall halves, blend sides and contact modes, and their switches.
@@ -146,20 +150,23 @@ impl FullModel {
             scene.defect.as_ref(),
             scene.pulse.clone(),
             None,
+            true,
         )
     }
 
-    /// The healthy bearing without a pulse, started from a given L1 solution at `inputs` (or
-    /// from a new one).
+    /// The healthy bearing without a pulse at L1's start (balls in outer-race control, no
+    /// steady-rotation solve), from a given L1 solution at `inputs` (or from a new one): the
+    /// base of [`steady::steady_rotation`] for the kinematic levels' cage speed.
     pub fn healthy(
         bearing: &Bearing,
         inputs: &Inputs,
         options: FullOptions,
         l1: Option<&QuasiStatic>,
     ) -> Result<Self, SimError> {
-        Self::build(bearing, inputs, options, None, None, l1)
+        Self::build(bearing, inputs, options, None, None, l1, false)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn build(
         bearing: &Bearing,
         inputs: &Inputs,
@@ -167,6 +174,7 @@ impl FullModel {
         defect: Option<&DefectSpec>,
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
+        settle: bool,
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let z = bearing.z;
@@ -220,6 +228,7 @@ impl FullModel {
             inputs: *inputs,
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             settle: None,
+            l1_orbit: vec![0.0; z],
             theta_start: 0.0,
             sw: Switches::new(z),
             q_inner: vec![0.0; z],
@@ -233,25 +242,37 @@ impl FullModel {
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
         init::initial_state(&mut m, bearing, l1)?;
-        if m.traction.is_some() && inputs.shaft_speed > 0.0 {
+        if settle && m.traction.is_some() && inputs.shaft_speed > 0.0 {
             // Start the balls in their steady rotation under the traction (the state they
-            // settle to in ≈ 20 ms from L1's outer-race control): a quiet start, and the cage
-            // speed the model runs at.
+            // settle to in ≈ 20 ms from L1's outer-race control): a quiet start. Each ball at
+            // its own orbital rate, as this cage-less model runs; where some ball has no steady
+            // rotation of its own, all at the caged one (the report says which).
             let mut y = m.y0.clone();
             m.update_mode(0.0, &y);
-            let r = init::settle_ball_rotation(&mut m, &mut y, 1e-6);
-            if r.solved > 0 && r.residual < 1e-6 && r.mean_orbital_rate.is_finite() {
-                m.y0 = y;
-                m.cage_ratio = r.mean_orbital_rate / inputs.shaft_speed;
-                m.settle = Some(r);
-            }
+            let r = match steady::steady_rotation(&mut m, &mut y, steady::Orbit::Free, None) {
+                Ok(r) => r,
+                Err(_) => {
+                    y.copy_from_slice(&m.y0);
+                    steady::steady_rotation(&mut m, &mut y, steady::Orbit::Caged, None).map_err(
+                        |e| {
+                            SimError::Input(format!(
+                                "the balls' steady rotation (the full model's start) at {}: {e}",
+                                super::operating_point(inputs)
+                            ))
+                        },
+                    )?
+                }
+            };
+            m.y0 = y;
+            m.cage_ratio = r.cage_speed / inputs.shaft_speed;
+            m.settle = Some(r);
         }
         Ok(m)
     }
 
-    /// The Newton solve of the balls' steady rotation at the start (None without traction, at
-    /// zero speed, or if it did not converge: then the start is L1's outer-race control).
-    pub fn settle_report(&self) -> Option<init::SettleReport> {
+    /// The solve of the balls' steady rotation at the start (None without traction or at zero
+    /// speed: then the start is L1's outer-race control).
+    pub fn settle_report(&self) -> Option<steady::SteadyReport> {
         self.settle
     }
 
@@ -510,8 +531,9 @@ impl Model for FullModel {
         y.copy_from_slice(&self.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) {
+    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.inputs = *inputs;
+        Ok(())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
