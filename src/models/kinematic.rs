@@ -2,7 +2,8 @@
 //!
 //! States: the cage angle θ_c and the shaft angle φ (constant rates between input changes, so
 //! every explicit Runge–Kutta method integrates them exactly and takes few steps). The cage speed
-//! is L1's loaded one (re-solved when the inputs move by more than 2 %).
+//! is the quasi-static level's (a cage-to-shaft ratio re-solved when the inputs move by more
+//! than 2 %, times the current shaft speed).
 //!
 //! Fault events. The fault phase ψ counts ball passes over the spall: ψ = z(θ_start + θ_c − θ0)/2π
 //! for an outer-race spall and ψ = z(θ0 + φ − θ_start − θ_c)/2π for an inner-race spall (both
@@ -243,8 +244,8 @@ impl KinematicModel {
         let Some(d) = &self.defect else { return 0.0 };
         let z = self.bearing.z as f64;
         match d.ring() {
-            Race::Outer => z * self.table.cage_speed / TAU,
-            Race::Inner => z * (self.inputs.shaft_speed - self.table.cage_speed) / TAU,
+            Race::Outer => z * self.cage_speed() / TAU,
+            Race::Inner => z * (self.inputs.shaft_speed - self.cage_speed()) / TAU,
         }
     }
 
@@ -492,7 +493,7 @@ impl Model for KinematicModel {
     }
 
     fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
-        dydt[CAGE] = self.table.cage_speed;
+        dydt[CAGE] = self.cage_speed();
         dydt[SHAFT] = self.inputs.shaft_speed;
     }
 
@@ -581,6 +582,6 @@ impl Model for KinematicModel {
     }
 
     fn cage_speed(&self) -> f64 {
-        self.table.cage_speed
+        self.table.cage_speed_at(self.inputs.shaft_speed)
     }
 }

@@ -6,13 +6,14 @@
 //! The balls sit at θ_j = θ_start + 2πj/z + θ_c and rotate with the cage; each ball's contact
 //! forces are the L1 load distribution at its azimuth (linear interpolation over azimuth between
 //! L1's z equally spaced balls), so a ball's Q moves through the load zone as the cage turns.
-//! L1 is re-solved when an input changes by more than 2 % (speed or load); if it cannot solve at
-//! the new inputs the last solution is kept.
+//! L1 is re-solved when an input changes by more than 2 % (speed or load); an operating point
+//! where it has no solution is an error (the model keeps the last one).
 //!
 //! Static outputs (constant between input changes): the pedestal sits at its static deflection
 //! F/k_p with zero velocity and acceleration, the inner ring at pedestal + L1 displacement, the
 //! bearing force on the shaft is minus the external load, the friction torque is 0 (no traction
-//! at L1) and the cage speed is L1's mean ω_c.
+//! at L1) and the cage speed is the solved cage-to-shaft ratio times the current shaft speed
+//! (the traction's caged balance or L1's mean ω_c, `lumped.cage_speed`).
 
 use super::Model;
 use crate::geometry::Bearing;
@@ -67,6 +68,17 @@ impl L1Table {
             t.cage_speed = super::kinematic_levels_cage_speed(bearing, inputs, &qs, cage, ratio)?;
         }
         Ok(t)
+    }
+
+    /// The cage speed at shaft speed `speed` [rad/s]: the solved cage-to-shaft ratio times the
+    /// speed, so that the cage follows a speed ramp between re-solves (0 for a table solved at
+    /// rest).
+    pub fn cage_speed_at(&self, speed: f64) -> f64 {
+        if self.inputs.shaft_speed > 0.0 {
+            self.cage_speed / self.inputs.shaft_speed * speed
+        } else {
+            0.0
+        }
     }
 
     /// The table's part of a model's discrete state: the inputs it was solved at and its cage
@@ -182,7 +194,8 @@ pub(crate) fn static_outputs(
     o[out::BEARING_F_Y] = -inputs.fy;
     o[out::BEARING_F_Z] = -inputs.fz;
     o[out::FRICTION_TORQUE] = 0.0;
-    o[out::CAGE_SPEED] = table.cage_speed;
+    let cage_speed = table.cage_speed_at(inputs.shaft_speed);
+    o[out::CAGE_SPEED] = cage_speed;
     let z = bearing.z;
     if table.q_inner.len() != z || z == 0 || !out::has_ball_block(o, z) {
         return;
@@ -200,7 +213,7 @@ pub(crate) fn static_outputs(
     let (q_out, orbit) = rest.split_at_mut(z);
     interpolate_rotated(&table.q_inner, j0, s, q_in);
     interpolate_rotated(&table.q_outer, j0, s, q_out);
-    orbit.fill(table.cage_speed);
+    orbit.fill(cage_speed);
     out::set_separation_flags(o, z);
 }
 
@@ -278,7 +291,7 @@ impl Model for QuasiStaticModel {
     }
 
     fn rhs(&mut self, _t: f64, _y: &[f64], dydt: &mut [f64]) {
-        dydt[CAGE] = self.table.cage_speed;
+        dydt[CAGE] = self.table.cage_speed_at(self.inputs.shaft_speed);
         dydt[SHAFT] = self.inputs.shaft_speed;
     }
 
@@ -307,7 +320,7 @@ impl Model for QuasiStaticModel {
     }
 
     fn cage_speed(&self) -> f64 {
-        self.table.cage_speed
+        self.table.cage_speed_at(self.inputs.shaft_speed)
     }
 }
 

@@ -62,6 +62,13 @@ pub struct SteadyReport {
     pub orbit_residual: f64,
     /// Caged: the common orbital rate; free: the mean over the solved balls [rad/s].
     pub cage_speed: f64,
+    /// Caged: balls whose spin has no steady state at the cage speed (a spin cycle), taken with
+    /// their orbital acceleration averaged over their motion ([`SteadyReport::cycle_spread`]).
+    pub unsettled: usize,
+    /// Caged: the change of the cage speed that half the range of the unsettled balls'
+    /// orbital accelerations over their cycles would make [rad/s] (0 when all settle): how
+    /// much the averaging can matter.
+    pub cycle_spread: f64,
 }
 
 /// Why [`steady_rotation`] has no answer.
@@ -128,7 +135,11 @@ const ORBIT_TOL: f64 = 1e-9;
 /// Spin residual tolerance, |ω̇ − θ̇ e_x × ω| ≤ SPIN_TOL Ω |ω|.
 const SPIN_TOL: f64 = 1e-9;
 /// Pseudo-transient iterations per spin solve.
-const SPIN_ITER: usize = 200;
+const SPIN_ITER: usize = 100;
+/// A spin that does not settle is followed over this many shaft revolutions in this many
+/// steps ([`average_flow`]).
+const FLOW_REVS: f64 = 10.0;
+const FLOW_STEPS: usize = 300;
 /// Orbit evaluations per solve (bracketing and regula falsi).
 const ORBIT_ITER: usize = 80;
 
@@ -137,6 +148,11 @@ struct Work {
     d: Vec<f64>,
     r: Vec<[f64; 3]>,
     rt: Vec<[f64; 3]>,
+    base: Vec<[f64; 3]>,
+    /// Balls of the last spin solve that did not settle (averaged) and half the range of
+    /// their orbital acceleration [rad/s²].
+    unsettled: Vec<bool>,
+    spread: Vec<f64>,
     jac: Vec<[[f64; 3]; 3]>,
     h: Vec<f64>,
     dtau: Vec<f64>,
@@ -179,9 +195,31 @@ fn norm3(v: &[f64; 3]) -> f64 {
     v.iter().fold(0.0_f64, |a, x| a.max(x.abs()))
 }
 
+/// The spin Jacobian ∂r/∂ω of every ball at `y` (residuals in `w.r`), one column for every
+/// ball per right-hand side.
+fn jacobian(m: &mut FullModel, y: &mut [f64], w: &mut Work) {
+    let z = w.r.len();
+    w.base.copy_from_slice(&w.r);
+    for k in 0..3 {
+        for j in 0..z {
+            let i = spin_idx(m, j)[k];
+            w.h[j] = 1e-7 * (y[i].abs() + y[m.lay.ball(j) + BW].abs()).max(1.0);
+            y[i] += w.h[j];
+        }
+        residuals(m, y, w, Out::Trial);
+        for j in 0..z {
+            y[spin_idx(m, j)[k]] -= w.h[j];
+            for row in 0..3 {
+                w.jac[j][row][k] = (w.rt[j][row] - w.base[j][row]) / w.h[j];
+            }
+        }
+    }
+}
+
 /// Solves every active ball's spin at the orbital rates in `y` (pseudo-transient continuation,
 /// all balls in lockstep). On return `w.r` holds the residuals at `y` and `orbit[j]` the balls'
-/// θ̈. Err(ball) if a ball's spin does not settle.
+/// θ̈. A ball whose spin does not settle is an error, or with `average` its orbital
+/// acceleration is the mean over its own motion ([`average_flow`], `w.unsettled`).
 ///
 /// A step is kept only if it lowers the ball's residual (2-norm); otherwise it is undone and
 /// Δτ cut by 4, so a ball whose Newton step fails falls back on its own damped rotation. The
@@ -192,6 +230,7 @@ fn solve_spins(
     active: &[bool],
     w: &mut Work,
     orbit: &mut [f64],
+    average: bool,
 ) -> Result<(), usize> {
     let z = active.len();
     residuals(m, y, w, Out::Base);
@@ -203,22 +242,7 @@ fn solve_spins(
             break;
         }
         if need_jac {
-            // ∂r/∂ω, one column for every ball per right-hand side.
-            let base = w.r.clone();
-            for k in 0..3 {
-                for j in 0..z {
-                    let i = spin_idx(m, j)[k];
-                    w.h[j] = 1e-7 * (y[i].abs() + y[m.lay.ball(j) + BW].abs()).max(1.0);
-                    y[i] += w.h[j];
-                }
-                residuals(m, y, w, Out::Trial);
-                for j in 0..z {
-                    y[spin_idx(m, j)[k]] -= w.h[j];
-                    for row in 0..3 {
-                        w.jac[j][row][k] = (w.rt[j][row] - base[j][row]) / w.h[j];
-                    }
-                }
-            }
+            jacobian(m, y, w);
             need_jac = false;
         }
         // One pseudo-time step per unconverged ball.
@@ -296,10 +320,56 @@ fn solve_spins(
     residuals(m, y, w, Out::Base);
     for j in 0..z {
         orbit[j] = w.d[m.lay.ball(j) + BW];
+        w.unsettled[j] = false;
     }
-    match (0..z).find(|&j| active[j] && !converged(w, j)) {
-        Some(j) => Err(j),
+    let open: Vec<usize> = (0..z).filter(|&j| active[j] && !converged(w, j)).collect();
+    match open.first() {
         None => Ok(()),
+        Some(&j) if !average => Err(j),
+        Some(_) => {
+            average_flow(m, y, w, orbit, &open);
+            Ok(())
+        }
+    }
+}
+
+/// Balls whose spin has no steady state at their orbital rate (a lightly loaded ball held far
+/// from its rolling speed can settle into a spin cycle instead): their orbital acceleration is
+/// its mean over the second half of [`FLOW_REVS`] shaft revolutions of their own rotation,
+/// followed by linearly implicit Euler steps. `w.spread[j]` gets half its range there.
+fn average_flow(m: &mut FullModel, y: &mut [f64], w: &mut Work, orbit: &mut [f64], open: &[usize]) {
+    let dt = FLOW_REVS * std::f64::consts::TAU / m.inputs.shaft_speed / FLOW_STEPS as f64;
+    let mut sum = vec![0.0; orbit.len()];
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); orbit.len()];
+    for step in 0..FLOW_STEPS {
+        jacobian(m, y, w);
+        for &j in open {
+            let mut a = w.jac[j];
+            for (r, row) in a.iter_mut().enumerate() {
+                for (c, v) in row.iter_mut().enumerate() {
+                    *v = if r == c { 1.0 / dt } else { 0.0 } - *v;
+                }
+            }
+            if let Some(s) = solve3(a, w.r[j]) {
+                for (k, i) in spin_idx(m, j).into_iter().enumerate() {
+                    y[i] += s[k];
+                }
+            }
+        }
+        residuals(m, y, w, Out::Base);
+        if step >= FLOW_STEPS / 2 {
+            for &j in open {
+                let g = w.d[m.lay.ball(j) + BW];
+                sum[j] += g;
+                range[j] = (range[j].0.min(g), range[j].1.max(g));
+            }
+        }
+    }
+    let n = (FLOW_STEPS - FLOW_STEPS / 2) as f64;
+    for &j in open {
+        orbit[j] = sum[j] / n;
+        w.unsettled[j] = true;
+        w.spread[j] = 0.5 * (range[j].1 - range[j].0);
     }
 }
 
@@ -459,7 +529,10 @@ impl Solved {
 
 /// Moves the active balls' orbital rates from the last solved state to `target` and solves
 /// their spins there; where a ball's spin does not settle after the whole move, the move is
-/// made in continuation steps (halved until each settles, up to 1/1024 of it). Err(ball).
+/// made in continuation steps (halved until each settles, up to 1/1024 of it). With `average`,
+/// a ball that still does not settle after three halvings is taken at the target with its
+/// orbital acceleration averaged over its own motion ([`average_flow`]). Err(ball).
+#[allow(clippy::too_many_arguments)]
 fn move_to(
     m: &mut FullModel,
     y: &mut [f64],
@@ -468,6 +541,7 @@ fn move_to(
     accel: &mut [f64],
     solved: &mut Solved,
     target: &[f64],
+    average: bool,
 ) -> Result<(), usize> {
     let mut f = 1.0;
     loop {
@@ -475,10 +549,16 @@ fn move_to(
             let from = solved.rate[j];
             y[m.lay.ball(j) + BW] = from + f * (target[j] - from);
         }
-        match solve_spins(m, y, active, w, accel) {
+        let last_try = average && f <= 0.125;
+        if last_try {
+            for j in (0..active.len()).filter(|&j| active[j]) {
+                y[m.lay.ball(j) + BW] = target[j];
+            }
+        }
+        match solve_spins(m, y, active, w, accel, last_try) {
             Ok(()) => {
                 solved.save(m, y);
-                if f == 1.0 {
+                if f == 1.0 || last_try {
                     return Ok(());
                 }
                 f = (2.0 * f).min(1.0);
@@ -531,6 +611,9 @@ pub fn steady_rotation(
         d: vec![0.0; y.len()],
         r: vec![[0.0; 3]; z],
         rt: vec![[0.0; 3]; z],
+        base: vec![[0.0; 3]; z],
+        unsettled: vec![false; z],
+        spread: vec![0.0; z],
         jac: vec![[[0.0; 3]; 3]; z],
         h: vec![0.0; z],
         dtau: vec![0.0; z],
@@ -564,7 +647,8 @@ pub fn steady_rotation(
         rate: vec![0.0; z],
         spin: vec![[0.0; 3]; z],
     };
-    solve_spins(m, y, &active, &mut w, &mut accel).map_err(|j| spin_error(&w, y, j))?;
+    solve_spins(m, y, &active, &mut w, &mut accel, orbit == Orbit::Caged)
+        .map_err(|j| spin_error(&w, y, j))?;
     solved.save(m, y);
     let new_root = |x0: f64| Root::new(x0, 0.0, omega, 2e-3 * omega.max(1e-300), ORBIT_TOL * omega);
     let mut roots: Vec<Root> = match orbit {
@@ -595,12 +679,22 @@ pub fn steady_rotation(
             })
             .collect()
     };
+    let caged = orbit == Orbit::Caged;
     let mut evaluations = 0;
     loop {
         evaluations += 1;
         let target = targets(&roots);
-        move_to(m, y, &active, &mut w, &mut accel, &mut solved, &target)
-            .map_err(|j| spin_error(&w, y, j))?;
+        move_to(
+            m,
+            y,
+            &active,
+            &mut w,
+            &mut accel,
+            &mut solved,
+            &target,
+            caged,
+        )
+        .map_err(|j| spin_error(&w, y, j))?;
         match orbit {
             Orbit::Free => {
                 for j in (0..z).filter(|&j| active[j]) {
@@ -632,8 +726,17 @@ pub fn steady_rotation(
     }
     // Final rates: the roots' last estimates, with the spins solved there.
     let target = targets(&roots);
-    move_to(m, y, &active, &mut w, &mut accel, &mut solved, &target)
-        .map_err(|j| spin_error(&w, y, j))?;
+    move_to(
+        m,
+        y,
+        &active,
+        &mut w,
+        &mut accel,
+        &mut solved,
+        &target,
+        caged,
+    )
+    .map_err(|j| spin_error(&w, y, j))?;
     let spin_residual = (0..z)
         .filter(|&j| active[j])
         .map(|j| norm3(&w.r[j]) / w.scale[j])
@@ -653,6 +756,32 @@ pub fn steady_rotation(
         ),
         Orbit::Caged => (caged_g(&accel).abs() / (omega * omega), roots[0].x),
     };
+    let unsettled = w.unsettled.iter().filter(|&&u| u).count();
+    // The caged balance's slope from the final bracket turns the spread of the unsettled balls'
+    // torques into a spread of the cage speed.
+    let cycle_spread = match (orbit, roots[0].below, roots[0].above) {
+        (Orbit::Caged, Some((xb, gb)), Some((xa, ga))) if unsettled > 0 && xa != xb => {
+            let slope = ((ga - gb) / (xa - xb)).abs();
+            let share: f64 = (0..z)
+                .filter(|&j| w.unsettled[j])
+                .map(|j| inertia[j] * w.spread[j])
+                .sum::<f64>()
+                / (0..z)
+                    .filter(|&j| active[j])
+                    .map(|j| inertia[j])
+                    .sum::<f64>();
+            share / slope.max(1e-300)
+        }
+        _ => 0.0,
+    };
+    let spin_residual = if unsettled > 0 {
+        (0..z)
+            .filter(|&j| active[j] && !w.unsettled[j])
+            .map(|j| norm3(&w.r[j]) / w.scale[j])
+            .fold(0.0, f64::max)
+    } else {
+        spin_residual
+    };
     Ok(SteadyReport {
         orbit,
         balls: n_active,
@@ -661,5 +790,7 @@ pub fn steady_rotation(
         spin_residual,
         orbit_residual,
         cage_speed,
+        unsettled,
+        cycle_spread,
     })
 }
