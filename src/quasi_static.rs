@@ -904,28 +904,64 @@ fn check_input(case: &LoadCase) -> Result<(), QuasiStaticError> {
 
 /// Solves the Jones–Harris quasi-static problem for a load case (see the module docs).
 pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticError> {
+    solve_mounted(b, case, None)
+}
+
+/// Solves the quasi-static problem of an axially located inner ring: its axial displacement is
+/// held at `delta_a` \[m\] (from the unloaded, centred position; positive along +x, the
+/// direction an axial load Fa > 0 pushes it) and only the radial loads `case.fy`, `case.fz`
+/// act (`case.fa` is not used). The axial force the balls then need from the ring's location
+/// is the solution's [`QuasiStatic::ring_force`]`[0]`: this is how a single angular-contact
+/// bearing carries a pure radial load when mounted.
+pub fn solve_located(
+    b: &Bearing,
+    case: &LoadCase,
+    delta_a: f64,
+) -> Result<QuasiStatic, QuasiStaticError> {
+    if !delta_a.is_finite() {
+        return Err(QuasiStaticError::NonFinite {
+            name: "axial displacement",
+            value: delta_a,
+        });
+    }
+    solve_mounted(b, case, Some(delta_a))
+}
+
+fn solve_mounted(
+    b: &Bearing,
+    case: &LoadCase,
+    held: Option<f64>,
+) -> Result<QuasiStatic, QuasiStaticError> {
     check_input(case)?;
     let g = Geometry::new(b);
     let omega = case.speed;
     let f_ext = [case.fa, case.fy, case.fz];
     let fr = case.fy.hypot(case.fz);
     let deep_groove = b.alpha0 == 0.0;
-    if b.alpha0 > 0.0 && case.fa <= 0.0 && (fr > 0.0 || case.fa < 0.0) {
+    if held.is_none() && b.alpha0 > 0.0 && case.fa <= 0.0 && (fr > 0.0 || case.fa < 0.0) {
         return Err(QuasiStaticError::BeyondGeometry(format!(
             "an angular-contact bearing (α0 = {:.2}°) needs an axial load Fa > 0 to carry a \
              load (Fa = {} N, Fr = {} N): its inner-ring balance Fa = Σ Q sin α would push the \
-             balls past the groove bottom onto the low shoulder",
+             balls past the groove bottom onto the low shoulder (an axially located ring \
+             carries it: scene [mounting] axial = \"located\", FMU ring.axial = 1 or 2, \
+             raceway static --axial-offset)",
             b.alpha0.to_degrees(),
             case.fa,
             fr
         )));
     }
-    let active = [!(deep_groove && case.fa == 0.0), true, true];
+    let active = [
+        held.is_none() && !(deep_groove && case.fa == 0.0),
+        true,
+        true,
+    ];
     let limit = 5.0 * MAX_DEFLECTION_OVER_D * b.d + (g.ri + g.ro);
 
     // First guess: closed-form pure axial, plus a Stribeck radial deflection.
     let mut u0 = [0.0; 3];
-    if case.fa > 0.0 {
+    if let Some(d) = held {
+        u0[0] = d;
+    } else if case.fa > 0.0 {
         u0[0] = pure_axial(b, case.fa)?.delta_axial;
     }
     if fr > 0.0 {

@@ -33,7 +33,10 @@
 //! levels),
 //! `[full]` (traction on/off, inner-ring tilt held) and `[coupling]` (`mode = "force"`, the
 //! default: loads in, the inner ring integrated inside; or `"motion"`: the journal's
-//! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]).
+//! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]), and
+//! `[mounting]` (`axial = "load"`, the default: Fa acts on the inner ring; or `"located"`: the
+//! ring is held axially at `axial_offset`, by default where the start's Fa puts it, so that an
+//! angular-contact bearing carries a pure radial load; see [`Mounting`]).
 
 use crate::config::{BearingFile, ConfigError};
 use crate::defect::DefectSpec;
@@ -317,8 +320,9 @@ pub struct LumpedOptions {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum CageSpeed {
-    /// The balls' steady rotation under the strip traction (the speed the full model settles
-    /// to; [`crate::models::traction_cage_speed`]). Default.
+    /// The traction's caged balance: the common orbital rate at which the strip traction's
+    /// orbital torques on the balls cancel, each ball in its steady spin
+    /// ([`crate::models::traction_cage_speed`]). Default.
     #[default]
     Traction,
     /// L1's outer-race control (spec §6 L0/L2, the textbook kinematics at the loaded angles).
@@ -443,6 +447,34 @@ pub enum BearingRef {
     Inline(Box<BearingFile>),
 }
 
+/// How the inner ring is held along the shaft axis (table `[mounting]`, FMU parameter
+/// `ring.axial`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Mounting {
+    /// `load` (default): the axial load Fa acts on the ring, which finds its own axial position;
+    /// `located`: the ring is held axially (pressed against a shaft shoulder), the bearing takes
+    /// whatever axial force the radial load needs, and `bearing.F.x` is that axial reaction.
+    #[serde(default)]
+    pub axial: AxialMount,
+    /// Located ring: its axial displacement \[m\] from the unloaded, centred position (+x is the
+    /// way an axial load Fa > 0 pushes it; 0: the balls just touch both grooves). By default
+    /// where the start's axial load Fa alone puts it (a preload; 0 without Fa).
+    #[serde(default)]
+    pub axial_offset: Option<f64>,
+}
+
+/// The inner ring's axial boundary condition ([`Mounting::axial`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum AxialMount {
+    /// The axial load acts on the ring (force-controlled axially).
+    #[default]
+    Load,
+    /// The ring's axial displacement is held.
+    Located,
+}
+
 /// A scene file as written.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -468,6 +500,8 @@ struct SceneFile {
     full: FullSettings,
     #[serde(default)]
     coupling: CouplingFile,
+    #[serde(default)]
+    mounting: Mounting,
 }
 
 fn default_bearing() -> BearingRef {
@@ -489,6 +523,8 @@ pub struct Scene {
     pub full: FullSettings,
     /// Force (default) or motion coupling (table `[coupling]`, key `mode`).
     pub coupling: CouplingMode,
+    /// How the inner ring is held axially (table `[mounting]`).
+    pub mounting: Mounting,
 }
 
 impl Scene {
@@ -512,6 +548,7 @@ impl Scene {
             lumped: LumpedOptions::default(),
             full: FullSettings::default(),
             coupling: CouplingMode::Force,
+            mounting: Mounting::default(),
         }
     }
 
@@ -570,6 +607,7 @@ impl Scene {
             lumped: file.lumped,
             full: file.full,
             coupling,
+            mounting: file.mounting,
         };
         scene.validate()?;
         Ok(scene)
@@ -605,6 +643,29 @@ impl Scene {
         finite("operating.fa", self.operating.fa)?;
         finite("operating.fr", self.operating.fr)?;
         finite("operating.fy", self.operating.fy)?;
+        match (self.mounting.axial, self.mounting.axial_offset) {
+            (_, Some(d)) if !d.is_finite() => {
+                return Err(ConfigError::new(
+                    "mounting.axial_offset",
+                    format!("{d} is not a finite number"),
+                ))
+            }
+            (AxialMount::Load, Some(_)) => {
+                return Err(ConfigError::new(
+                    "mounting.axial_offset",
+                    "applies to a located ring only: set mounting.axial = \"located\" (with \
+                     axial = \"load\" the axial load Fa sets the ring's axial position)",
+                ))
+            }
+            (AxialMount::Located, _) if self.coupling == CouplingMode::Motion => {
+                return Err(ConfigError::new(
+                    "mounting.axial",
+                    "a located ring is a force-coupling setting: in coupling mode 'motion' the \
+                     journal's axial displacement is an input already",
+                ))
+            }
+            _ => {}
+        }
         positive("solver.rtol", self.solver.rtol)?;
         if self.solver.rtol >= 0.1 {
             return Err(ConfigError::new("solver.rtol", "must be < 0.1"));

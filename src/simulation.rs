@@ -605,11 +605,22 @@ impl Simulation {
     ///
     /// In coupling mode "motion" the loads act only at the start: later loads are kept (and
     /// reported by [`Simulation::inputs`]) but the model runs on the start's loads (L2, L4) or
-    /// on the load the displaced ring needs (L0, L1).
+    /// on the load the displaced ring needs (L0, L1). With an axially located inner ring
+    /// ([`crate::scene::Mounting`]) the axial load cannot change (an error names it).
     pub fn set_inputs(&mut self, inputs: Inputs) -> Result<(), SimError> {
         inputs.check()?;
         if inputs == self.inputs {
             return Ok(());
+        }
+        if self.scene.mounting.axial == crate::scene::AxialMount::Located
+            && inputs.fx != self.inputs.fx
+        {
+            return Err(SimError::Input(format!(
+                "load.Fx = {} N cannot act on an axially located inner ring (it sets the ring's \
+                 axial place only at the start, {} N there; bearing.F.x is the axial reaction \
+                 of the location)",
+                inputs.fx, self.inputs.fx
+            )));
         }
         let t = self.integrator.t();
         let (eff, applied) = self.effective_inputs(&inputs, t)?;

@@ -15,7 +15,7 @@ pub struct Args {
     #[arg(long, default_value = DEFAULT_PRESET)]
     pub bearing: String,
     /// Axial load on the inner ring along +x [N]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub fa: f64,
     /// Radial load on the inner ring along −z [N]
     #[arg(long, allow_negative_numbers = true)]
@@ -23,6 +23,11 @@ pub struct Args {
     /// Shaft speed [rpm] (centrifugal and gyroscopic effects; 0 = static)
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub speed_rpm: f64,
+    /// Hold the inner ring axially at this displacement [m] (an axially located ring: --fa is
+    /// not applied, the axial reaction is printed); lets an angular-contact bearing carry a
+    /// pure radial load
+    #[arg(long, allow_negative_numbers = true)]
+    pub axial_offset: Option<f64>,
     /// Print JSON (SI units: m, N, rad, rad/s, N/m; frequencies in Hz) instead of tables
     #[arg(long)]
     pub json: bool,
@@ -35,6 +40,7 @@ pub fn run(args: Args) -> Result<(), String> {
         ("--fa", args.fa),
         ("--fr", args.fr),
         ("--speed-rpm", args.speed_rpm),
+        ("--axial-offset", args.axial_offset.unwrap_or(0.0)),
     ] {
         if !v.is_finite() {
             return Err(format!("{name} {v}: not a finite number"));
@@ -50,7 +56,18 @@ pub fn run(args: Args) -> Result<(), String> {
     };
     // The same input rules as the simulation and the FMU.
     inputs.check().map_err(|e| e.to_string())?;
-    let q = solve(&b, &case).map_err(|e| e.to_string())?;
+    if args.axial_offset.is_some() && args.fa != 0.0 {
+        return Err(
+            "--fa acts on a ring free to move axially; with --axial-offset the ring is located \
+             and its axial reaction is computed: give one or the other"
+                .into(),
+        );
+    }
+    let q = match args.axial_offset {
+        None => solve(&b, &case),
+        Some(d) => raceway::quasi_static::solve_located(&b, &case, d),
+    }
+    .map_err(|e| e.to_string())?;
     let freq = q.frequencies(&b);
     // The cage speed under the traction (the default of the kinematic levels); None at rest.
     // Where the traction has no equilibrium the reason is printed instead.
@@ -94,6 +111,8 @@ pub fn run(args: Args) -> Result<(), String> {
             "fa": args.fa,
             "fr": args.fr,
             "delta_axial": q.delta_axial,
+            "axially_located": args.axial_offset.is_some(),
+            "axial_reaction": args.axial_offset.map(|_| q.ring_force()[0]),
             "delta_radial": q.delta_radial(),
             "delta_y": q.delta_y,
             "delta_z": q.delta_z,
@@ -137,6 +156,14 @@ pub fn run(args: Args) -> Result<(), String> {
         um(q.delta_y),
         um(q.delta_z)
     );
+    if args.axial_offset.is_some() {
+        let _ = writeln!(
+            out,
+            "Axially located: the location pushes the ring with {:.3} N along +x against the \
+             balls' axial thrust",
+            q.ring_force()[0]
+        );
+    }
     let _ = writeln!(out);
     let _ = writeln!(
         out,

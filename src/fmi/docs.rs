@@ -27,7 +27,7 @@ pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(),
 
 fn level_text(f: Fidelity) -> &'static str {
     match f {
-        Fidelity::Kinematic => "Kinematic signal generator: impulse trains at the fault frequencies of the cage speed the balls settle to under the traction (L1 with the steady ball rotation); no dynamics",
+        Fidelity::Kinematic => "Kinematic signal generator: impulse trains at the fault frequencies of the traction's cage speed (L1 with the balls' steady spin, the caged balance of their orbital torques); no dynamics",
         Fidelity::QuasiStatic => "Quasi-static Jones–Harris load distribution and bearing stiffness at the current inputs; no dynamics",
         Fidelity::Lumped => "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, Hertz contacts and the spall; the default",
         Fidelity::Reduced => "Reduced per-ball dynamics: every ball with its own orbit (x, r, θ) and one spin rate about a fixed attitude axis, inner ring translations, pedestal; the full model's Hertz contacts, spall and strip traction (4 strips); ball flight and impacts with a fixed spin axis",

@@ -10,7 +10,7 @@ use super::shell::{Causality, Initial, Start, VarType, Variability, Variable};
 use crate::config::{BearingFile, DefectMode};
 use crate::defect::DefectSpec;
 use crate::geometry::Race;
-use crate::scene::{CageSpeed, CouplingMode, Fidelity, MethodName, Scene};
+use crate::scene::{AxialMount, CageSpeed, CouplingMode, Fidelity, MethodName, Mounting, Scene};
 use crate::simulation::{output_table, Inputs, Journal};
 
 /// The continuous inputs.
@@ -115,6 +115,8 @@ pub enum Param {
     /// Appended last so that the earlier value references stay as they were.
     LumpedCageSpeed,
     SolverPiBeta,
+    RingAxial,
+    RingAxialOffset,
 }
 
 /// The solver's work counters (Integer outputs).
@@ -191,6 +193,8 @@ impl DefectParams {
 pub struct Config {
     pub scene: Scene,
     pub defect: DefectParams,
+    /// `ring.axial_offset` as set (it enters the scene's mounting with `ring.axial` = 2).
+    pub axial_offset: f64,
 }
 
 impl Config {
@@ -199,7 +203,12 @@ impl Config {
         let mut scene = Scene::default_scene();
         scene.bearing = bearing.clone();
         let defect = DefectParams::from_scene(&scene);
-        Self { scene, defect }
+        let axial_offset = scene.mounting.axial_offset.unwrap_or(0.0);
+        Self {
+            scene,
+            defect,
+            axial_offset,
+        }
     }
 
     /// The value of a parameter (Integers as exact f64).
@@ -235,6 +244,12 @@ impl Config {
             Param::SolverMaxSteps => s.solver.max_steps.min(i32::MAX as u64) as f64,
             Param::LumpedCageSpeed => s.lumped.cage_speed.code() as f64,
             Param::SolverPiBeta => s.solver.pi_beta,
+            Param::RingAxial => match (s.mounting.axial, s.mounting.axial_offset) {
+                (AxialMount::Load, _) => 0.0,
+                (AxialMount::Located, None) => 1.0,
+                (AxialMount::Located, Some(_)) => 2.0,
+            },
+            Param::RingAxialOffset => self.axial_offset,
         }
     }
 
@@ -287,13 +302,33 @@ impl Config {
                     .ok_or_else(|| format!("lumped.cage_speed = {code}: valid codes are 0, 1"))?
             }
             Param::SolverPiBeta => s.solver.pi_beta = v,
+            Param::RingAxial => {
+                s.mounting = match code {
+                    0 => Mounting::default(),
+                    1 => Mounting {
+                        axial: AxialMount::Located,
+                        axial_offset: None,
+                    },
+                    2 => Mounting {
+                        axial: AxialMount::Located,
+                        axial_offset: Some(self.axial_offset),
+                    },
+                    _ => return Err(format!("ring.axial = {code}: valid codes are 0, 1, 2")),
+                }
+            }
+            Param::RingAxialOffset => {
+                self.axial_offset = v;
+                if s.mounting.axial_offset.is_some() {
+                    s.mounting.axial_offset = Some(v);
+                }
+            }
         }
         Ok(())
     }
 }
 
 impl Param {
-    pub const ALL: [Param; 25] = [
+    pub const ALL: [Param; 27] = [
         Param::Fidelity,
         Param::Coupling,
         Param::DefectRing,
@@ -319,6 +354,8 @@ impl Param {
         Param::SolverMaxSteps,
         Param::LumpedCageSpeed,
         Param::SolverPiBeta,
+        Param::RingAxial,
+        Param::RingAxialOffset,
     ];
 
     /// (name, type, unit, min, max, description)
@@ -382,9 +419,13 @@ impl Param {
             Param::SolverMaxSteps => ("solver.max_steps", I, None, Some(1.0), Some(imax),
                 "Step budget per communication step; when exhausted the step returns fmi2Discard"),
             Param::LumpedCageSpeed => ("lumped.cage_speed", I, None, Some(0.0), Some(1.0),
-                "Cage speed of the kinematic, quasi-static and lumped levels: 0 the balls' steady rotation under the traction (default; the speed the full model settles to), 1 L1's outer-race control"),
+                "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control"),
             Param::SolverPiBeta => ("solver.pi_beta", R, None, Some(0.0), Some(crate::scene::MAX_PI_BETA),
                 "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work"),
+            Param::RingAxial => ("ring.axial", I, None, Some(0.0), Some(2.0),
+                "Axial mounting of the inner ring (force coupling): 0 the axial load load.Fx acts on it (default); 1 located where the start's load.Fx alone puts it (a preload; centred with the balls just touching at load.Fx = 0); 2 located at ring.axial_offset. Located, the ring carries a pure radial load, bearing.F.x is the axial reaction of its location, and load.Fx cannot change after the start"),
+            Param::RingAxialOffset => ("ring.axial_offset", R, Some("m"), Some(-1e-3), Some(1e-3),
+                "Axial displacement of a located inner ring (ring.axial = 2) from the unloaded, centred position, along +x (the way load.Fx > 0 pushes it)"),
         }
     }
 

@@ -110,7 +110,13 @@ struct Memo {
 impl KinematicModel {
     /// Builds the generator for a scene (L1 at the scene's inputs).
     pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
-        let table = L1Table::solve(bearing, inputs, scene.lumped.cage_speed, None)?;
+        let table = L1Table::solve(
+            bearing,
+            inputs,
+            scene.lumped.cage_speed,
+            super::held_axial(scene, bearing, inputs)?,
+            None,
+        )?;
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);
@@ -476,6 +482,7 @@ impl Model for KinematicModel {
                 &self.bearing,
                 inputs,
                 self.table.cage,
+                self.table.held,
                 Some(&self.table),
             )?)
         } else {

@@ -116,6 +116,8 @@ pub struct LumpedModel {
     fired: Vec<bool>,
     /// Coupling mode "motion": the ring translation is prescribed (zero acceleration).
     prescribed: bool,
+    /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
+    held_axial: Option<f64>,
     /// Force of the bearing on the inner ring at the last RHS evaluation [N].
     ring_force: [f64; 3],
     /// Each ball's normal force at the last RHS evaluation [N] (for the outputs).
@@ -182,6 +184,7 @@ impl LumpedModel {
             modes_set: false,
             fired: vec![false; bearing.z],
             prescribed: false,
+            held_axial: super::held_axial(scene, bearing, inputs)?,
             ring_force: [0.0; 3],
             q_ball: vec![0.0; bearing.z],
         };
@@ -205,7 +208,12 @@ impl LumpedModel {
     /// L1 at the given inputs: the cage-speed ratio and the static ring offset (the traction
     /// solve starts from the last ratio, solved nearby along a ramp).
     fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
-        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) operating point")?;
+        let qs = super::solve_l1_held(
+            bearing,
+            inputs,
+            self.held_axial,
+            "the quasi-static (L1) operating point",
+        )?;
         let previous = (self.cage_ratio > 0.0).then_some(self.cage_ratio);
         self.cage_ratio = if inputs.shaft_speed > 0.0 {
             super::kinematic_levels_cage_speed(bearing, inputs, &qs, self.cage, previous)?
@@ -486,8 +494,13 @@ impl LumpedModel {
                 f[2] -= q * ca * erz;
             });
         };
+        // A located ring keeps its axial place: only y and z are solved for.
+        let held = self.held_axial.is_some();
         for _ in 0..50 {
             residual(self, y, &mut f);
+            if held {
+                f[0] = 0.0;
+            }
             let norm = f.iter().map(|v| v.abs()).fold(0.0, f64::max);
             if norm < 1e-7 {
                 break;
@@ -504,6 +517,11 @@ impl LumpedModel {
                 for row in 0..3 {
                     jac[row][col] = (fp[row] - f[row]) / h;
                 }
+            }
+            if held {
+                jac[0] = [1.0, 0.0, 0.0];
+                jac[1][0] = 0.0;
+                jac[2][0] = 0.0;
             }
             let Some(step) = solve3(&jac, &f) else { break };
             for (i, idx) in [X, Y, Z].into_iter().enumerate() {
@@ -661,7 +679,11 @@ impl Model for LumpedModel {
             dydt[VY] = 0.0;
             dydt[VZ] = 0.0;
         } else {
-            dydt[VX] = (self.inputs.fx + f_ring[0]) / self.m1;
+            dydt[VX] = if self.held_axial.is_some() {
+                0.0
+            } else {
+                (self.inputs.fx + f_ring[0]) / self.m1
+            };
             dydt[VY] = (self.inputs.fy + f_ring[1]) / self.m1;
             dydt[VZ] = (self.inputs.fz + f_ring[2]) / self.m1;
         }

@@ -47,20 +47,31 @@ pub struct L1Table {
     pub inputs: Inputs,
     /// Where `cage_speed` comes from.
     pub cage: CageSpeed,
+    /// The axial displacement a located inner ring is held at \[m\] (None: the axial load acts).
+    pub held: Option<f64>,
+    /// The bearing's axial force on the shaft \[N\]: minus the axial load, or for a located
+    /// ring the axial reaction of its location.
+    pub bearing_fx: f64,
 }
 
 impl L1Table {
-    /// Solves L1 at `inputs`, with the cage speed from `cage` (the traction solve starts from
-    /// `previous`'s cage-to-shaft ratio, a table solved nearby, if given).
+    /// Solves L1 at `inputs` with the inner ring held axially at `held` if given, with the cage
+    /// speed from `cage` (the traction solve starts from `previous`'s cage-to-shaft ratio, a
+    /// table solved nearby, if given).
     pub fn solve(
         bearing: &Bearing,
         inputs: &Inputs,
         cage: CageSpeed,
+        held: Option<f64>,
         previous: Option<&L1Table>,
     ) -> Result<Self, SimError> {
-        let qs = super::solve_l1(bearing, inputs, "the quasi-static (L1) solve")?;
+        let qs = super::solve_l1_held(bearing, inputs, held, "the quasi-static (L1) solve")?;
         let mut t = Self::from_solution(bearing, &qs, inputs);
         t.cage = cage;
+        t.held = held;
+        if held.is_some() {
+            t.bearing_fx = -qs.ring_force()[0];
+        }
         if inputs.shaft_speed > 0.0 {
             let ratio = previous
                 .filter(|p| p.inputs.shaft_speed > 0.0 && p.cage_speed > 0.0)
@@ -99,7 +110,7 @@ impl L1Table {
             fz: s[3],
         };
         if inputs != self.inputs {
-            *self = L1Table::solve(bearing, &inputs, self.cage, Some(self))
+            *self = L1Table::solve(bearing, &inputs, self.cage, self.held, Some(self))
                 .map_err(|e| e.to_string())?;
         }
         if let Some(&w) = s.get(4) {
@@ -137,6 +148,8 @@ impl L1Table {
             alpha,
             inputs: *inputs,
             cage: CageSpeed::OuterRaceControl,
+            held: None,
+            bearing_fx: -inputs.fx,
         }
     }
 
@@ -190,7 +203,11 @@ pub(crate) fn static_outputs(
     o[out::RING_X] = table.offset[0];
     o[out::RING_Y] = yp + table.offset[1];
     o[out::RING_Z] = zp + table.offset[2];
-    o[out::BEARING_F_X] = -inputs.fx;
+    o[out::BEARING_F_X] = if table.held.is_some() {
+        table.bearing_fx
+    } else {
+        -inputs.fx
+    };
     o[out::BEARING_F_Y] = -inputs.fy;
     o[out::BEARING_F_Z] = -inputs.fz;
     o[out::FRICTION_TORQUE] = 0.0;
@@ -258,7 +275,13 @@ impl QuasiStaticModel {
     pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
         Ok(Self {
             bearing: bearing.clone(),
-            table: L1Table::solve(bearing, inputs, scene.lumped.cage_speed, None)?,
+            table: L1Table::solve(
+                bearing,
+                inputs,
+                scene.lumped.cage_speed,
+                super::held_axial(scene, bearing, inputs)?,
+                None,
+            )?,
             inputs: *inputs,
         })
     }
@@ -284,7 +307,13 @@ impl Model for QuasiStaticModel {
 
     fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         if self.table.moved(inputs) {
-            self.table = L1Table::solve(&self.bearing, inputs, self.table.cage, Some(&self.table))?;
+            self.table = L1Table::solve(
+                &self.bearing,
+                inputs,
+                self.table.cage,
+                self.table.held,
+                Some(&self.table),
+            )?;
         }
         self.inputs = *inputs;
         Ok(())

@@ -188,6 +188,8 @@ pub struct ReducedModel {
     /// Force of the bearing on the inner ring (last RHS) [N] and its moment about x [N m].
     ring_force: V3,
     ring_moment_x: f64,
+    /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
+    held_axial: Option<f64>,
     /// Coupling mode "motion": the ring translation is prescribed (zero translational
     /// acceleration; `Simulation` writes the journal's position and velocity into the states).
     prescribed: bool,
@@ -273,6 +275,7 @@ impl ReducedModel {
             ring_force: [0.0; 3],
             ring_moment_x: 0.0,
             prescribed: false,
+            held_axial: full.held_axial(),
             pass: ContactPass::new(z),
         };
         m.reduce_initial_state(&full, bearing);
@@ -632,7 +635,7 @@ impl Model for ReducedModel {
         let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
         for k in 0..3 {
             dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = if self.prescribed {
+            dydt[r + RV + k] = if self.prescribed || (k == 0 && self.held_axial.is_some()) {
                 0.0
             } else {
                 (ext[k] + f_ring[k]) / self.m_ir

@@ -46,9 +46,10 @@ pub fn initial_state(
     let qs = match l1 {
         Some(qs) => qs,
         None => {
-            solved = super::super::solve_l1(
+            solved = super::super::solve_l1_held(
                 bearing,
                 &inputs,
+                m.held_axial,
                 "the quasi-static (L1) start of the full model",
             )?;
             &solved

@@ -101,6 +101,8 @@ pub struct FullModel {
     /// Coupling mode "motion": the ring translation is prescribed (zero translational
     /// acceleration); the tilt stays a free degree of freedom (or held by `lock_tilt`).
     prescribed: bool,
+    /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
+    held_axial: Option<f64>,
     /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
     pass: pass::ContactPass,
 }
@@ -143,6 +145,7 @@ impl FullModel {
         inputs: &Inputs,
         options: FullOptions,
     ) -> Result<Self, SimError> {
+        let held = super::held_axial(scene, bearing, inputs)?;
         Self::build(
             bearing,
             inputs,
@@ -150,7 +153,7 @@ impl FullModel {
             scene.defect.as_ref(),
             scene.pulse.clone(),
             None,
-            true,
+            (true, held),
         )
     }
 
@@ -163,7 +166,7 @@ impl FullModel {
         options: FullOptions,
         l1: Option<&QuasiStatic>,
     ) -> Result<Self, SimError> {
-        Self::build(bearing, inputs, options, None, None, l1, false)
+        Self::build(bearing, inputs, options, None, None, l1, (false, None))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -174,7 +177,7 @@ impl FullModel {
         defect: Option<&DefectSpec>,
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
-        settle: bool,
+        (settle, held_axial): (bool, Option<f64>),
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let z = bearing.z;
@@ -238,6 +241,7 @@ impl FullModel {
             ring_force: [0.0; 3],
             ring_moment: [0.0; 3],
             prescribed: false,
+            held_axial,
             pass: pass::ContactPass::new(z),
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());
@@ -274,6 +278,11 @@ impl FullModel {
     /// speed: then the start is L1's outer-race control).
     pub fn settle_report(&self) -> Option<steady::SteadyReport> {
         self.settle
+    }
+
+    /// The axial displacement a located inner ring is held at (None: the axial load acts).
+    pub fn held_axial(&self) -> Option<f64> {
+        self.held_axial
     }
 
     /// The state layout.
@@ -596,7 +605,7 @@ impl Model for FullModel {
         let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
         for k in 0..3 {
             dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = if self.prescribed {
+            dydt[r + RV + k] = if self.prescribed || (k == 0 && self.held_axial.is_some()) {
                 0.0
             } else {
                 (ext[k] + f_ring[k]) / self.m_ir
