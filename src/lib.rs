@@ -21,6 +21,7 @@ pub mod defect;
 pub mod fmi;
 pub mod geometry;
 pub mod kinematics;
+pub mod limits;
 pub mod models;
 pub mod quasi_static;
 pub mod scene;

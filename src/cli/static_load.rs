@@ -3,6 +3,7 @@
 
 use raceway::config::DEFAULT_PRESET;
 use raceway::geometry::Bearing;
+use raceway::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE};
 use raceway::quasi_static::{is_loaded, solve, LoadCase};
 use serde_json::json;
 use std::f64::consts::TAU;
@@ -68,6 +69,38 @@ pub fn run(args: Args) -> Result<(), String> {
         Some(d) => raceway::quasi_static::solve_located(&b, &case, d),
     }
     .map_err(|e| e.to_string())?;
+    // Plausibility (the simulation and the FMU apply the same limits): a contact beyond what the
+    // model's elastic Hertz contact describes is an error; loads beyond the static load rating
+    // a warning.
+    let rating = StaticRating::of(&b);
+    let qi: Vec<f64> = q.balls.iter().map(|e| e.q_inner).collect();
+    let qo: Vec<f64> = q.balls.iter().map(|e| e.q_outer).collect();
+    let (p_max, j_max, race_max, q_max) = peak_contact(&b, &qi, &qo);
+    if p_max > MAX_CONTACT_PRESSURE {
+        return Err(format!(
+            "ball j = {}'s {} contact would carry {q_max:.0} N at a peak Hertz pressure of {:.2} GPa, \
+             beyond the {:.1} GPa the model accepts (hardened steel deforms grossly): the load is \
+             beyond what the bearing carries",
+            j_max,
+            race_max.name(),
+            p_max * 1e-9,
+            MAX_CONTACT_PRESSURE * 1e-9
+        ));
+    }
+    let located_fa = args.axial_offset.map_or(args.fa, |_| q.ring_force()[0]);
+    let p0 = rating.equivalent_load(located_fa, args.fr.abs());
+    let mut warnings = Vec::new();
+    if p0 > rating.c0 {
+        warnings.push(format!(
+            "the static equivalent load P0 = {p0:.0} N exceeds the basic static load rating C0 = \
+             {:.0} N (ISO 76; static safety factor {:.2}): the races deform permanently",
+            rating.c0,
+            rating.c0 / p0
+        ));
+    }
+    for w in &warnings {
+        eprintln!("raceway: warning: {w}");
+    }
     let freq = q.frequencies(&b);
     // The cage speed under the traction (the default of the kinematic levels); None at rest.
     // Where the traction has no equilibrium the reason is printed instead.
@@ -124,6 +157,10 @@ pub fn run(args: Args) -> Result<(), String> {
             "frequencies": freq,
             "iterations": q.iterations,
             "residual": q.residual,
+            "static_load_rating": rating.c0,
+            "static_equivalent_load": p0,
+            "peak_contact_pressure": p_max,
+            "warnings": warnings,
             "balls": balls,
         });
         let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
@@ -145,6 +182,16 @@ pub fn run(args: Args) -> Result<(), String> {
         out,
         "Solved in {} Newton iterations, force residual {:.1e} N",
         q.iterations, q.residual
+    );
+    let _ = writeln!(
+        out,
+        "Static load rating C0 = {:.0} N (ISO 76), P0 = {p0:.0} N (safety factor {:.2}); peak \
+         Hertz pressure {:.2} GPa (ball j = {}, {} race)",
+        rating.c0,
+        rating.c0 / p0.max(1e-300),
+        p_max * 1e-9,
+        j_max,
+        race_max.name()
     );
     let _ = writeln!(out);
     let _ = writeln!(out, "Inner-ring displacement relative to the outer ring:");
