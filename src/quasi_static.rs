@@ -1007,6 +1007,8 @@ fn solve_mounted(
     let mut last_step = f64::INFINITY;
     let mut it = 0;
     let mut converged = false;
+    // Step of the ring toward the load while no inner contact carries [m].
+    let mut free = 1e-7;
     while it < MAX_RING_ITER {
         if rn <= TOL_FORCE && last_step <= TOL_DISPLACEMENT {
             converged = true;
@@ -1015,21 +1017,42 @@ fn solve_mounted(
         it += 1;
         xs = re.balls.iter().map(|e| e.eq.x).collect();
         let any_loaded = re.balls.iter().any(|e| e.eq.q_inner > 0.0);
+        if !any_loaded && rn > 0.0 {
+            // No inner contact closed yet (a centrifugal gap): the residual cannot fall before
+            // one closes, so the ring moves toward the load in doubling steps, each kept as it
+            // is, until a contact carries (the Newton steps below then take over).
+            let n = rn.max(1e-300);
+            let ut = [
+                u[0] - free * r[0] / n,
+                u[1] - free * r[1] / n,
+                u[2] - free * r[2] / n,
+            ];
+            match eval_ring(&g, omega, &ut, &xs) {
+                Ok(et) => {
+                    u = ut;
+                    r = resid(&et.force);
+                    rn = inf_norm3(&r);
+                    re = et;
+                    last_step = free;
+                    free *= 2.0;
+                }
+                Err(_) => free *= 0.5,
+            }
+            if inf_norm3(&u) > limit {
+                return Err(QuasiStaticError::BeyondGeometry(format!(
+                    "no equilibrium found before the ring displacement passed {:.1} µm",
+                    limit * 1e6
+                )));
+            }
+            continue;
+        }
         let p = if any_loaded {
             let jac = ring_jacobian(&g, omega, &u, &re.balls, &xs, FD_JACOBIAN_STEP, active)?;
             solve3(jac, [-r[0], -r[1], -r[2]], active)
         } else {
             None
         };
-        let p = match p {
-            Some(p) => p,
-            None if rn > 0.0 => {
-                // no inner contact closed yet (e.g. centrifugal gap): move toward the load
-                let n = rn.max(1e-300);
-                [-r[0] / n * 1e-7, -r[1] / n * 1e-7, -r[2] / n * 1e-7]
-            }
-            None => break,
-        };
+        let Some(p) = p else { break };
         let mut lambda = 1.0;
         let mut accepted = false;
         for _ in 0..40 {

@@ -482,3 +482,23 @@ fn clearance_is_play_narrowing_the_load_zone() {
     let e = raceway::quasi_static::solve(&loose, &none).unwrap_err();
     assert!(e.to_string().to_lowercase().contains("no ball"), "{e}");
 }
+
+#[test]
+fn light_radial_load_at_high_speed_closes_the_centrifugal_gap() {
+    // A deep-groove bearing at 30 700 rpm: the centrifugal forces open a gap at the inner
+    // contacts, so a light radial load must move the ring a few µm before any ball carries it.
+    // This failed with "no inner contact closes under this load" below about 35 N; the radial
+    // displacement must grow with the load, starting at the gap.
+    let b = raceway::geometry::Bearing::load("cwru-6205-de").unwrap();
+    let mut last = 0.0;
+    for fr in [0.5, 1.0, 10.0, 35.0, 100.0] {
+        let q = solve(&b, &LoadCase::from_fa_fr_rpm(0.0, fr, 30_700.0)).unwrap();
+        check_equilibrium(&q, &LoadCase::from_fa_fr_rpm(0.0, fr, 30_700.0));
+        let dr = q.delta_radial();
+        assert!(
+            dr > last && dr > 1e-6 && dr < 1e-5,
+            "Fr {fr} N: δr {dr} m after {last} m"
+        );
+        last = dr;
+    }
+}
