@@ -7,6 +7,7 @@
 use raceway::geometry::Bearing;
 use raceway::models::full::layout::BW;
 use raceway::models::full::steady::{steady_rotation, Orbit, SteadyError};
+
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::{self, Model};
 use raceway::scene::{Fidelity, Operating, Scene};
@@ -84,24 +85,27 @@ fn pure_axial_load_caged_and_free_agree() {
 #[test]
 fn cage_speed_is_continuous_as_balls_leave_the_load_zone() {
     // 9900 rpm, Fa 1000 N: from Fr 2900 to 3300 N the loaded set shrinks from 7 to 5 balls. The
-    // caged speed and L1's load-weighted outer-race control move smoothly through it (a mean
-    // over the loaded balls jumped by up to 20 % there: a barely loaded ball counted fully).
+    // caged speed and L1's load-weighted outer-race control move smoothly through it, while the
+    // mean of the balls' own free rates jumps by about 5 % as each barely loaded ball (with a
+    // free rate far above the others') leaves: a ball counted fully however little it carries.
     let b = Bearing::load("niu2014-table1").unwrap();
     let frs: Vec<f64> = (0..=16).map(|k| 2900.0 + 25.0 * k as f64).collect();
-    let mut caged = Vec::new();
-    let mut l1 = Vec::new();
-    let mut loaded = Vec::new();
+    let (mut caged, mut l1, mut free, mut loaded) = (vec![], vec![], vec![], vec![]);
     for &fr in &frs {
         let i = inputs(9900.0, 1000.0, fr);
         let q = models::solve_l1(&b, &i, "test").unwrap();
         loaded.push(q.loaded_balls().count());
         caged.push(models::traction_cage_speed(&b, &i, Some(&q), None).unwrap());
         l1.push(q.cage_speed);
+        let own = free_rates(&b, &i).unwrap();
+        free.push(own.iter().sum::<f64>() / own.len() as f64);
     }
     assert!(loaded[0] > *loaded.last().unwrap(), "{loaded:?}");
+    let steps = |w: &[f64]| -> Vec<f64> { w.windows(2).map(|p| p[1] - p[0]).collect() };
+    let largest = |d: &[f64]| d.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     for (name, w) in [("caged", &caged), ("L1", &l1)] {
-        let d: Vec<f64> = w.windows(2).map(|p| p[1] - p[0]).collect();
-        let dmax = d.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        let d = steps(w);
+        let dmax = largest(&d);
         for k in 1..d.len() {
             assert!(
                 (d[k] - d[k - 1]).abs() < 0.5 * dmax,
@@ -110,39 +114,13 @@ fn cage_speed_is_continuous_as_balls_leave_the_load_zone() {
                 &w[k - 1..=k + 1]
             );
         }
+        assert!(dmax < 2e-3 * w[0], "{name}: {dmax} rad/s in one step");
     }
-}
-
-#[test]
-fn a_ball_without_a_free_steady_rotation_is_named_and_the_full_model_starts_caged() {
-    // 9900 rpm, Fa 1000 N, Fr 3000 N: a barely loaded ball at the edge of the load zone is held
-    // back by its outer contact at every orbital rate, so it has no rotation of its own.
-    let b = Bearing::load("niu2014-table1").unwrap();
-    let i = inputs(9900.0, 1000.0, 3000.0);
-    let e = free_rates(&b, &i).unwrap_err();
-    match &e {
-        SteadyError::NoEquilibrium { ball: Some(_), .. } => {}
-        other => panic!("{other:?}"),
-    }
-    let text = e.to_string();
+    let jump = largest(&steps(&free));
     assert!(
-        text.contains("no steady rotation") && text.contains("ball"),
-        "{text}"
+        jump > 0.02 * free[0],
+        "the free mean moves by {jump} rad/s at most: {free:?}"
     );
-    // The full model's start then takes the caged rotation, and says so.
-    let mut scene = Scene::healthy(
-        raceway::config::BearingFile::load("niu2014-table1").unwrap(),
-        Operating {
-            speed_rpm: 9900.0,
-            fa: 1000.0,
-            fr: 3000.0,
-            fy: 0.0,
-        },
-    );
-    scene.fidelity = Fidelity::Full;
-    let m = FullModel::new(&scene, &b, &i).unwrap();
-    let r = m.settle_report().unwrap();
-    assert_eq!(r.orbit, Orbit::Caged);
 }
 
 #[test]

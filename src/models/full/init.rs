@@ -81,8 +81,14 @@ pub fn initial_state(
         m.cage_ratio = omega_c / inputs.shaft_speed;
     }
     let p = lay.pedestal();
-    let yp0 = inputs.fy / m.k_py;
-    let zp0 = inputs.fz / m.k_pz;
+    // The pedestal at its static deflection, or at rest for a bearing taken on its own (the
+    // traction solve: the balls orbit about the inertial axis, so a pedestal deflection would
+    // put them on an orbit eccentric to the rings).
+    let (yp0, zp0) = if m.centred {
+        (0.0, 0.0)
+    } else {
+        (inputs.fy / m.k_py, inputs.fz / m.k_pz)
+    };
     y[p + PY] = yp0;
     y[p + PZ] = zp0;
     let r = lay.ring();

@@ -103,6 +103,9 @@ pub struct FullModel {
     prescribed: bool,
     /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
     held_axial: Option<f64>,
+    /// The start puts the pedestal at rest instead of at its static deflection (the bearing
+    /// taken on its own: [`FullModel::healthy`]).
+    centred: bool,
     /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
     pass: pass::ContactPass,
 }
@@ -158,8 +161,9 @@ impl FullModel {
     }
 
     /// The healthy bearing without a pulse at L1's start (balls in outer-race control, no
-    /// steady-rotation solve), from a given L1 solution at `inputs` (or from a new one): the
-    /// base of [`steady::steady_rotation`] for the kinematic levels' cage speed.
+    /// steady-rotation solve), from a given L1 solution at `inputs` (or from a new one), with
+    /// the pedestal at rest (the bearing on its own, whatever its support): the base of
+    /// [`steady::steady_rotation`] for the kinematic levels' cage speed.
     pub fn healthy(
         bearing: &Bearing,
         inputs: &Inputs,
@@ -242,6 +246,7 @@ impl FullModel {
             ring_moment: [0.0; 3],
             prescribed: false,
             held_axial,
+            centred: !settle,
             pass: pass::ContactPass::new(z),
         };
         m.theta_start = init::choose_theta_start(z, m.defect.as_ref());

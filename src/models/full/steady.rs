@@ -132,8 +132,10 @@ impl fmt::Display for SteadyError {
 
 /// Relative tolerance of the orbital rates (× Ω).
 const ORBIT_TOL: f64 = 1e-9;
-/// Spin residual tolerance, |ω̇ − θ̇ e_x × ω| ≤ SPIN_TOL Ω |ω|.
-const SPIN_TOL: f64 = 1e-9;
+/// Spin residual tolerance, |ω̇ − θ̇ e_x × ω| ≤ SPIN_TOL Ω |ω| (the strip traction's slip
+/// signs make the residual piecewise smooth, which can stall Newton near 1e-8; against 1e-9
+/// the cage speed agrees to 1e-9 of the shaft speed where every ball settles).
+const SPIN_TOL: f64 = 1e-7;
 /// Pseudo-transient iterations per spin solve.
 const SPIN_ITER: usize = 100;
 /// A spin that does not settle is followed over this many shaft revolutions in this many
