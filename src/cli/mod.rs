@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod envelope;
 mod frequencies;
 mod simulate;
 mod spectrum;
@@ -34,6 +35,9 @@ enum Command {
     Sweep(sweep::Args),
     /// Speed against accuracy of every level and method (CSV for docs/performance.md)
     Bench(bench::Args),
+    /// Operating-envelope test: a grid of speeds, loads, pedestals and spall on/off at every
+    /// level, each point ok / error / garbage / hang (CSV and summary in docs/envelope/)
+    Envelope(envelope::Args),
 }
 
 /// Runs the program; returns the process exit code.
@@ -46,6 +50,7 @@ pub fn run() -> i32 {
         Command::Spectrum(a) => spectrum::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run_cli(a),
+        Command::Envelope(a) => envelope::run(a),
     };
     match result {
         Ok(()) => 0,
