@@ -45,7 +45,8 @@ pub struct Args {
     /// Wall-time limit of one point [s]: beyond it the worker is killed and the point is a hang
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub time_limit: f64,
-    /// Relative margin around the loaded balls' race-control range of the cage speed
+    /// Relative margin around the loaded balls' race-control range of the cage speed at the
+    /// kinematic, quasi-static, lumped and reduced levels (default 0.02; the full level's is 0.06)
     #[arg(long, allow_negative_numbers = true)]
     pub cage_margin: Option<f64>,
     /// No progress bar
