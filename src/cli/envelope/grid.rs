@@ -32,7 +32,7 @@ pub const SPALL_WIDTH_OVER_D: f64 = 1.0 / 12.7;
 pub const SPALL_DEPTH_OVER_D: f64 = 0.2 / 12.7;
 
 /// Speeds as fractions of the limiting speed.
-const SPEEDS_FULL: [f64; 6] = [0.0, 0.05, 0.25, 0.5, 0.75, 1.0];
+const SPEEDS_FULL: [f64; 8] = [0.0, 0.05, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0];
 const SPEEDS_QUICK: [f64; 3] = [0.0, 0.5, 1.0];
 
 /// One load case: Fa and Fr as fractions of C0.
@@ -48,7 +48,7 @@ const fn load(name: &'static str, what: &'static str, fa: f64, fr: f64) -> LoadC
     LoadCase { name, what, fa, fr }
 }
 
-const LOADS_FULL: [LoadCase; 11] = [
+const LOADS_FULL: [LoadCase; 15] = [
     load("axial-light", "pure axial, light", LIGHT, 0.0),
     load("axial-heavy", "pure axial, heavy", HEAVY, 0.0),
     load("radial-light", "pure radial, light", 0.0, LIGHT),
@@ -59,6 +59,8 @@ const LOADS_FULL: [LoadCase; 11] = [
         MEDIUM,
         0.25 * MEDIUM,
     ),
+    load("half-radial", "Fr = Fa/2, medium", MEDIUM, 0.5 * MEDIUM),
+    load("below-equal", "Fr = 0.9 Fa, medium", MEDIUM, 0.9 * MEDIUM),
     load("equal-light", "Fr = Fa, light", LIGHT, LIGHT),
     load("equal", "Fr = Fa, medium", MEDIUM, MEDIUM),
     load(
@@ -67,7 +69,9 @@ const LOADS_FULL: [LoadCase; 11] = [
         MEDIUM,
         1.0625 * MEDIUM,
     ),
+    load("above-equal", "Fr = 1.25 Fa, medium", MEDIUM, 1.25 * MEDIUM),
     load("equal-heavy", "Fr = Fa, heavy", HEAVY, HEAVY),
+    load("double-radial", "Fr = 2 Fa, medium", 0.5 * MEDIUM, MEDIUM),
     load(
         "partial-zone",
         "Fr = 4 Fa (partial load zone, issue 17's 4000/1000), medium",
@@ -82,7 +86,7 @@ const LOADS_FULL: [LoadCase; 11] = [
     ),
 ];
 
-const LOADS_QUICK: [LoadCase; 4] = [LOADS_FULL[1], LOADS_FULL[3], LOADS_FULL[7], LOADS_FULL[9]];
+const LOADS_QUICK: [LoadCase; 4] = [LOADS_FULL[1], LOADS_FULL[3], LOADS_FULL[9], LOADS_FULL[13]];
 
 /// Simulated time per level \[s\]: enough for a few ball passes at the cheap levels, a few
 /// milliseconds (several ball-pass periods at speed) at the per-ball levels.
@@ -350,8 +354,14 @@ mod tests {
         let b = Bearing::load("niu2014-table1").unwrap();
         let s = vec![Scales::new("niu2014-table1", &b)];
         let levels = [Fidelity::Kinematic, Fidelity::Full];
-        // 11 loads × 3 pedestals × 2 spall states × 6 speeds + 6 issue points × 2, per level.
-        assert_eq!(build(&s, &levels, false).len(), 2 * (396 + 12));
+        // 15 loads × 3 pedestals × 2 spall states × 8 speeds + 6 issue points × 2, per level.
+        assert_eq!(build(&s, &levels, false).len(), 2 * (720 + 12));
+        // The quick grid's load cases.
+        let names: Vec<&str> = axes(true).loads.iter().map(|l| l.name).collect();
+        assert_eq!(
+            names,
+            ["axial-heavy", "radial-heavy", "near-equal", "partial-zone"]
+        );
         // 4 loads × 2 pedestals × spall × 3 speeds per level.
         assert_eq!(build(&s, &levels, true).len(), 2 * 24);
     }

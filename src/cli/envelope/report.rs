@@ -804,7 +804,16 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         "\n| load case | what | Fa/C0 | Fr/C0 |\n|---|---|---|---|"
     );
     for lc in ax.loads {
-        let _ = writeln!(s, "| {} | {} | {} | {} |", lc.name, lc.what, lc.fa, lc.fr);
+        // Rounded to 6 decimals: 1.0625 × 0.1 prints as 0.10625, not 0.10625000000000001.
+        let r6 = |x: f64| (x * 1e6).round() / 1e6;
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} |",
+            lc.name,
+            lc.what,
+            r6(lc.fa),
+            r6(lc.fr)
+        );
     }
 
     // The classes and the bounds.
