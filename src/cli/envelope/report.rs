@@ -576,7 +576,7 @@ pub fn write_csv(
 
 fn point_label(p: &GridPoint, s: &Scales) -> String {
     format!(
-        "{} {} {:.0} rpm, Fa {:.0} N, Fr {:.0} N ({}), k {:.0e} N/m ({}), spall {}",
+        "{} {} {:.0} rpm, Fa {:.0} N, Fr {:.0} N ({}), k {:e} N/m ({}), spall {}",
         s.name,
         p.level.name(),
         p.spec.speed_rpm,
@@ -737,7 +737,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         "- Loads: fractions of the static load rating C0 (ISO 76): C0 = Z·Q_lim·cos α0 / 5, with \
          Q_lim the ball load at which the peak Hertz pressure of the more stressed contact \
          (computed from the bearing's own curvatures and elastic constants) reaches 4200 MPa, \
-         and 5 ISO 76's ratio Q_max·Z·cos α / Fr; f0 = C0/(Z D² cos α0) below is ISO 76's factor. \
+         and 5 ISO 76's ratio Q_max·Z·cos α / Fr; f0 = C0/(Z D² cos α0) below is ISO 76's factor (its tables assume groove radii of 0.52 D and 0.53 D; these presets' grooves are closer, so their f0 comes out higher). \
          Light {}, medium {}, heavy {} C0.",
         grid::LIGHT,
         grid::MEDIUM,
@@ -747,10 +747,10 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         s,
         "- Pedestal stiffness k_y = k_z: the preset's{}.",
         if cx.quick {
-            format!(", soft {:.0e} N/m", grid::K_SOFT)
+            format!(", soft {:e} N/m", grid::K_SOFT)
         } else {
             format!(
-                ", soft {:.0e} N/m, stiff {:.0e} N/m",
+                ", soft {:e} N/m, stiff {:e} N/m",
                 grid::K_SOFT,
                 grid::K_STIFF
             )
@@ -772,7 +772,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
                 .iter()
                 .map(|(rpm, fa, fr, k, _)| format!(
                     "{rpm} rpm Fa {fa} N Fr {fr} N{}",
-                    k.map(|k| format!(" k {k:.0e} N/m")).unwrap_or_default()
+                    k.map(|k| format!(" k {k:e} N/m")).unwrap_or_default()
                 ))
                 .collect::<Vec<_>>()
                 .join("; ")
@@ -785,7 +785,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
     for sc in cx.scales {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.0} | {:.0} | {:.2} | {:.0} | {:.0e} |",
+            "| {} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.0} | {:.0} | {:.2} | {:.0} | {:e} |",
             sc.name,
             sc.z,
             sc.d * 1e3,
