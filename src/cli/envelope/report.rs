@@ -738,7 +738,10 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
          Q_lim the ball load at which the peak Hertz pressure of the more stressed contact \
          (computed from the bearing's own curvatures and elastic constants) reaches 4200 MPa, \
          and 5 ISO 76's ratio Q_max·Z·cos α / Fr; f0 = C0/(Z D² cos α0) below is ISO 76's factor (its tables assume groove radii of 0.52 D and 0.53 D; these presets' grooves are closer, so their f0 comes out higher). \
-         Light {}, medium {}, heavy {} C0.",
+         Light {}, medium {}, heavy {} C0. Loads beyond C0 are left out: the bounds below are made for loads \
+         within the rating (with the spall at 3 C0 the reduced and full levels' balls slow by up to 8 % below the \
+         race-control range within 4 ms), and L1 refuses a load that needs contact deflections above 1 % of D \
+         (30 C0 on the Table-1 bearing) with a clear message.",
         grid::LIGHT,
         grid::MEDIUM,
         grid::HEAVY
