@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod envelope;
 mod frequencies;
 mod simulate;
 mod spectrum;
@@ -34,6 +35,19 @@ enum Command {
     Sweep(sweep::Args),
     /// Speed against accuracy of every level and method (CSV for docs/performance.md)
     Bench(bench::Args),
+    /// Operating-envelope test: a grid of speeds, loads, pedestals and spall on/off at every
+    /// level, each point ok / error / garbage / hang (CSV and summary in docs/envelope/)
+    ///
+    /// Speeds from 0 to the bearing's limiting speed (dm·n = 1e6 mm·rpm), axial and radial
+    /// loads as fractions of its static load rating C0 (ISO 76, from its geometry: pure axial,
+    /// pure radial, Fr ≈ Fa, partial load zone, light and heavy), the preset's, a soft and a
+    /// stiff pedestal, spall off and on; every point briefly at every level, each in its own
+    /// worker process under a watchdog. A point is ok (finite outputs within physical bounds),
+    /// error (a clear error message), garbage (non-finite or out-of-bounds outputs returned as
+    /// success), hang (past --time-limit, killed) or crash. Writes envelope.csv (every point)
+    /// and envelope.md (the command, the bounds, counts per bearing and level, the failures);
+    /// the exit status is non-zero when any point hangs, crashes or returns garbage.
+    Envelope(envelope::Args),
 }
 
 /// Runs the program; returns the process exit code.
@@ -46,6 +60,7 @@ pub fn run() -> i32 {
         Command::Spectrum(a) => spectrum::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run_cli(a),
+        Command::Envelope(a) => envelope::run(a),
     };
     match result {
         Ok(()) => 0,

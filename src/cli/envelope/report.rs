@@ -1,0 +1,1423 @@
+//! Judging the points (classes, bounds, neighbour flags) and writing the CSV and the markdown
+//! summary.
+
+use super::grid::{self, GridPoint, Scales};
+use super::point::Measured;
+use raceway::scene::Fidelity;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// What became of one point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Class {
+    /// Ran to the end; every delivered output finite and within the bounds.
+    Ok,
+    /// Stopped with a `SimError` (or a setup error): a clear message, no outputs after it.
+    Error,
+    /// Ran past the wall-time limit: the watchdog killed it.
+    Hang,
+    /// The worker died without a result (a panic or a signal).
+    Crash,
+    /// Delivered outputs (at t = 0 or from a successful step) that are non-finite or outside
+    /// the bounds.
+    Garbage,
+}
+
+impl Class {
+    pub const ALL: [Class; 5] = [
+        Class::Ok,
+        Class::Error,
+        Class::Garbage,
+        Class::Hang,
+        Class::Crash,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::Ok => "ok",
+            Class::Error => "error",
+            Class::Hang => "hang",
+            Class::Crash => "crash",
+            Class::Garbage => "garbage",
+        }
+    }
+
+    /// Classes that fail the envelope (non-zero exit status).
+    pub fn fails(self) -> bool {
+        matches!(self, Class::Hang | Class::Crash | Class::Garbage)
+    }
+}
+
+/// The raw result of a worker.
+#[derive(Debug, Clone)]
+pub enum Raw {
+    Done(Box<Measured>),
+    Hang,
+    Crash(String),
+}
+
+/// The bounds a point must keep to be `ok`, and the thresholds of the flags (documented in the
+/// summary, with the data behind the margins).
+#[derive(Debug, Clone, Copy)]
+pub struct Bounds {
+    /// Relative widening of the loaded balls' race-control range [min, max] of the cage ratio
+    /// at the kinematic, quasi-static, lumped and reduced levels.
+    pub cage_margin: f64,
+    /// The same at the full level, whose balls orbit freely (no cage): the unloaded balls of a
+    /// partial load zone speed up on the outer race and pull the mean above the loaded ones'.
+    pub cage_margin_full: f64,
+    /// Largest |cage.speed| at a shaft at rest, as a fraction of the limiting speed (nothing
+    /// drives the balls; what moves them is the start transient).
+    pub rest_cage: f64,
+    /// Kinematic and quasi-static levels: largest |bearing.F + load| over |load|.
+    pub static_force_tol: f64,
+    /// Dynamic levels: largest |bearing.F| over |load| + the balls' centrifugal forces at Ω.
+    pub force_factor: f64,
+    /// Largest contact deflection allowed for in the ring-displacement bound, over D.
+    pub deflection_over_d: f64,
+    /// Largest peak Hertz pressure as a multiple of ISO 76's 4200 MPa.
+    pub pressure_factor: f64,
+    /// Neighbour flags: the cage ratio's change between neighbours beyond what the
+    /// race-control range itself moves, relative, at the levels with the traction's cage speed
+    /// (kinematic, quasi-static, lumped) and at the levels with free balls (reduced, full).
+    pub jump_traction: f64,
+    pub jump_balls: f64,
+    /// Level flag: a level's cage ratio relative to the median of the levels at the point.
+    pub level_outlier: f64,
+    /// Start flag (dynamic levels): |bearing.F + load| at t = 0 over |load|.
+    pub start_balance: f64,
+}
+
+impl Default for Bounds {
+    fn default() -> Self {
+        Self {
+            cage_margin: 0.02,
+            cage_margin_full: 0.06,
+            rest_cage: 1e-3,
+            static_force_tol: 1e-3,
+            force_factor: 5.0,
+            deflection_over_d: raceway::quasi_static::MAX_DEFLECTION_OVER_D,
+            pressure_factor: 2.0,
+            jump_traction: 0.01,
+            jump_balls: 0.05,
+            level_outlier: 0.05,
+            start_balance: 0.1,
+        }
+    }
+}
+
+impl Bounds {
+    /// Largest inner-ring displacement relative to the outer ring \[m\]: the groove-centre
+    /// distance can grow from B·D to at most B·D plus two contact deflections, and its
+    /// direction can turn by at most 180°, so the ring moves at most 2 B D + 2 δ_max.
+    pub fn ring(&self, s: &Scales) -> f64 {
+        (2.0 * s.b_total + 2.0 * self.deflection_over_d) * s.d
+    }
+
+    /// Largest force a dynamic level may put on the ring or the pedestal \[N\]: `force_factor`
+    /// × (the load + the balls' centrifugal forces at the shaft speed; spall impacts and the
+    /// start transient load the rings dynamically, and at speed the impacts scale with the
+    /// centrifugal forces, not with the load).
+    pub fn force(&self, s: &Scales, load: f64, omega: f64) -> f64 {
+        self.force_factor * (load + s.centrifugal(omega))
+    }
+
+    /// The cage margin of a level.
+    pub fn margin(&self, level: Fidelity) -> f64 {
+        if level == Fidelity::Full {
+            self.cage_margin_full
+        } else {
+            self.cage_margin
+        }
+    }
+
+    /// The neighbour threshold of a level.
+    pub fn jump(&self, level: Fidelity) -> f64 {
+        if matches!(level, Fidelity::Reduced | Fidelity::Full) {
+            self.jump_balls
+        } else {
+            self.jump_traction
+        }
+    }
+}
+
+/// A judged point.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    pub class: Class,
+    pub wall: f64,
+    pub measured: Option<Measured>,
+    /// The error, the garbage reasons, or what the watchdog saw.
+    pub message: String,
+    pub flags: Vec<String>,
+    /// cage.speed / Ω (NaN at rest or without a result).
+    pub cage_ratio: f64,
+    /// Relative distance of the cage ratio outside the race-control range (0 inside).
+    pub excursion: f64,
+}
+
+fn is_static(level: Fidelity) -> bool {
+    matches!(level, Fidelity::Kinematic | Fidelity::QuasiStatic)
+}
+
+/// Relative distance of `r` outside [lo, hi] (0 inside, NaN without a range).
+pub fn excursion(r: f64, lo: f64, hi: f64) -> f64 {
+    if !(lo.is_finite() && hi.is_finite() && r.is_finite()) {
+        f64::NAN
+    } else if r < lo {
+        (lo - r) / lo
+    } else if r > hi {
+        (r - hi) / hi
+    } else {
+        0.0
+    }
+}
+
+/// Judges one point against the bounds.
+pub fn classify(p: &GridPoint, s: &Scales, raw: &Raw, wall: f64, b: &Bounds) -> Outcome {
+    let mut o = Outcome {
+        class: Class::Ok,
+        wall,
+        measured: None,
+        message: String::new(),
+        flags: Vec::new(),
+        cage_ratio: f64::NAN,
+        excursion: f64::NAN,
+    };
+    let m = match raw {
+        Raw::Hang => {
+            o.class = Class::Hang;
+            o.message = format!("no result within the wall-time limit ({wall:.0} s): killed");
+            return o;
+        }
+        Raw::Crash(msg) => {
+            o.class = Class::Crash;
+            o.message = msg.clone();
+            return o;
+        }
+        Raw::Done(m) => m.as_ref(),
+    };
+    o.measured = Some(m.clone());
+    let omega = p.spec.speed_rpm * std::f64::consts::PI / 30.0;
+    let mut bad: Vec<String> = Vec::new();
+    let e = &m.ok;
+    if let Some((i, t)) = e.nonfinite {
+        let names = raceway::simulation::output_table(s.z);
+        let name = names.get(i).map(|v| v.name.as_str()).unwrap_or("?");
+        bad.push(format!("{name} not finite at t = {t:.6} s"));
+    }
+    // The cage: inside (0, Ω) at every sample, its mean inside the widened race-control range.
+    if e.samples > 0 {
+        if omega > 0.0 {
+            o.cage_ratio = m.cage_speed / omega;
+            if !(e.cage_min > 0.0 && e.cage_max < omega) {
+                bad.push(format!(
+                    "cage.speed {:.6e} … {:.6e} rad/s outside (0, Ω = {omega:.4} rad/s)",
+                    e.cage_min, e.cage_max
+                ));
+            }
+            if let Some(l1) = &m.l1 {
+                o.excursion = excursion(o.cage_ratio, l1.rc_lo, l1.rc_hi);
+                let margin = b.margin(p.level);
+                if o.excursion > margin {
+                    bad.push(format!(
+                        "cage ratio {:.5} outside the race-control range [{:.5}, {:.5}] by {:.2} % (margin {:.0} %)",
+                        o.cage_ratio,
+                        l1.rc_lo,
+                        l1.rc_hi,
+                        100.0 * o.excursion,
+                        100.0 * margin
+                    ));
+                }
+                // A traction level that returns L1's outer-race control has fallen back.
+                if matches!(
+                    p.level,
+                    Fidelity::Kinematic | Fidelity::QuasiStatic | Fidelity::Lumped
+                ) && ((m.cage_model / omega) - l1.orc_ratio).abs() <= 1e-9 * l1.orc_ratio
+                {
+                    o.flags.push("fallback_orc".into());
+                }
+            }
+        } else {
+            let rest = b.rest_cage * s.n_lim * std::f64::consts::PI / 30.0;
+            if !(e.cage_min.abs() <= rest && e.cage_max.abs() <= rest) {
+                bad.push(format!(
+                    "cage.speed {:.3e} … {:.3e} rad/s with the shaft at rest (bound ±{rest:.3e})",
+                    e.cage_min, e.cage_max
+                ));
+            }
+        }
+        let load = p.spec.fa.hypot(p.spec.fr);
+        let force = b.force(s, load, omega);
+        if is_static(p.level) {
+            if e.max_f_dev > b.static_force_tol * load + 1e-6 {
+                bad.push(format!(
+                    "|bearing.F + load| up to {:.4e} N at a static level (load {load:.1} N)",
+                    e.max_f_dev
+                ));
+            }
+        } else {
+            if e.max_f > force {
+                bad.push(format!(
+                    "|bearing.F| up to {:.4e} N (bound {force:.4e} N: {} × (load {load:.1} N + centrifugal))",
+                    e.max_f, b.force_factor
+                ));
+            }
+            let f0 = m.f_start;
+            let dev0 = (f0[0] + p.spec.fa).hypot(f0[1]).hypot(f0[2] - p.spec.fr);
+            // Healthy scenes only: a ball inside the spall at t = 0 unbalances any start.
+            if !p.spec.spall && dev0 > b.start_balance * load {
+                o.flags.push("off_balance_start".into());
+            }
+        }
+        let ring = b.ring(s);
+        if e.max_ring > ring {
+            bad.push(format!(
+                "inner ring {:.4e} m from the outer ring (bound {ring:.3e} m)",
+                e.max_ring
+            ));
+        }
+        // The static levels put the pedestal at load/k; the bound is the dynamic one for all.
+        let ped = force / p.k_pedestal;
+        if e.max_ped > ped {
+            bad.push(format!(
+                "pedestal displaced {:.4e} m (bound {ped:.3e} m: the force bound over k)",
+                e.max_ped
+            ));
+        }
+        let p_lim = b.pressure_factor * grid::P_ISO76;
+        if m.max_pressure > p_lim {
+            bad.push(format!(
+                "peak Hertz pressure {:.0} MPa (bound {:.0} MPa)",
+                m.max_pressure / 1e6,
+                p_lim / 1e6
+            ));
+        }
+    }
+    if !bad.is_empty() {
+        o.class = Class::Garbage;
+        o.message = bad.join("; ");
+        if let Some(err) = &m.error {
+            o.message.push_str(&format!("; then: {err}"));
+        }
+    } else if let Some(err) = &m.error {
+        o.class = Class::Error;
+        o.message = err.clone();
+    }
+    o
+}
+
+/// A line along the speed axis: bearing, level code, load case, pedestal, spall.
+type LineKey<'a> = (usize, i32, usize, &'a str, bool);
+
+/// Adds the neighbour and level flags: a cage ratio that jumps between neighbours along the
+/// speed axis (same level, load, pedestal, spall) by more than the race-control range moves
+/// plus the level's threshold, between pedestals or spall on/off at the same speed (L1, and so
+/// the range, depends on neither), or a level far from the median of the levels at the point.
+pub fn flag_neighbours(points: &[GridPoint], outcomes: &mut [Outcome], b: &Bounds) {
+    let ratio = |i: usize| {
+        let o = &outcomes[i];
+        (o.class == Class::Ok && o.cage_ratio.is_finite() && o.cage_ratio > 0.0)
+            .then_some(o.cage_ratio)
+    };
+    let range = |i: usize| {
+        let l1 = outcomes[i].measured.as_ref()?.l1.as_ref()?;
+        (l1.rc_lo.is_finite() && l1.rc_hi.is_finite()).then_some((l1.rc_lo, l1.rc_hi))
+    };
+    let rel = |a: f64, c: f64| (a - c).abs() / (0.5 * (a + c));
+    // Same level, load, pedestal, spall: along the speed axis.
+    let mut by_line: BTreeMap<LineKey, Vec<(usize, usize)>> = BTreeMap::new();
+    // Same level, load, speed: across pedestals and spall states.
+    let mut by_point: BTreeMap<(usize, i32, usize, usize), Vec<usize>> = BTreeMap::new();
+    // Same physical point: across levels.
+    let mut by_levels: BTreeMap<(usize, usize, usize, &str, bool), Vec<usize>> = BTreeMap::new();
+    for (i, p) in points.iter().enumerate() {
+        let is = p.i_speed.unwrap_or(usize::MAX);
+        by_line
+            .entry((
+                p.bearing,
+                p.level.code(),
+                p.i_load,
+                p.pedestal,
+                p.spec.spall,
+            ))
+            .or_default()
+            .push((is, i));
+        by_point
+            .entry((p.bearing, p.level.code(), p.i_load, is))
+            .or_default()
+            .push(i);
+        by_levels
+            .entry((p.bearing, p.i_load, is, p.pedestal, p.spec.spall))
+            .or_default()
+            .push(i);
+    }
+    let mut pending: Vec<(usize, String)> = Vec::new();
+    for line in by_line.values_mut() {
+        line.sort();
+        for w in line.windows(2) {
+            let ((sa, a), (sb, c)) = (w[0], w[1]);
+            if sa == usize::MAX || sb != sa + 1 {
+                continue;
+            }
+            // What the race-control range itself moves between the two speeds (centrifugal
+            // forces turn the contact angles) is allowed on top of the threshold.
+            let shift = match (range(a), range(c)) {
+                (Some((la, ha)), Some((lc, hc))) => (la - lc).abs().max((ha - hc).abs()),
+                _ => 0.0,
+            };
+            if let (Some(ra), Some(rc)) = (ratio(a), ratio(c)) {
+                let jump = b.jump(points[a].level);
+                if (ra - rc).abs() > shift + jump * 0.5 * (ra + rc) {
+                    pending.push((a, "jump_speed".into()));
+                    pending.push((c, "jump_speed".into()));
+                }
+            }
+        }
+    }
+    for group in by_point.values() {
+        for (k, &a) in group.iter().enumerate() {
+            for &c in &group[k + 1..] {
+                let (pa, pc) = (&points[a], &points[c]);
+                let what = if pa.pedestal != pc.pedestal && pa.spec.spall == pc.spec.spall {
+                    "jump_pedestal"
+                } else if pa.pedestal == pc.pedestal && pa.spec.spall != pc.spec.spall {
+                    "jump_spall"
+                } else {
+                    continue;
+                };
+                if let (Some(ra), Some(rc)) = (ratio(a), ratio(c)) {
+                    if rel(ra, rc) > b.jump(pa.level) {
+                        pending.push((a, what.into()));
+                        pending.push((c, what.into()));
+                    }
+                }
+            }
+        }
+    }
+    for group in by_levels.values() {
+        let mut rs: Vec<f64> = group.iter().filter_map(|&i| ratio(i)).collect();
+        if rs.len() < 3 {
+            continue;
+        }
+        rs.sort_by(f64::total_cmp);
+        let med = rs[rs.len() / 2];
+        for &i in group {
+            if let Some(r) = ratio(i) {
+                if (r - med).abs() / med > b.level_outlier {
+                    pending.push((i, "level_outlier".into()));
+                }
+            }
+        }
+    }
+    for (i, f) in pending {
+        if !outcomes[i].flags.contains(&f) {
+            outcomes[i].flags.push(f);
+        }
+    }
+}
+
+/// Replaces the numbers in a message by `#`, so that messages differing only in values group.
+pub fn pattern(msg: &str) -> String {
+    let mut out = String::with_capacity(msg.len());
+    let mut chars = msg.chars().peekable();
+    let mut prev_alnum = false;
+    while let Some(c) = chars.next() {
+        let starts_number = c.is_ascii_digit()
+            || ((c == '-' || c == '.') && chars.peek().is_some_and(|d| d.is_ascii_digit()));
+        if starts_number && !prev_alnum {
+            let mut last = c;
+            while let Some(&d) = chars.peek() {
+                let exp_sign = (d == '-' || d == '+') && last == 'e';
+                if d.is_ascii_digit() || d == '.' || d == 'e' || exp_sign {
+                    last = d;
+                    chars.next();
+                } else {
+                    break;
+                }
+            }
+            out.push('#');
+            prev_alnum = false;
+        } else {
+            prev_alnum = c.is_alphanumeric() || c == '_';
+            out.push(c);
+        }
+    }
+    // A message that names a point repeats it: keep the first 160 characters.
+    if out.chars().count() > 160 {
+        out = out.chars().take(160).collect::<String>() + "…";
+    }
+    out
+}
+
+/// A number with 6 significant digits, trailing zeros dropped (the table is committed: full
+/// precision would double its size for digits nobody reads).
+fn csv_f(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let e = x.abs().log10().floor() as i32;
+    if (-4..6).contains(&e) {
+        let s = format!("{:.*}", (5 - e).max(0) as usize, x);
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+/// Writes one row per point.
+pub fn write_csv(
+    path: &Path,
+    points: &[GridPoint],
+    outcomes: &[Outcome],
+    scales: &[Scales],
+) -> Result<(), String> {
+    let mut w = csv::Writer::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let head = [
+        "bearing",
+        "level",
+        "speed_rpm",
+        "speed_frac",
+        "load_case",
+        "fa",
+        "fr",
+        "pedestal",
+        "k_pedestal",
+        "spall",
+        "duration",
+        "class",
+        "flags",
+        "wall_s",
+        "t_reached",
+        "cage_speed",
+        "cage_ratio",
+        "rc_lo",
+        "rc_hi",
+        "cage_excursion",
+        "orc_ratio",
+        "loaded_balls",
+        "bearing_fx",
+        "bearing_fy",
+        "bearing_fz",
+        "start_force_dev",
+        "max_force_dev",
+        "max_force",
+        "max_ring_disp",
+        "max_pedestal_disp",
+        "max_pressure_mpa",
+        "steps",
+        "message",
+    ];
+    w.write_record(head).map_err(|e| e.to_string())?;
+    for (p, o) in points.iter().zip(outcomes) {
+        let m = o.measured.as_ref();
+        let l1 = m.and_then(|m| m.l1.as_ref());
+        let num = |f: &dyn Fn(&Measured) -> f64| m.map_or(String::new(), |m| csv_f(f(m)));
+        let lnum =
+            |f: &dyn Fn(&super::point::L1Ref) -> f64| l1.map_or(String::new(), |l| csv_f(f(l)));
+        let row = vec![
+            scales[p.bearing].name.clone(),
+            p.level.name().to_string(),
+            csv_f(p.spec.speed_rpm),
+            csv_f(p.speed_frac),
+            p.load.to_string(),
+            csv_f(p.spec.fa),
+            csv_f(p.spec.fr),
+            p.pedestal.to_string(),
+            csv_f(p.k_pedestal),
+            (p.spec.spall as u8).to_string(),
+            csv_f(p.spec.duration),
+            o.class.name().to_string(),
+            o.flags.join(" "),
+            format!("{:.3}", o.wall),
+            num(&|m| m.t_reached),
+            num(&|m| m.cage_speed),
+            if m.is_some() {
+                csv_f(o.cage_ratio)
+            } else {
+                String::new()
+            },
+            lnum(&|l| l.rc_lo),
+            lnum(&|l| l.rc_hi),
+            if m.is_some() {
+                csv_f(o.excursion)
+            } else {
+                String::new()
+            },
+            lnum(&|l| l.orc_ratio),
+            l1.map_or(String::new(), |l| l.loaded.to_string()),
+            num(&|m| m.f_end[0]),
+            num(&|m| m.f_end[1]),
+            num(&|m| m.f_end[2]),
+            num(&|m| {
+                let f = m.f_start;
+                (f[0] + p.spec.fa).hypot(f[1]).hypot(f[2] - p.spec.fr)
+            }),
+            num(&|m| m.ok.max_f_dev),
+            num(&|m| m.ok.max_f),
+            num(&|m| m.ok.max_ring),
+            num(&|m| m.ok.max_ped),
+            num(&|m| m.max_pressure / 1e6),
+            m.map_or(String::new(), |m| m.steps.to_string()),
+            o.message.clone(),
+        ];
+        w.write_record(&row).map_err(|e| e.to_string())?;
+    }
+    w.flush().map_err(|e| e.to_string())
+}
+
+fn point_label(p: &GridPoint, s: &Scales) -> String {
+    format!(
+        "{} {} {:.0} rpm, Fa {:.0} N, Fr {:.0} N ({}), k {:e} N/m ({}), spall {}",
+        s.name,
+        p.level.name(),
+        p.spec.speed_rpm,
+        p.spec.fa,
+        p.spec.fr,
+        p.load,
+        p.k_pedestal,
+        p.pedestal,
+        if p.spec.spall { "on" } else { "off" }
+    )
+}
+
+fn md_escape(s: &str) -> String {
+    s.replace('|', "\\|").replace('\n', " ")
+}
+
+/// The kinds of bound a garbage message names (its reasons up to their first number).
+fn garbage_kind(message: &str) -> String {
+    let mut kinds: Vec<String> = message
+        .split("; ")
+        .filter(|part| !part.starts_with("then:"))
+        .map(|part| {
+            let pat = pattern(part);
+            pat.split('#').next().unwrap_or("").trim().to_string()
+        })
+        .collect();
+    kinds.dedup();
+    kinds.join(" + ")
+}
+
+/// Indices grouped by a key, the largest groups first.
+fn group_by(idx: &[usize], key: impl Fn(usize) -> String) -> Vec<(String, Vec<usize>)> {
+    let mut groups: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for &i in idx {
+        groups.entry(key(i)).or_default().push(i);
+    }
+    let mut g: Vec<(String, Vec<usize>)> = groups.into_iter().collect();
+    g.sort_by_key(|c| std::cmp::Reverse(c.1.len()));
+    g
+}
+
+/// Up to `n` of the points, the first of each (bearing, level) first.
+fn examples(points: &[GridPoint], idx: &[usize], n: usize) -> Vec<usize> {
+    let mut seen = Vec::new();
+    let mut picked = Vec::new();
+    for &i in idx {
+        let key = (points[i].bearing, points[i].level.code());
+        if !seen.contains(&key) {
+            seen.push(key);
+            picked.push(i);
+        }
+    }
+    for &i in idx {
+        if picked.len() >= n {
+            break;
+        }
+        if !picked.contains(&i) {
+            picked.push(i);
+        }
+    }
+    picked.truncate(n);
+    picked
+}
+
+/// The levels among the points, in ladder order.
+fn levels_of(points: &[GridPoint], idx: &[usize]) -> String {
+    let mut lv: Vec<Fidelity> = idx.iter().map(|&i| points[i].level).collect();
+    lv.sort_by_key(|l| l.code());
+    lv.dedup();
+    lv.iter().map(|l| l.name()).collect::<Vec<_>>().join(", ")
+}
+
+/// Percentile `q` in [0, 1] of sorted values.
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+}
+
+/// Everything the summary needs besides the points.
+pub struct Context<'a> {
+    pub command: String,
+    pub revision: Option<String>,
+    pub quick: bool,
+    pub time_limit: f64,
+    pub jobs: usize,
+    pub total_wall: f64,
+    pub scales: &'a [Scales],
+    pub levels: &'a [Fidelity],
+    pub bounds: Bounds,
+}
+
+/// The markdown summary.
+pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> String {
+    let b = &cx.bounds;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Operating envelope: hangs, garbage and errors over a grid\n"
+    );
+    let _ = writeln!(s, "Made by:\n\n```sh\n{}\n```\n", cx.command);
+    let _ = writeln!(
+        s,
+        "(`cargo run --release -- {}` from the repository root{}; {} points in {:.0} s wall on \
+         {} worker processes at a time; the CSV of every point is `envelope.csv` beside this file.)\n",
+        cx.command.trim_start_matches("raceway "),
+        cx.revision
+            .as_ref()
+            .map(|r| format!(", at revision {r}"))
+            .unwrap_or_default(),
+        points.len(),
+        cx.total_wall,
+        cx.jobs
+    );
+    let fails: usize = outcomes.iter().filter(|o| o.class.fails()).count();
+    let _ = writeln!(
+        s,
+        "**{}**: {} of {} points hang, crash or return garbage with Ok.\n",
+        if fails == 0 { "PASS" } else { "FAIL" },
+        fails,
+        points.len()
+    );
+
+    // What was run.
+    let _ = writeln!(s, "## The grid\n");
+    let _ = writeln!(
+        s,
+        "Every point is one scene run through the library (`Simulation::new`, then \
+         `advance_sampled` in communication steps of 1 ms, 0.5 ms at the reduced and full levels, \
+         each with its own step budget as an FMU master's `fmi2DoStep`), in its own worker \
+         process (`raceway envelope --run-point`) so that the watchdog can kill a point that \
+         runs past {:.0} s of wall time and record it as a hang. Outputs are checked at t = 0 \
+         and at 51.2 kHz in every step that returned Ok.\n",
+        cx.time_limit
+    );
+    let ax = grid::axes(cx.quick);
+    let speeds: Vec<String> = ax.speeds.iter().map(|f| format!("{f}")).collect();
+    let _ = writeln!(
+        s,
+        "- Levels and simulated time: {}.",
+        cx.levels
+            .iter()
+            .map(|l| format!("{} {} ms", l.name(), grid::duration(*l) * 1e3))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        s,
+        "- Speed: {} × the limiting speed n_lim = dm·n / dm with dm·n = {:.1e} mm·rpm \
+         (the usual ceiling of oil-lubricated ball bearings; the paper's 9900 rpm on the Table-1 \
+         bearing is dm·n = 0.69e6).",
+        speeds.join(", "),
+        grid::DMN_LIMIT
+    );
+    let _ = writeln!(
+        s,
+        "- Loads: fractions of the static load rating C0 (ISO 76): C0 = Z·Q_lim·cos α0 / 5, with \
+         Q_lim the ball load at which the peak Hertz pressure of the more stressed contact \
+         (computed from the bearing's own curvatures and elastic constants) reaches 4200 MPa, \
+         and 5 ISO 76's ratio Q_max·Z·cos α / Fr; f0 = C0/(Z D² cos α0) below is ISO 76's factor (its tables assume groove radii of 0.52 D and 0.53 D; these presets' grooves are closer, so their f0 comes out higher). \
+         Light {}, medium {}, heavy {} C0. Loads beyond C0 are left out: the bounds below are made for loads \
+         within the rating (with the spall at 3 C0 the reduced and full levels' balls slow by up to 8 % below the \
+         race-control range within 4 ms), and L1 refuses a load that needs contact deflections above 1 % of D \
+         (30 C0 on the Table-1 bearing) with a clear message.",
+        grid::LIGHT,
+        grid::MEDIUM,
+        grid::HEAVY
+    );
+    let _ = writeln!(
+        s,
+        "- Pedestal stiffness k_y = k_z: the preset's{}.",
+        if cx.quick {
+            format!(", soft {:e} N/m", grid::K_SOFT)
+        } else {
+            format!(
+                ", soft {:e} N/m, stiff {:e} N/m",
+                grid::K_SOFT,
+                grid::K_STIFF
+            )
+        }
+    );
+    let _ = writeln!(
+        s,
+        "- Spall: {}the default scene's outer-race spall scaled to the ball (width {:.4}·D, depth \
+         {:.4}·D, at the load-zone centre θ0 = π; 1.0 × 0.2 mm on the Table-1 bearing).",
+        if cx.quick { "on: " } else { "off, and on: " },
+        grid::SPALL_WIDTH_OVER_D,
+        grid::SPALL_DEPTH_OVER_D
+    );
+    if !cx.quick && cx.scales.iter().any(|s| s.source == "niu2014-table1") {
+        let _ = writeln!(
+            s,
+            "- Besides the grid, issue 17's own points on the Table-1 bearing (spall off and on): {}.",
+            grid::ISSUE17
+                .iter()
+                .map(|(rpm, fa, fr, k, _)| format!(
+                    "{rpm} rpm Fa {fa} N Fr {fr} N{}",
+                    k.map(|k| format!(" k {k:e} N/m")).unwrap_or_default()
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n| bearing | Z | D [mm] | dm [mm] | α0 [°] | B | Q_lim [N] | C0 [N] | f0 | n_lim [rpm] | k_preset [N/m] |\n|---|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for sc in cx.scales {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.0} | {:.0} | {:.2} | {:.0} | {:e} |",
+            sc.name,
+            sc.z,
+            sc.d * 1e3,
+            sc.dm * 1e3,
+            sc.alpha0_deg,
+            sc.b_total,
+            sc.q_lim,
+            sc.c0,
+            sc.f0,
+            sc.n_lim,
+            sc.k_preset
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n| load case | what | Fa/C0 | Fr/C0 |\n|---|---|---|---|"
+    );
+    for lc in ax.loads {
+        // Rounded to 6 decimals: 1.0625 × 0.1 prints as 0.10625, not 0.10625000000000001.
+        let r6 = |x: f64| (x * 1e6).round() / 1e6;
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} |",
+            lc.name,
+            lc.what,
+            r6(lc.fa),
+            r6(lc.fr)
+        );
+    }
+
+    // The classes and the bounds.
+    let _ = writeln!(s, "\n## Classes and bounds\n");
+    let _ = writeln!(
+        s,
+        "- **ok**: ran to the end; every output delivered with Ok is finite and within the bounds below.\n\
+         - **error**: stopped with a clear `SimError` (message recorded); nothing out of bounds was delivered before it.\n\
+         - **garbage**: Ok, but an output at t = 0 or in a step that returned Ok is non-finite or out of bounds (a later error is appended to the message).\n\
+         - **hang**: no result within {:.0} s of wall time; the worker was killed.\n\
+         - **crash**: the worker died without a result (a panic or a signal).\n\n\
+         Hang, crash and garbage fail the envelope (non-zero exit status).\n",
+        cx.time_limit
+    );
+    let _ = writeln!(
+        s,
+        "Bounds (the reasons in brackets):\n\n\
+         - cage.speed in (0, Ω) at every sample at Ω > 0 (a cage cannot stand still, run backwards or outrun the shaft); at Ω = 0, |cage.speed| ≤ {:.0e} × the limiting speed at every sample (nothing drives the balls; what moves them is the start transient).\n\
+         - Its mean over the run's second half, as a ratio ω_c/Ω, inside the race-control range of the loaded balls, widened by {:.0} % at the kinematic, quasi-static, lumped and reduced levels and by {:.0} % at the full level. The range is [min, max] over L1's loaded balls at the point of the inner-race-control and outer-race-control cage ratios at each ball's loaded angles (`kinematics::inner_race_control_cage_ratio`, `kinematics::outer_race_control`). The margins come from the data (\"Cage speed against the race-control range\" below): they sit above what the points with the stiff pedestal reach (there the traction solve does not see the pedestal: see the flags). A caged bearing's lightly loaded balls drag the cage below the loaded ones' rolling speed, and at high speed the traction can pull it beyond: the traction's cage speed need not lie inside the range. The full level's balls orbit freely (no cage): in a partial load zone the unloaded ones speed up on the outer race and pull the mean above the loaded balls' range.\n\
+         - Kinematic and quasi-static levels (static balance): |bearing.F + load| ≤ {:.0e}·|load| + 1 µN.\n\
+         - Lumped, reduced, full: |bearing.F| ≤ {}·(|load| + Z·m_b·(dm/2)·Ω²) (spall impacts and the start transient load the rings dynamically; at speed the impacts scale with the balls' centrifugal forces, not with the load; \"Headroom\" below has the largest values over the grid).\n\
+         - Inner ring relative to the outer ring (ring.x, ring.y − pedestal.y, ring.z − pedestal.z): ≤ (2B + 2·{})·D (the groove-centre distance grows from B·D by at most two contact deflections of {}·D, L1's own limit, and turns at most half a turn).\n\
+         - Pedestal displacement ≤ the force bound above over k.\n\
+         - Peak Hertz pressure of the largest contact forces ≤ {}·4200 MPa (ISO 76's permanent-deformation pressure; Hertz theory and steel do not carry much beyond it).\n\n\
+         Flags (they do not change the class):\n\n\
+         - `jump_speed`: an ok point's cage ratio differs from its ok neighbour along the speed axis (same level, load, pedestal, spall) by more than the race-control range itself moves plus {:.0} % (kinematic, quasi-static, lumped: one cage speed from the traction solve) or {:.0} % (reduced, full: a 4-ms mean of free balls).\n\
+         - `jump_pedestal`, `jump_spall`: the same between pedestals, or spall on and off, at the same speed (L1, and so the range, depends on neither; the traction solve runs on the healthy bearing).\n\
+         - `level_outlier`: a level's cage ratio more than {:.0} % from the median of the levels at the same point (needs three ok levels).\n\
+         - `off_balance_start` (lumped, reduced, full): |bearing.F + load| at t = 0 above {:.0} % of the load on the healthy bearing: the level does not start at its own equilibrium (with the spall, a ball inside it at t = 0 unbalances any start).\n\
+         - `fallback_orc`: a traction level (kinematic, quasi-static, lumped) whose cage speed equals L1's outer-race control to 1e-9 (a silent fallback).\n",
+        b.rest_cage,
+        100.0 * b.cage_margin,
+        100.0 * b.cage_margin_full,
+        b.static_force_tol,
+        b.force_factor,
+        b.deflection_over_d,
+        b.deflection_over_d,
+        b.pressure_factor,
+        100.0 * b.jump_traction,
+        100.0 * b.jump_balls,
+        100.0 * b.level_outlier,
+        100.0 * b.start_balance
+    );
+
+    // Counts per bearing and level.
+    let _ = writeln!(s, "## Results per bearing and level\n");
+    let _ = writeln!(
+        s,
+        "| bearing | level | points | ok | error | garbage | hang | crash | flagged | median wall [s] | max wall [s] |\n|---|---|---|---|---|---|---|---|---|---|---|"
+    );
+    let mut totals = [0usize; 5];
+    for (ib, sc) in cx.scales.iter().enumerate() {
+        for &lv in cx.levels {
+            let idx: Vec<usize> = (0..points.len())
+                .filter(|&i| points[i].bearing == ib && points[i].level == lv)
+                .collect();
+            if idx.is_empty() {
+                continue;
+            }
+            let count = |c: Class| idx.iter().filter(|&&i| outcomes[i].class == c).count();
+            let flagged = idx
+                .iter()
+                .filter(|&&i| !outcomes[i].flags.is_empty())
+                .count();
+            let mut walls: Vec<f64> = idx.iter().map(|&i| outcomes[i].wall).collect();
+            walls.sort_by(f64::total_cmp);
+            let cs: Vec<usize> = Class::ALL.iter().map(|&c| count(c)).collect();
+            for (t, c) in totals.iter_mut().zip(&cs) {
+                *t += c;
+            }
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {:.2} |",
+                sc.name,
+                lv.name(),
+                idx.len(),
+                cs[0],
+                cs[1],
+                cs[2],
+                cs[3],
+                cs[4],
+                flagged,
+                percentile(&walls, 0.5),
+                walls.last().copied().unwrap_or(f64::NAN)
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "| **all** | | **{}** | **{}** | **{}** | **{}** | **{}** | **{}** | **{}** | | |",
+        points.len(),
+        totals[0],
+        totals[1],
+        totals[2],
+        totals[3],
+        totals[4],
+        outcomes.iter().filter(|o| !o.flags.is_empty()).count()
+    );
+
+    // Flags.
+    let flag_names = [
+        "jump_speed",
+        "jump_pedestal",
+        "jump_spall",
+        "level_outlier",
+        "off_balance_start",
+        "fallback_orc",
+    ];
+    let _ = writeln!(s, "\n## Flags per level\n");
+    let _ = writeln!(
+        s,
+        "| level | {} |\n|---|{}",
+        flag_names.join(" | "),
+        "---|".repeat(flag_names.len())
+    );
+    for &lv in cx.levels {
+        let cells: Vec<String> = flag_names
+            .iter()
+            .map(|f| {
+                (0..points.len())
+                    .filter(|&i| points[i].level == lv && outcomes[i].flags.iter().any(|g| g == f))
+                    .count()
+                    .to_string()
+            })
+            .collect();
+        let _ = writeln!(s, "| {} | {} |", lv.name(), cells.join(" | "));
+    }
+
+    // The cage margin, from the data.
+    let _ = writeln!(s, "\n## Cage speed against the race-control range\n");
+    let _ = writeln!(
+        s,
+        "Over the points that ran to the end at Ω > 0 with finite outputs (whatever else their class), how far the \
+         cage ratio lies outside the loaded balls' race-control range [min, max] (relative; 0 = inside), per level and \
+         pedestal. The margins ({:.0} %, full level {:.0} %) sit above what the stiff pedestal's points reach.\n",
+        100.0 * b.cage_margin,
+        100.0 * b.cage_margin_full
+    );
+    let _ = writeln!(
+        s,
+        "| level | pedestal | points | inside | below min | above max | 99th pct excursion | max excursion | worst point |\n|---|---|---|---|---|---|---|---|---|"
+    );
+    let mut pedestals: Vec<&str> = points.iter().map(|p| p.pedestal).collect();
+    pedestals.sort();
+    pedestals.dedup();
+    for &lv in cx.levels {
+        for &ped in &pedestals {
+            let mut ex: Vec<(f64, usize)> = Vec::new();
+            let (mut below, mut above) = (0, 0);
+            for (i, (p, o)) in points.iter().zip(outcomes).enumerate() {
+                let Some(m) = &o.measured else { continue };
+                let Some(l1) = &m.l1 else { continue };
+                if p.level != lv
+                    || p.pedestal != ped
+                    || p.spec.speed_rpm <= 0.0
+                    || m.error.is_some()
+                    || m.ok.nonfinite.is_some()
+                    || !o.excursion.is_finite()
+                {
+                    continue;
+                }
+                if o.cage_ratio < l1.rc_lo {
+                    below += 1;
+                } else if o.cage_ratio > l1.rc_hi {
+                    above += 1;
+                }
+                ex.push((o.excursion, i));
+            }
+            if ex.is_empty() {
+                continue;
+            }
+            ex.sort_by(|a, c| a.0.total_cmp(&c.0));
+            let vals: Vec<f64> = ex.iter().map(|e| e.0).collect();
+            let inside = vals.iter().filter(|&&v| v == 0.0).count();
+            let worst = ex
+                .last()
+                .filter(|e| e.0 > 0.0)
+                .map(|e| point_label(&points[e.1], &cx.scales[points[e.1].bearing]))
+                .unwrap_or_default();
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {:.3} % | {:.3} % | {} |",
+                lv.name(),
+                ped,
+                vals.len(),
+                inside,
+                below,
+                above,
+                100.0 * percentile(&vals, 0.99),
+                100.0 * vals.last().copied().unwrap_or(f64::NAN),
+                worst
+            );
+        }
+    }
+
+    // How close the points come to the other bounds.
+    let _ = writeln!(s, "\n## Headroom\n");
+    let _ = writeln!(
+        s,
+        "The largest value of each bounded output over the points with finite outputs (ok or garbage), as a \
+         fraction of its bound (above 1: out of bounds), with the point where it occurs; `force / load` is the \
+         largest |bearing.F| over the load alone at the dynamic levels.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| level | force / bound | force / load | ring / bound | pedestal / bound | pressure / bound |\n|---|---|---|---|---|---|"
+    );
+    for &lv in cx.levels {
+        let mut worst = [(f64::NEG_INFINITY, usize::MAX); 5];
+        for (i, (p, o)) in points.iter().zip(outcomes).enumerate() {
+            let Some(m) = &o.measured else { continue };
+            if p.level != lv || m.ok.nonfinite.is_some() || m.ok.samples == 0 {
+                continue;
+            }
+            let sc = &cx.scales[p.bearing];
+            let load = p.spec.fa.hypot(p.spec.fr);
+            let omega = p.spec.speed_rpm * std::f64::consts::PI / 30.0;
+            let force = b.force(sc, load, omega);
+            let vals = [
+                if is_static(p.level) {
+                    m.ok.max_f_dev / (b.static_force_tol * load + 1e-6)
+                } else {
+                    m.ok.max_f / force
+                },
+                if is_static(p.level) {
+                    f64::NAN
+                } else {
+                    m.ok.max_f / load
+                },
+                m.ok.max_ring / b.ring(sc),
+                m.ok.max_ped / (force / p.k_pedestal),
+                m.max_pressure / (b.pressure_factor * grid::P_ISO76),
+            ];
+            for (w, v) in worst.iter_mut().zip(vals) {
+                if v > w.0 {
+                    *w = (v, i);
+                }
+            }
+        }
+        let cell = |w: (f64, usize)| {
+            if w.1 == usize::MAX {
+                "–".to_string()
+            } else {
+                format!(
+                    "{:.3} ({})",
+                    w.0,
+                    md_escape(&point_label(&points[w.1], &cx.scales[points[w.1].bearing]))
+                )
+            }
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            lv.name(),
+            if is_static(lv) {
+                format!("{} (the balance)", cell(worst[0]))
+            } else {
+                cell(worst[0])
+            },
+            cell(worst[1]),
+            cell(worst[2]),
+            cell(worst[3]),
+            cell(worst[4])
+        );
+    }
+
+    // Errors, grouped by message pattern.
+    let _ = writeln!(s, "\n## Errors by message\n");
+    let errors: Vec<usize> = (0..points.len())
+        .filter(|&i| outcomes[i].class == Class::Error)
+        .collect();
+    if errors.is_empty() {
+        let _ = writeln!(s, "None.");
+    } else {
+        let _ = writeln!(
+            s,
+            "| message (numbers as #) | levels | points | example |\n|---|---|---|---|"
+        );
+        for (pat, g) in group_by(&errors, |i| pattern(&outcomes[i].message)) {
+            let i = g[0];
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {}: {} |",
+                md_escape(&pat),
+                levels_of(points, &g),
+                g.len(),
+                md_escape(&point_label(&points[i], &cx.scales[points[i].bearing])),
+                md_escape(&outcomes[i].message)
+            );
+        }
+    }
+
+    // Failing points, grouped by what went wrong.
+    for class in [Class::Hang, Class::Crash, Class::Garbage] {
+        let idx: Vec<usize> = (0..points.len())
+            .filter(|&i| outcomes[i].class == class)
+            .collect();
+        let _ = writeln!(s, "\n## {} ({})\n", class.name(), idx.len());
+        if idx.is_empty() {
+            let _ = writeln!(s, "None.");
+            continue;
+        }
+        let groups = group_by(&idx, |i| {
+            if class == Class::Garbage {
+                garbage_kind(&outcomes[i].message)
+            } else {
+                points[i].level.name().to_string()
+            }
+        });
+        let _ = writeln!(
+            s,
+            "| what | levels | points | examples (one per bearing and level, up to 6) |\n|---|---|---|---|"
+        );
+        for (key, g) in groups {
+            let ex: Vec<String> = examples(points, &g, 6)
+                .into_iter()
+                .map(|i| {
+                    format!(
+                        "{}: {}",
+                        point_label(&points[i], &cx.scales[points[i].bearing]),
+                        outcomes[i].message
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} |",
+                md_escape(&key),
+                levels_of(points, &g),
+                g.len(),
+                md_escape(&ex.join("<br>"))
+            );
+        }
+    }
+
+    // Flagged points, grouped by flag.
+    let flagged: Vec<usize> = (0..points.len())
+        .filter(|&i| !outcomes[i].flags.is_empty())
+        .collect();
+    let _ = writeln!(s, "\n## Flagged points ({})\n", flagged.len());
+    if flagged.is_empty() {
+        let _ = writeln!(s, "None.");
+    } else {
+        let _ = writeln!(
+            s,
+            "| flag | levels | points | examples (one per bearing and level, up to 6: cage ratio; L1's race-control range) |\n|---|---|---|---|"
+        );
+        let mut by_flag: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+        for &i in &flagged {
+            for f in &outcomes[i].flags {
+                by_flag.entry(f.as_str()).or_default().push(i);
+            }
+        }
+        for (flag, g) in by_flag {
+            let ex: Vec<String> = examples(points, &g, 6)
+                .into_iter()
+                .map(|i| {
+                    let o = &outcomes[i];
+                    let range = o
+                        .measured
+                        .as_ref()
+                        .and_then(|m| m.l1.as_ref())
+                        .map(|l| format!("[{:.5}, {:.5}]", l.rc_lo, l.rc_hi))
+                        .unwrap_or_default();
+                    format!(
+                        "{}: {:.5}; {range}",
+                        point_label(&points[i], &cx.scales[points[i].bearing]),
+                        o.cage_ratio
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} |",
+                flag,
+                levels_of(points, &g),
+                g.len(),
+                md_escape(&ex.join("<br>"))
+            );
+        }
+    }
+
+    // The slowest points.
+    let mut slow: Vec<usize> = (0..points.len()).collect();
+    slow.sort_by(|&a, &c| outcomes[c].wall.total_cmp(&outcomes[a].wall));
+    let _ = writeln!(s, "\n## Slowest points\n");
+    let _ = writeln!(s, "| point | class | wall [s] | steps |\n|---|---|---|---|");
+    for &i in slow.iter().take(10) {
+        let o = &outcomes[i];
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {} |",
+            md_escape(&point_label(&points[i], &cx.scales[points[i].bearing])),
+            o.class.name(),
+            o.wall,
+            o.measured
+                .as_ref()
+                .map(|m| m.steps.to_string())
+                .unwrap_or_default()
+        );
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cli::envelope::point::{Extremes, L1Ref};
+    use raceway::geometry::Bearing;
+
+    fn setup(level: Fidelity) -> (GridPoint, Scales) {
+        let b = Bearing::load("niu2014-table1").unwrap();
+        let s = Scales::new("niu2014-table1", &b);
+        let mut p = grid::build(std::slice::from_ref(&s), &[level], true)
+            .into_iter()
+            .find(|p| p.spec.speed_rpm > 0.0)
+            .unwrap();
+        p.spec.fa = 4000.0;
+        p.spec.fr = 1000.0;
+        p.spec.speed_rpm = 9900.0;
+        (p, s)
+    }
+
+    /// A sound measurement at the default scene's point: cage 70 Hz of a 165 Hz shaft.
+    fn sound() -> Measured {
+        let omega = 9900.0 * std::f64::consts::PI / 30.0;
+        let w = 0.424 * omega;
+        let mut ok = Extremes {
+            samples: 10,
+            max_f_dev: 0.01,
+            max_f: 4123.0,
+            max_ring: 25e-6,
+            max_ped: 7e-5,
+            max_qi: 700.0,
+            max_qo: 800.0,
+            cage_sum: 5.0 * w,
+            cage_n: 5,
+            cage_min: w,
+            cage_max: w,
+            ..Extremes::default()
+        };
+        ok.nonfinite = None;
+        Measured {
+            stage: "done".into(),
+            t_reached: 0.1,
+            ok,
+            cage_speed: w,
+            cage_model: w,
+            f_end: [-4000.0, 0.0, 1000.0],
+            max_pressure: 2.0e9,
+            l1: Some(L1Ref {
+                rc_lo: 0.420,
+                rc_hi: 0.428,
+                orc_ratio: 0.4268,
+                loaded: 14,
+            }),
+            ..Measured::default()
+        }
+    }
+
+    #[test]
+    fn a_sound_point_is_ok_and_garbage_is_caught() {
+        let (p, s) = setup(Fidelity::Kinematic);
+        let b = Bounds::default();
+        let judge = |m: Measured| classify(&p, &s, &Raw::Done(Box::new(m)), 0.01, &b);
+        let ok = judge(sound());
+        assert_eq!(ok.class, Class::Ok, "{}", ok.message);
+        assert!(ok.flags.is_empty(), "{:?}", ok.flags);
+
+        // Issue 17's cage speed of 7.7e22 rad/s with exit status 0.
+        let mut m = sound();
+        m.cage_speed = 7.7e22;
+        m.ok.cage_max = 7.7e22;
+        let g = judge(m);
+        assert_eq!(g.class, Class::Garbage);
+        assert!(g.message.contains("cage.speed"), "{}", g.message);
+
+        // A NaN output.
+        let mut m = sound();
+        m.ok.nonfinite = Some((out_index("bearing.F.z"), 0.002));
+        let g = judge(m);
+        assert_eq!(g.class, Class::Garbage);
+        assert!(
+            g.message.contains("bearing.F.z not finite"),
+            "{}",
+            g.message
+        );
+
+        // A 1e9 N load's metre-scale ring displacement.
+        let mut m = sound();
+        m.ok.max_ring = 0.5;
+        assert_eq!(judge(m).class, Class::Garbage);
+
+        // A static level whose bearing force is not the load.
+        let mut m = sound();
+        m.ok.max_f_dev = 2.2e16;
+        assert_eq!(judge(m).class, Class::Garbage);
+
+        // The cage speed 1 % outside the race-control range passes the 2 % margin; 5 % does not.
+        for (scale, class) in [(1.01, Class::Ok), (1.05, Class::Garbage)] {
+            let mut m = sound();
+            let w = 0.428 * scale * 9900.0 * std::f64::consts::PI / 30.0;
+            m.cage_speed = w;
+            (m.ok.cage_min, m.ok.cage_max) = (w, w);
+            assert_eq!(judge(m).class, class, "scale {scale}");
+        }
+
+        // A traction level at L1's outer-race-control speed: a silent fallback.
+        let mut m = sound();
+        m.cage_model = 0.4268 * 9900.0 * std::f64::consts::PI / 30.0;
+        assert!(judge(m).flags.contains(&"fallback_orc".to_string()));
+
+        // An error is an error; an error after garbage is garbage.
+        let mut m = sound();
+        m.error = Some("integration failed at t = 0.001 s: step size collapsed".into());
+        assert_eq!(judge(m.clone()).class, Class::Error);
+        m.ok.max_ring = 0.5;
+        assert_eq!(judge(m).class, Class::Garbage);
+
+        assert_eq!(classify(&p, &s, &Raw::Hang, 60.0, &b).class, Class::Hang);
+    }
+
+    fn out_index(name: &str) -> usize {
+        raceway::simulation::output_table(14)
+            .iter()
+            .position(|o| o.name == name)
+            .unwrap()
+    }
+
+    #[test]
+    fn dynamic_levels_get_the_force_bound_not_the_balance() {
+        let (p, s) = setup(Fidelity::Full);
+        let b = Bounds::default();
+        let mut m = sound();
+        m.ok.max_f_dev = 3000.0; // a spall impact
+        m.ok.max_f = 7000.0;
+        let o = classify(&p, &s, &Raw::Done(Box::new(m.clone())), 0.1, &b);
+        assert_eq!(o.class, Class::Ok, "{}", o.message);
+        m.ok.max_f = 1e6;
+        let o = classify(&p, &s, &Raw::Done(Box::new(m)), 0.1, &b);
+        assert_eq!(o.class, Class::Garbage);
+    }
+
+    #[test]
+    fn neighbour_jumps_and_level_outliers_are_flagged() {
+        let b = Bearing::load("niu2014-table1").unwrap();
+        let s = Scales::new("niu2014-table1", &b);
+        let levels = [Fidelity::Kinematic, Fidelity::QuasiStatic, Fidelity::Lumped];
+        let points = grid::build(std::slice::from_ref(&s), &levels, true);
+        let mut outcomes: Vec<Outcome> = points
+            .iter()
+            .map(|p| Outcome {
+                class: Class::Ok,
+                wall: 0.0,
+                measured: None,
+                message: String::new(),
+                flags: vec![],
+                cage_ratio: if p.spec.speed_rpm > 0.0 {
+                    0.42
+                } else {
+                    f64::NAN
+                },
+                excursion: 0.0,
+            })
+            .collect();
+        // One lumped point 20 % off: it jumps along speed and spall? (spall is on only in the
+        // quick grid) and away from the other two levels.
+        let k = points
+            .iter()
+            .position(|p| p.level == Fidelity::Lumped && p.i_speed == Some(2))
+            .unwrap();
+        outcomes[k].cage_ratio = 0.5;
+        flag_neighbours(&points, &mut outcomes, &Bounds::default());
+        assert!(outcomes[k].flags.contains(&"jump_speed".to_string()));
+        assert!(outcomes[k].flags.contains(&"level_outlier".to_string()));
+        assert!(outcomes[k].flags.contains(&"jump_pedestal".to_string()));
+        let flagged = outcomes.iter().filter(|o| !o.flags.is_empty()).count();
+        // k, its speed neighbour, its pedestal twin.
+        assert_eq!(flagged, 3, "{flagged}");
+    }
+
+    #[test]
+    fn csv_numbers_have_six_digits() {
+        assert_eq!(csv_f(14285.714285714286), "14285.7");
+        assert_eq!(csv_f(0.42672781803746), "0.426728");
+        assert_eq!(csv_f(-13816.995), "-13817");
+        assert_eq!(csv_f(3.0724666e-6), "3.07247e-6");
+        assert_eq!(csv_f(2.2e16), "2.20000e16");
+        assert_eq!(csv_f(0.1), "0.1");
+        assert_eq!(csv_f(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn message_patterns_drop_the_numbers() {
+        assert_eq!(
+            pattern("integration failed at t = 0.000123 s: step size 2.000e-15 s fell below"),
+            "integration failed at t = # s: step size # s fell below"
+        );
+        assert_eq!(
+            pattern("L1 failed at (4000, 0, -1000) N"),
+            "L1 failed at (#, #, #) N"
+        );
+    }
+}
