@@ -142,6 +142,8 @@ const SPIN_ITER: usize = 100;
 /// steps ([`average_flow`]).
 const FLOW_REVS: f64 = 10.0;
 const FLOW_STEPS: usize = 300;
+/// Spin solves per move to new orbital rates ([`move_to`]).
+const MOVE_ATTEMPTS: usize = 8;
 /// Orbit evaluations per solve (bracketing and regula falsi).
 const ORBIT_ITER: usize = 80;
 
@@ -531,9 +533,10 @@ impl Solved {
 
 /// Moves the active balls' orbital rates from the last solved state to `target` and solves
 /// their spins there; where a ball's spin does not settle after the whole move, the move is
-/// made in continuation steps (halved until each settles, up to 1/1024 of it). With `average`,
-/// a ball that still does not settle after three halvings is taken at the target with its
-/// orbital acceleration averaged over its own motion ([`average_flow`]). Err(ball).
+/// made in continuation steps (halved until each settles, three times at most: a spin that
+/// does not settle a few continuation steps on is a spin cycle, not a bad guess). With
+/// `average`, a ball that still does not settle is taken at the target with its orbital
+/// acceleration averaged over its own motion ([`average_flow`]); without, Err(ball).
 #[allow(clippy::too_many_arguments)]
 fn move_to(
     m: &mut FullModel,
@@ -545,13 +548,16 @@ fn move_to(
     target: &[f64],
     average: bool,
 ) -> Result<(), usize> {
+    // The fraction of the remaining move tried, and the attempts (a move that keeps settling
+    // halfway and failing the rest ends after MOVE_ATTEMPTS).
     let mut f = 1.0;
-    loop {
+    for attempt in 1.. {
         for j in (0..active.len()).filter(|&j| active[j]) {
             let from = solved.rate[j];
             y[m.lay.ball(j) + BW] = from + f * (target[j] - from);
         }
-        let last_try = average && f <= 0.125;
+        let exhausted = f <= 0.125 || attempt >= MOVE_ATTEMPTS;
+        let last_try = average && exhausted;
         if last_try {
             for j in (0..active.len()).filter(|&j| active[j]) {
                 y[m.lay.ball(j) + BW] = target[j];
@@ -568,13 +574,14 @@ fn move_to(
             Err(j) => {
                 solved.restore(m, y);
                 w.dtau.iter_mut().for_each(|d| *d = 0.0);
-                f *= 0.5;
-                if f < 1.0 / 1024.0 {
+                if exhausted {
                     return Err(j);
                 }
+                f *= 0.5;
             }
         }
     }
+    unreachable!("the attempts end the loop")
 }
 
 /// Solves the balls' steady rotation at state `y` (see the module notes) and writes the rates
