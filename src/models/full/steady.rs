@@ -14,16 +14,23 @@
 //!
 //! The problem splits into a scalar root per orbit and a 3-unknown spin problem per ball:
 //! - Spin at a fixed θ̇: the ball's ω solves ω̇ − θ̇ e_x × ω = 0 by pseudo-transient
-//!   continuation (Newton on (I/Δτ − J) δ = r with a finite-difference J; Δτ starts at the
-//!   ball's fastest relaxation time and grows as the residual falls, so the iteration follows
-//!   the ball's own damped rotation where Newton alone would jump across the non-monotone
-//!   traction curve, and ends as Newton).
+//!   continuation, steps (I/Δτ − J) δ = r with a finite-difference J. Δτ starts near Newton; a
+//!   step is kept when it goes with the ball's own rotation (δ·r > 0; where the traction falls
+//!   with slip, J has unstable directions a Newton step would run along) and its linearization
+//!   predicts the residual it lands on; otherwise Δτ shrinks, so the iteration follows the
+//!   ball's damped rotation across the non-monotone traction curve and past a fold, and ends as
+//!   Newton. Solves at new orbital rates start from the last solved spins, in up to three
+//!   halved continuation steps.
+//! - A lightly loaded ball held far from its rolling speed can settle into a spin cycle
+//!   instead (a relaxation cycle of tens of ms). In the caged balance it enters with its
+//!   orbital acceleration averaged over its own motion ([`SteadyReport::unsettled`]); a free
+//!   solve reports it.
 //! - Orbit: g(θ̇) = θ̈ at the spin equilibrium falls with θ̇ (a ball slower than the races
 //!   roll it is pushed forward, a faster one held back), and it has opposite signs at θ̇ = 0
 //!   and at the shaft speed. The root is bracketed by stepping out from the starting guess (L1's
-//!   outer-race control or a previous solution) and then found by the Illinois variant of
-//!   regula falsi, which keeps the bracket. A sign that does not change before 0 or the shaft
-//!   speed is reported, never replaced.
+//!   outer-race control, load-weighted when caged, or a previous solution) and then found by
+//!   the Illinois variant of regula falsi, which keeps the bracket. A sign that does not change
+//!   before 0 or the shaft speed is reported, never replaced.
 //!
 //! The balls are independent while the rings are held, so each Jacobian column and each trial
 //! is one right-hand side of the full model for all balls at once.
