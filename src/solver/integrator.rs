@@ -55,6 +55,29 @@ pub struct Integrator {
     pub(super) sample_grid: Option<f64>,
 }
 
+/// The integrator's state at one time (time, state, proposed step, FSAL stage, controller and
+/// event memory), in buffers that [`Integrator::checkpoint`] reuses: for putting the integrator
+/// back exactly where it was ([`Integrator::rollback`]) without allocating, e.g. when a
+/// communication step fails and has to leave no trace. Unlike [`IntegratorState`] it is not
+/// serializable and holds no work counters.
+#[derive(Clone, Debug, Default)]
+pub struct Checkpoint {
+    t: f64,
+    y: Vec<f64>,
+    h_next: f64,
+    fsal: Vec<f64>,
+    fsal_valid: bool,
+    ctrl: Controller,
+    event_mask: Vec<bool>,
+}
+
+impl Checkpoint {
+    /// The time it was taken at.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+}
+
 /// Index of the first non-finite entry.
 pub(super) fn first_non_finite(v: &[f64]) -> Option<usize> {
     v.iter().position(|x| !x.is_finite())
@@ -332,6 +355,39 @@ impl Integrator {
             event_mask: self.event_mask.clone(),
             stats: self.stats,
         }
+    }
+
+    /// Copies the state into `c` (no allocation once `c` has held a state of this dimension).
+    pub fn checkpoint(&self, c: &mut Checkpoint) {
+        c.t = self.t;
+        c.y.clear();
+        c.y.extend_from_slice(&self.y);
+        c.h_next = self.h_next;
+        c.fsal_valid = self.fsal_valid;
+        c.fsal.clear();
+        if self.fsal_valid {
+            c.fsal.extend_from_slice(&self.k[..self.n]);
+        }
+        c.ctrl = self.ctrl;
+        c.event_mask.clear();
+        c.event_mask.extend_from_slice(&self.event_mask);
+    }
+
+    /// Puts the state back to `c` (taken from this integrator): the next step is the one that
+    /// would have followed the checkpoint. The work counters keep counting (the work done since
+    /// was done); the options stay as they are. No allocation.
+    pub fn rollback(&mut self, c: &Checkpoint) {
+        debug_assert_eq!(c.y.len(), self.n, "a checkpoint of another integrator");
+        self.t = c.t;
+        self.y.copy_from_slice(&c.y);
+        self.h_next = c.h_next;
+        self.fsal_valid = c.fsal_valid;
+        if c.fsal_valid {
+            self.k[..self.n].copy_from_slice(&c.fsal);
+        }
+        self.ctrl = c.ctrl;
+        self.event_mask.clear();
+        self.event_mask.extend_from_slice(&c.event_mask);
     }
 
     /// Restore a snapshot (same method and dimension; the options stay those of `self`).
