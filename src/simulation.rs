@@ -2,8 +2,9 @@
 //!
 //! A [`Simulation`] owns one dynamic [`Model`] (chosen by the scene's
 //! fidelity) and one [`Integrator`]. Inputs (shaft speed, loads) may
-//! change between advances; each change is a discontinuity for the integrator. Failures of the
-//! integrator are returned as values and leave the simulation at its last good time.
+//! change between advances; each change is a discontinuity for the integrator. Failures of an
+//! advance are returned as values (naming the time the integrator stopped at) and leave the
+//! simulation exactly where the advance started.
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
@@ -11,8 +12,8 @@ use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
-    grid_points, AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method,
-    Options, StepView, System,
+    grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
+    Method, Options, StepView, System,
 };
 use std::fmt;
 
@@ -111,7 +112,9 @@ pub enum SimError {
     Config(ConfigError),
     /// An input is invalid (named in the message).
     Input(String),
-    /// The integrator could not continue; the simulation stays at `t`, its last good time.
+    /// An advance could not reach its end: the integrator stopped at `t` (the last step it
+    /// accepted), for the reason in `message`. The simulation is back where the advance started
+    /// ([`Simulation::time`]), as if it had not been asked.
     Solver { t: f64, message: String },
     /// The requested feature is not available at this fidelity level.
     Unsupported(String),
@@ -331,6 +334,19 @@ pub struct Simulation {
     l1_speed: f64,
     /// Motion coupling at levels without ring states (L0, L1).
     qs_motion: Option<QsMotion>,
+    /// Where the current (or last) advance started: put back when it fails
+    /// ([`Simulation::undo_advance`]); buffers reused from advance to advance.
+    start: Start,
+}
+
+/// The simulation at the start of an advance: what an advance can change.
+#[derive(Default)]
+struct Start {
+    integrator: Checkpoint,
+    model: Vec<f64>,
+    l1_speed: f64,
+    /// True from a successful advance until anything else changes the simulation.
+    undoable: bool,
 }
 
 /// Lets the integrator drive a model (the integrator knows nothing about bearings): the event
@@ -432,6 +448,7 @@ impl Simulation {
             start_loads: [inputs.fx, inputs.fy, inputs.fz],
             l1_speed: inputs.shaft_speed,
             qs_motion: None,
+            start: Start::default(),
         };
         if scene.coupling == CouplingMode::Motion {
             // The journal starts where the loads of the scene put the ring (the L1 start,
@@ -467,6 +484,7 @@ impl Simulation {
             ));
         }
         j.check()?;
+        self.start.undoable = false;
         let t = self.integrator.t();
         if let Some(rs) = self.model.ring_states() {
             let n = self.model.dim();
@@ -611,6 +629,7 @@ impl Simulation {
         if inputs == self.inputs {
             return Ok(());
         }
+        self.start.undoable = false;
         let t = self.integrator.t();
         let (eff, applied) = self.effective_inputs(&inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y())?;
@@ -725,9 +744,46 @@ impl Simulation {
     }
 
     /// Advances to exactly `t_end`, landing on every known discontinuity of the model on the way.
-    /// On failure the simulation stays at its last good time ([`SimError::Solver`]).
+    /// On failure the simulation is back where the advance started (state, modes, operating
+    /// point, work counters), and the error says where the integrator stopped and what the
+    /// discarded attempt cost ([`SimError::Solver`]).
     pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
         self.advance_impl(t_end, None)
+    }
+
+    /// Puts the simulation back where the last advance started, for a caller that rejects the
+    /// advance's result (the FMU when an output it reads at the end is not finite). Possible only
+    /// right after a successful advance: any other change since (inputs, journal, a restored
+    /// state) makes it an error.
+    pub fn undo_advance(&mut self) -> Result<(), SimError> {
+        if !self.start.undoable {
+            return Err(SimError::State(
+                "no advance to undo: the simulation changed since the last one".into(),
+            ));
+        }
+        self.rollback()
+    }
+
+    /// Takes the checkpoint an advance starts from (no allocation once the buffers have their
+    /// size).
+    fn checkpoint(&mut self) {
+        self.integrator.checkpoint(&mut self.start.integrator);
+        self.model.checkpoint(&mut self.start.model);
+        self.start.l1_speed = self.l1_speed;
+        self.start.undoable = false;
+    }
+
+    /// Puts back the checkpoint of the last advance.
+    fn rollback(&mut self) -> Result<(), SimError> {
+        self.start.undoable = false;
+        self.integrator.rollback(&self.start.integrator);
+        self.l1_speed = self.start.l1_speed;
+        let t = self.integrator.t();
+        self.model
+            .rollback(&self.start.model, t, self.integrator.y())
+            .map_err(|e| {
+                SimError::State(format!("the model could not be put back at t = {t} s: {e}"))
+            })
     }
 
     /// Whether the samplers ([`Simulation::advance_sampled`] and
@@ -774,11 +830,10 @@ impl Simulation {
         self.advance_impl(t_end, Some((dt, sample)))
     }
 
-    fn advance_impl(
-        &mut self,
-        t_end: f64,
-        mut sampling: Option<Sampler<'_>>,
-    ) -> Result<(), SimError> {
+    /// Checks the target, takes the checkpoint, advances, and on any failure puts the
+    /// checkpoint back. (Samples already handed to the sampler stay delivered: they are points
+    /// of the trajectory the integrator accepted before it stopped.)
+    fn advance_impl(&mut self, t_end: f64, sampling: Option<Sampler<'_>>) -> Result<(), SimError> {
         if !t_end.is_finite() {
             return Err(SimError::Input(format!("end time {t_end} is not finite")));
         }
@@ -788,6 +843,37 @@ impl Simulation {
                 "cannot advance backwards from t = {t0} s to {t_end} s"
             )));
         }
+        self.checkpoint();
+        match self.advance_from_checkpoint(t_end, sampling) {
+            Ok(()) => {
+                self.start.undoable = true;
+                Ok(())
+            }
+            Err(mut e) => {
+                if let SimError::Solver { message, .. } = &mut e {
+                    // The counters go back with the rest: say what the failed attempt cost.
+                    let (now, then) = (self.integrator.stats(), self.start.integrator.stats());
+                    message.push_str(&format!(
+                        " (work discarded with the advance: {} steps accepted, {} rejected, {} \
+                         right-hand-side evaluations)",
+                        now.steps - then.steps,
+                        now.rejected - then.rejected,
+                        now.rhs_evals - then.rhs_evals
+                    ));
+                }
+                match self.rollback() {
+                    Ok(()) => Err(e),
+                    Err(r) => Err(SimError::State(format!("{e}; then {r}"))),
+                }
+            }
+        }
+    }
+
+    fn advance_from_checkpoint(
+        &mut self,
+        t_end: f64,
+        mut sampling: Option<Sampler<'_>>,
+    ) -> Result<(), SimError> {
         self.update_l1_point()?;
         // The sampler below reads the dense output only at multiples of dt: the integrator
         // builds it only for the steps that contain one (or need it for an event).
@@ -974,6 +1060,7 @@ impl Simulation {
             )));
         }
         snap.inputs.check()?;
+        self.start.undoable = false;
         self.integrator
             .restore(&snap.integrator)
             .map_err(|e| SimError::State(e.to_string()))?;

@@ -389,10 +389,15 @@ impl KinematicModel {
         let dt = t - self.t_ref;
         let memo = &mut self.memo;
         let step = t - memo.t;
+        // Asked again at the memo's time: the same values, and the memo stays as it is (reading
+        // the outputs twice does not change the later ones).
+        let again = memo.valid && step == 0.0;
         let reuse = memo.valid && memo.reuses < 1024 && (step - memo.h).abs() <= 1e-9 * memo.h;
         let (mut x, mut v, mut a) = (0.0, 0.0, 0.0);
         for (k, (m, acc)) in self.modes.iter().zip(self.acc.iter()).enumerate() {
-            let (re, im) = if reuse {
+            let (re, im) = if again {
+                memo.c[k]
+            } else if reuse {
                 // C(t) = C(t_prev) e^{λh} (1 + λδ), λ = −σ + iω_d.
                 let d = step - memo.h;
                 let (fr, fi) = memo.f[k];
@@ -421,6 +426,9 @@ impl KinematicModel {
             a += re - r * im;
             v += im / m.omega_d;
             x += (acc.2 - (re + r * im)) / (m.omega * m.omega);
+        }
+        if again {
+            return (x, v, a);
         }
         if reuse {
             memo.reuses += 1;
@@ -577,6 +585,57 @@ impl Model for KinematicModel {
         }
         self.refresh_thresholds();
         self.memo.valid = false;
+        Ok(())
+    }
+
+    /// The registered passes, the modal amplitudes and the output memo (the L1 table changes
+    /// only with the inputs, between advances).
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        b.clear();
+        b.extend_from_slice(&[
+            self.next_entry as f64,
+            self.next_exit as f64,
+            self.dip,
+            self.t_ref,
+            self.entry_thr,
+            self.exit_thr,
+        ]);
+        for a in &self.acc {
+            b.extend_from_slice(&[a.0, a.1, a.2]);
+        }
+        let m = &self.memo;
+        b.extend_from_slice(&[f64::from(u8::from(m.valid)), m.t, m.h, f64::from(m.reuses)]);
+        for k in 0..2 {
+            b.extend_from_slice(&[m.f[k].0, m.f[k].1, m.c[k].0, m.c[k].1]);
+        }
+    }
+
+    fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        if b.len() != 24 {
+            return Err(format!(
+                "kinematic checkpoint has 24 values, got {}",
+                b.len()
+            ));
+        }
+        self.next_entry = b[0] as i64;
+        self.next_exit = b[1] as i64;
+        self.dip = b[2];
+        self.t_ref = b[3];
+        self.entry_thr = b[4];
+        self.exit_thr = b[5];
+        for (k, a) in self.acc.iter_mut().enumerate() {
+            *a = (b[6 + 3 * k], b[7 + 3 * k], b[8 + 3 * k]);
+        }
+        let m = &mut self.memo;
+        m.valid = b[12] != 0.0;
+        m.t = b[13];
+        m.h = b[14];
+        m.reuses = b[15] as u32;
+        for k in 0..2 {
+            let i = 16 + 4 * k;
+            m.f[k] = (b[i], b[i + 1]);
+            m.c[k] = (b[i + 2], b[i + 3]);
+        }
         Ok(())
     }
 

@@ -174,6 +174,26 @@ pub trait Model: Send {
         Ok(())
     }
 
+    /// Writes into `buf` (cleared first) everything an advance can change in the model besides
+    /// the state vector (operating point, frozen modes, what the outputs remember), so that
+    /// [`Model::rollback`] puts the model back bit for bit: a failed communication step leaves
+    /// no trace. The simulation calls it at the start of every advance, so it must not allocate
+    /// once `buf` has its size. The default stores [`Model::discrete_state`] (which allocates,
+    /// and whose restore re-derives the modes); the levels of the ladder override both.
+    fn checkpoint(&self, buf: &mut Vec<f64>) {
+        buf.clear();
+        buf.extend_from_slice(&self.discrete_state());
+    }
+
+    /// Puts back what [`Model::checkpoint`] wrote on this model, at time `t` and state `y` (the
+    /// integrator's, rolled back too). The default restores the discrete state and re-derives
+    /// the modes. An error means the model could not be put back (the simulation reports it).
+    fn rollback(&mut self, buf: &[f64], t: f64, y: &[f64]) -> Result<(), String> {
+        self.set_discrete_state(buf)?;
+        self.update_mode(t, y);
+        Ok(())
+    }
+
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
 

@@ -306,6 +306,15 @@ impl Model for QuasiStaticModel {
         self.table.restore(&self.bearing, s)
     }
 
+    /// Nothing: the L1 table changes only with the inputs, between advances.
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        b.clear();
+    }
+
+    fn rollback(&mut self, _b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        Ok(())
+    }
+
     fn cage_speed(&self) -> f64 {
         self.table.cage_speed
     }

@@ -56,10 +56,10 @@ pub struct Integrator {
 }
 
 /// The integrator's state at one time (time, state, proposed step, FSAL stage, controller and
-/// event memory), in buffers that [`Integrator::checkpoint`] reuses: for putting the integrator
-/// back exactly where it was ([`Integrator::rollback`]) without allocating, e.g. when a
-/// communication step fails and has to leave no trace. Unlike [`IntegratorState`] it is not
-/// serializable and holds no work counters.
+/// event memory, work counters), in buffers that [`Integrator::checkpoint`] reuses: for putting
+/// the integrator back exactly where it was ([`Integrator::rollback`]) without allocating, e.g.
+/// when a communication step fails and has to leave no trace. Unlike [`IntegratorState`] it is
+/// not serializable.
 #[derive(Clone, Debug, Default)]
 pub struct Checkpoint {
     t: f64,
@@ -69,12 +69,18 @@ pub struct Checkpoint {
     fsal_valid: bool,
     ctrl: Controller,
     event_mask: Vec<bool>,
+    stats: Stats,
 }
 
 impl Checkpoint {
     /// The time it was taken at.
     pub fn t(&self) -> f64 {
         self.t
+    }
+
+    /// The work counters at that time.
+    pub fn stats(&self) -> Stats {
+        self.stats
     }
 }
 
@@ -371,11 +377,13 @@ impl Integrator {
         c.ctrl = self.ctrl;
         c.event_mask.clear();
         c.event_mask.extend_from_slice(&self.event_mask);
+        c.stats = self.stats;
     }
 
     /// Puts the state back to `c` (taken from this integrator): the next step is the one that
-    /// would have followed the checkpoint. The work counters keep counting (the work done since
-    /// was done); the options stay as they are. No allocation.
+    /// would have followed the checkpoint, and the work counters are those of the checkpoint
+    /// (read [`Integrator::stats`] before to know the work done since). The options stay as
+    /// they are. No allocation.
     pub fn rollback(&mut self, c: &Checkpoint) {
         debug_assert_eq!(c.y.len(), self.n, "a checkpoint of another integrator");
         self.t = c.t;
@@ -388,6 +396,7 @@ impl Integrator {
         self.ctrl = c.ctrl;
         self.event_mask.clear();
         self.event_mask.extend_from_slice(&c.event_mask);
+        self.stats = c.stats;
     }
 
     /// Restore a snapshot (same method and dimension; the options stay those of `self`).
