@@ -112,8 +112,9 @@ pub enum SimError {
     Config(ConfigError),
     /// An input is invalid (named in the message).
     Input(String),
-    /// An advance could not reach its end: the integrator stopped at `t` (the last step it
-    /// accepted), for the reason in `message`. The simulation is back where the advance started
+    /// An advance could not reach its end: it stopped at `t` (the last step the integrator
+    /// accepted, or the time whose outputs the model could not catch up to within the step
+    /// budget), for the reason in `message`. The simulation is back where the advance started
     /// ([`Simulation::time`]), as if it had not been asked.
     Solver { t: f64, message: String },
     /// The requested feature is not available at this fidelity level.
@@ -880,11 +881,14 @@ impl Simulation {
         self.integrator
             .set_sample_grid(sampling.as_ref().map(|(dt, _)| *dt));
         let n = self.model.dim();
-        // The step budget (solver.max_steps) holds for the whole advance (one communication
-        // step), not for each integrator call between two stops or events.
+        // The budget (solver.max_steps) holds for the whole advance (one communication step),
+        // not for each integrator call between two stops or events, and covers every unit of
+        // work whose count the inputs decide: attempted integrator steps, the model's catch-up
+        // ([`Model::catch_up`]), and one unit for an integrator call that took no step.
         let budget = self.scene.solver.max_steps;
         let attempts = |s: crate::solver::Stats| s.steps + s.rejected;
         let used0 = attempts(self.integrator.stats());
+        let mut other = 0u64;
         let exhausted = |t: f64| SimError::Solver {
             t,
             message: format!(
@@ -892,9 +896,17 @@ impl Simulation {
                  advance, stopped at t = {t} s"
             ),
         };
+        let caught_up = |t: f64, e: String| SimError::Solver {
+            t,
+            message: format!(
+                "{e} (solver.max_steps = {budget} units of work per communication step: \
+                 integrator steps and spall passes)"
+            ),
+        };
         while self.integrator.t() < t_end {
             let t = self.integrator.t();
-            let used = attempts(self.integrator.stats()) - used0;
+            let before = attempts(self.integrator.stats());
+            let used = before - used0 + other;
             if used >= budget {
                 return Err(exhausted(t));
             }
@@ -943,10 +955,18 @@ impl Simulation {
                     }
                 }
             };
+            if attempts(self.integrator.stats()) == before {
+                other += 1;
+            }
             // Outputs of the samples of this interval use its (frozen) discrete mode.
             if let Some((_, cb)) = sampling.as_mut() {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
+                    let used = attempts(self.integrator.stats()) - used0 + other;
+                    other += self
+                        .model
+                        .catch_up(ts, y, budget.saturating_sub(used))
+                        .map_err(|e| caught_up(ts, e))?;
                     let o = &mut self.out_scratch[..self.sampled_outputs];
                     self.model.outputs(ts, y, o);
                     if let Some(qs) = self.qs_motion.as_mut() {
@@ -974,6 +994,11 @@ impl Simulation {
                 self.integrator.discontinuity();
             }
         }
+        // Leave the model caught up at the end, so that reading the outputs costs no more.
+        let used = attempts(self.integrator.stats()) - used0 + other;
+        self.model
+            .catch_up(t_end, self.integrator.y(), budget.saturating_sub(used))
+            .map_err(|e| caught_up(t_end, e))?;
         Ok(())
     }
 
@@ -1074,14 +1099,17 @@ impl Simulation {
         if let Some(s) = snap.l1_speed {
             self.l1_speed = s;
         }
+        // The discrete state first (the L1 operating point, the spall passes registered so
+        // far), so that the inputs find the model where it was: no L1 re-solve, and no catch-up
+        // from t = 0 (unbounded for a late snapshot) at the kinematic level.
+        self.model
+            .set_discrete_state(&snap.model)
+            .map_err(SimError::State)?;
         let (eff, applied) = self.effective_inputs(&snap.inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y())?;
         if let (Some(qs), Some(load)) = (self.qs_motion.as_mut(), applied) {
             qs.applied_load = load;
         }
-        self.model
-            .set_discrete_state(&snap.model)
-            .map_err(SimError::State)?;
         self.model.update_mode(t, self.integrator.y());
         Ok(())
     }

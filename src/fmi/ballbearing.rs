@@ -267,7 +267,7 @@ impl FmuModel for BallBearing {
             Ok(()) => {}
             Err(SimError::Solver { t: tg, message }) => {
                 return StepResult::Discard {
-                    message: format!("the integrator stopped at t = {}: {message}", start + tg),
+                    message: format!("the advance stopped at t = {}: {message}", start + tg),
                     last_good_time: t,
                 }
             }

@@ -12,6 +12,9 @@
 //! spacings, i.e. 0.5–2 % for 0.005–0.02; deterministic in `lumped.seed` and n, clipped to ±0.45).
 //! The entries and exits are registered at their exact times (ψ is linear in t between input
 //! changes) when the outputs or an input change reach them, so they need no integrator stops.
+//! The simulation has them registered before every output it takes ([`Model::catch_up`]), each
+//! pass one unit of the step budget (`solver.max_steps`): an absurd cage speed or an enormous
+//! communication step is an error naming the passes it would take, not an endless loop.
 //!
 //! Impulse shape and resonance (the documented choice). Each pass is a rectangular dip of the
 //! contact force on the pedestal: the ball loses ΔQ = Q(θ)·[1 − (1 − g/δ)^1.5] of its load
@@ -85,6 +88,9 @@ pub struct KinematicModel {
     exit_thr: f64,
     /// The modal amplitudes at the last output time, for equally spaced outputs.
     memo: Memo,
+    /// Most passes registered in one call from the outputs, a mode update or an input change
+    /// (the scene's `solver.max_steps`; the simulation's own catch-up is budgeted per advance).
+    max_passes: u64,
 }
 
 /// Outputs usually come at equally spaced times t_k: the superposed response then advances by
@@ -140,6 +146,7 @@ impl KinematicModel {
             entry_thr: 0.0,
             exit_thr: 0.0,
             memo: Memo::default(),
+            max_passes: scene.solver.max_steps,
         };
         m.theta_start = m.choose_theta_start();
         m.modes = m.compute_modes();
@@ -325,16 +332,51 @@ impl KinematicModel {
     }
 
     /// Registers every spall entry and exit the fault phase has passed by (t, y), each at its exact
-    /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order.
-    fn catch_up(&mut self, t: f64, y: &[f64]) {
-        let Some(d) = &self.defect else { return };
+    /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order,
+    /// at most `limit` passes (entries): returns how many it registered. Needing more (an absurd
+    /// cage speed, an enormous step) is an error naming the numbers, with nothing registered: the
+    /// passes stay pending, and the work per call is bounded by `limit`.
+    fn register_passes(&mut self, t: f64, y: &[f64], limit: u64) -> Result<u64, String> {
+        let Some(d) = &self.defect else { return Ok(0) };
         let rate = self.phase_rate();
         if rate <= 0.0 {
-            return;
+            return Ok(0);
         }
         let psi = self.phase(y);
-        let ring_inner = d.ring() == Race::Inner;
-        let theta0 = d.theta0();
+        let (ring_inner, theta0) = (d.ring() == Race::Inner, d.theta0());
+        let race = if ring_inner {
+            "inner-race"
+        } else {
+            "outer-race"
+        };
+        // Consecutive thresholds lie 1 ± 0.9 apart (jitter within ±0.45), so about ψ − ψ_next + 1
+        // passes are due: far more than allowed is refused before any work.
+        let due = (psi - self.entry_thr).floor() + 1.0;
+        let too_many = |due: f64, m: &Self| {
+            format!(
+                "registering the spall passes up to t = {t} s would take {due:.3e} passes (the \
+                 {race} spall is passed {rate:.6e} times per second at the cage speed {:.6e} \
+                 rad/s and shaft speed {:.6e} rad/s; next pass number {}), more than the {limit} \
+                 allowed",
+                m.table.cage_speed, m.inputs.shaft_speed, m.next_entry
+            )
+        };
+        // (A NaN phase, from a non-finite cage speed, is refused too.)
+        if due.is_nan() || due > limit as f64 + 1.0 {
+            return Err(too_many(due, self));
+        }
+        // Within one of the limit: count exactly, and put everything back when over.
+        let saved = (
+            self.next_entry,
+            self.next_exit,
+            self.dip,
+            self.acc,
+            self.t_ref,
+            self.entry_thr,
+            self.exit_thr,
+            self.memo,
+        );
+        let mut passes = 0u64;
         loop {
             let (entry, exit) = (self.entry_thr, self.exit_thr);
             let is_exit = self.next_exit < self.next_entry && exit <= entry;
@@ -357,14 +399,29 @@ impl KinematicModel {
                 self.next_exit += 1;
                 self.exit_thr = self.exit_threshold(self.next_exit);
             } else {
+                if passes == limit {
+                    (
+                        self.next_entry,
+                        self.next_exit,
+                        self.dip,
+                        self.acc,
+                        self.t_ref,
+                        self.entry_thr,
+                        self.exit_thr,
+                        self.memo,
+                    ) = saved;
+                    return Err(too_many(due.max(limit as f64 + 1.0), self));
+                }
+                passes += 1;
                 // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
-                let Some(d) = &self.defect else { return };
+                let Some(d) = &self.defect else { break };
                 self.dip = self.load_loss(d, theta);
                 self.push_event(tk, -self.dip * e_rz);
                 self.next_entry += 1;
                 self.entry_thr = self.entry_threshold(self.next_entry);
             }
         }
+        Ok(passes)
     }
 
     /// Adds a step of force f [N] on the pedestal (−f on the ring) at time t.
@@ -488,8 +545,10 @@ impl Model for KinematicModel {
         } else {
             None
         };
-        // Steps reached under the old speed are registered with the old rates first.
-        self.catch_up(t, y);
+        // Steps reached under the old speed are registered with the old rates first (none, when
+        // the simulation has caught up at t, as it does at the end of every advance).
+        self.register_passes(t, y, self.max_passes)
+            .map_err(|e| SimError::Input(format!("the inputs cannot change at t = {t} s: {e}")))?;
         self.inputs = *inputs;
         if let Some(table) = table {
             self.table = table;
@@ -510,12 +569,21 @@ impl Model for KinematicModel {
         None
     }
 
+    /// Registers the passes reached by (t, y) if they are within the budget; otherwise they stay
+    /// pending (registered by the next call that can, or refused by [`Model::catch_up`]).
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        self.catch_up(t, y);
+        let _ = self.register_passes(t, y, self.max_passes);
+    }
+
+    /// The budget of spall passes is [`Model::catch_up`]'s, which the simulation calls before
+    /// any output; if more passes were still due here, the pedestal's z outputs (which the passes
+    /// drive) would be NaN rather than wrong.
+    fn catch_up(&mut self, t: f64, y: &[f64], budget: u64) -> Result<u64, String> {
+        self.register_passes(t, y, budget)
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
-        self.catch_up(t, y);
+        let caught_up = self.register_passes(t, y, self.max_passes).is_ok();
         static_outputs(
             &self.table,
             &self.bearing,
@@ -524,7 +592,11 @@ impl Model for KinematicModel {
             y[CAGE],
             o,
         );
-        let (x, v, a) = self.response(t);
+        let (x, v, a) = if caught_up {
+            self.response(t)
+        } else {
+            (f64::NAN, f64::NAN, f64::NAN)
+        };
         o[out::PEDESTAL_Z] += x;
         o[out::PEDESTAL_V_Z] = v;
         o[out::PEDESTAL_A_Z] = a;
@@ -562,13 +634,22 @@ impl Model for KinematicModel {
             s.extend_from_slice(&[acc.0, acc.1, acc.2]);
         }
         s.push(t[4]);
+        // The output memo, so that a restored run's outputs keep their bits (its spacing is NaN
+        // until known: stored as 0, which no spacing is).
+        let m = &self.memo;
+        let h = if m.h.is_nan() { 0.0 } else { m.h };
+        s.extend_from_slice(&[f64::from(u8::from(m.valid)), m.t, h, f64::from(m.reuses)]);
+        for k in 0..2 {
+            s.extend_from_slice(&[m.f[k].0, m.f[k].1, m.c[k].0, m.c[k].1]);
+        }
         s
     }
 
     fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
-        if !(14..=15).contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
+        // 14 or 15 values from snapshots taken before the cage speed and the memo were kept.
+        if ![14, 15, 27].contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
             return Err(format!(
-                "kinematic model state has 15 finite values, got {}",
+                "kinematic model state has 27 finite values, got {}",
                 s.len()
             ));
         }
@@ -585,6 +666,16 @@ impl Model for KinematicModel {
         }
         self.refresh_thresholds();
         self.memo.valid = false;
+        if let Some(m) = s.get(15..27) {
+            self.memo = Memo {
+                valid: m[0] != 0.0,
+                t: m[1],
+                h: if m[2] == 0.0 { f64::NAN } else { m[2] },
+                reuses: m[3] as u32,
+                f: [(m[4], m[5]), (m[8], m[9])],
+                c: [(m[6], m[7]), (m[10], m[11])],
+            };
+        }
         Ok(())
     }
 

@@ -158,6 +158,16 @@ pub trait Model: Send {
     /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.
     fn event_fired(&mut self, _index: usize) {}
 
+    /// Does now the work that the outputs at (t, y) would do lazily (the kinematic level
+    /// registers the spall passes reached by then), at most `budget` units (one unit a spall
+    /// pass): returns the units used. Needing more is an error naming the cause and the numbers,
+    /// with nothing done. The simulation calls it before every output it takes in an advance,
+    /// and at the advance's end, charging it to the advance's step budget (`solver.max_steps`),
+    /// so that no call does unbounded work. Default: nothing to do.
+    fn catch_up(&mut self, _t: f64, _y: &[f64], _budget: u64) -> Result<u64, String> {
+        Ok(0)
+    }
+
     /// Fills the output vector (layout of [`crate::simulation::output_table`]). `out` is either
     /// the whole vector or its first [`crate::simulation::out::BEARING_OUTPUTS`] entries (the
     /// bearing-level outputs, without the per-ball block): then the per-ball quantities are
