@@ -2,6 +2,24 @@
 
 use super::method::Method;
 
+/// What limited the step size at the attempt after which it fell below the minimum. Components
+/// are indices into the state vector (the integrator knows nothing about what they mean; a
+/// caller that does names them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepLimit {
+    /// The local error estimate: largest in `component`, where it is `ratio` times the
+    /// component's tolerance (atol + rtol·|y|).
+    Error { component: usize, ratio: f64 },
+    /// The right-hand side gave a non-finite value (NaN or ∞) in the derivative of `component`,
+    /// at the stage at time `t` of the attempt, from a finite stage state (the first such
+    /// stage, so the source rather than its spread).
+    NonFiniteDerivative { component: usize, t: f64 },
+    /// The trial state became non-finite in `component` with finite derivatives (overflow).
+    NonFiniteState { component: usize },
+    /// No attempt at this step size (the step would not move the time).
+    Unknown,
+}
+
 /// Why an integration call failed. After any error the integrator stays at the last accepted step.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverError {
@@ -11,14 +29,21 @@ pub enum SolverError {
         t: f64,
         /// The step size that fell below the minimum.
         h: f64,
+        /// The minimum step size there ([`crate::solver::Options::h_min`], relative above 1 s).
+        h_min: f64,
+        /// What limited the last attempt.
+        limit: StepLimit,
     },
-    /// The right-hand side (or, with a fixed step, the new state) is not finite and no smaller
-    /// step can cure it.
+    /// The right-hand side at the current (accepted) state, or with a fixed step the new state,
+    /// is not finite, and no smaller step can cure it.
     NonFinite {
         /// Time of the last accepted step.
         t: f64,
         /// First non-finite component.
         component: usize,
+        /// True: the derivative f(t, y) at the accepted state; false: the new state of a fixed
+        /// step.
+        derivative: bool,
     },
     /// The step budget ([`crate::solver::Options::max_steps`]) of one call was exhausted.
     StepBudget {
@@ -50,15 +75,48 @@ pub enum SolverError {
 impl std::fmt::Display for SolverError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SolverError::StepSizeUnderflow { t, h } => write!(
+            SolverError::StepSizeUnderflow { t, h, h_min, limit } => {
+                write!(
+                    f,
+                    "step size {h:.3e} s fell below the minimum {h_min:.1e} s at t = {t} s"
+                )?;
+                match limit {
+                    StepLimit::Error { component, ratio } => write!(
+                        f,
+                        ": the error estimate of state component {component} is {ratio:.3e} \
+                         times its tolerance at the last step size tried"
+                    ),
+                    StepLimit::NonFiniteDerivative { component, t } => write!(
+                        f,
+                        ": the right-hand side gives a non-finite value (NaN or ∞) in the \
+                         derivative of state component {component} (first at t = {t} s), at every \
+                         step size tried"
+                    ),
+                    StepLimit::NonFiniteState { component } => write!(
+                        f,
+                        ": state component {component} overflows to a non-finite value at every \
+                         step size tried"
+                    ),
+                    StepLimit::Unknown => Ok(()),
+                }
+            }
+            SolverError::NonFinite {
+                t,
+                component,
+                derivative: true,
+            } => write!(
                 f,
-                "step size {h:.3e} s fell below the minimum at t = {t} s \
-                 (stiff or discontinuous right-hand side?)"
+                "the right-hand side is not finite (NaN or ∞) in the derivative of state \
+                 component {component} at the accepted state at t = {t} s"
             ),
-            SolverError::NonFinite { t, component } => write!(
+            SolverError::NonFinite {
+                t,
+                component,
+                derivative: false,
+            } => write!(
                 f,
-                "state component {component} became non-finite (NaN or infinite) at t = {t} s \
-                 and no smaller step could avoid it"
+                "state component {component} became non-finite (NaN or ∞) in the fixed step \
+                 from t = {t} s"
             ),
             SolverError::StepBudget { t, steps } => write!(
                 f,
@@ -98,12 +156,21 @@ mod tests {
         let e = SolverError::StepSizeUnderflow {
             t: 0.0123,
             h: 3.1e-15,
+            h_min: 1e-14,
+            limit: StepLimit::Error {
+                component: 7,
+                ratio: 12.5,
+            },
         };
         let s = e.to_string();
-        assert!(s.contains("3.100e-15") && s.contains("0.0123"), "{s}");
+        assert!(
+            s.contains("3.100e-15") && s.contains("0.0123") && s.contains("component 7"),
+            "{s}"
+        );
         let e = SolverError::NonFinite {
             t: 1.0,
             component: 3,
+            derivative: true,
         };
         assert!(e.to_string().contains("component 3"));
     }

@@ -1,8 +1,8 @@
 //! The generic tableau-driven stepping engine.
 
-use super::controller::{error_norm, initial_step, Controller};
+use super::controller::{error_norm, initial_step, largest_weighted_error, Controller};
 use super::dense::{DenseOutput, StepView};
-use super::error::SolverError;
+use super::error::{SolverError, StepLimit};
 use super::options::{broadcast, check_atol, check_rtol_scale, Options};
 use super::state::{IntegratorState, Stats};
 use super::system::System;
@@ -494,6 +494,7 @@ impl Integrator {
                 return Err(SolverError::NonFinite {
                     t: self.t,
                     component: i,
+                    derivative: true,
                 });
             }
             self.fsal_valid = true;
@@ -544,6 +545,31 @@ impl Integrator {
         if !tab.fsal {
             combine(&self.y, h, tab.b, &self.k, &mut self.y_new);
         }
+    }
+
+    /// What limited the attempt of size `h` just rejected with error norm `err` (its stages,
+    /// trial state and error vector are still in the buffers): the first stage whose derivative
+    /// is non-finite, else a non-finite trial state, else the largest weighted error component.
+    /// Only on the failure path.
+    fn step_limit(&self, h: f64, err: f64) -> StepLimit {
+        let n = self.n;
+        if !err.is_finite() {
+            // Slot 0 is f(t, y), finite (checked when computed).
+            for s in 1..self.tab.stages {
+                if let Some(i) = first_non_finite(&self.k[s * n..(s + 1) * n]) {
+                    return StepLimit::NonFiniteDerivative {
+                        component: i,
+                        t: self.t + self.tab.c[s] * h,
+                    };
+                }
+            }
+            if let Some(i) = first_non_finite(&self.y_new) {
+                return StepLimit::NonFiniteState { component: i };
+            }
+        }
+        let (component, ratio) =
+            largest_weighted_error(&self.y, &self.y_new, &self.atol, &self.rtol, &self.err5);
+        StepLimit::Error { component, ratio }
     }
 
     /// Error norm of the step just computed.
@@ -642,7 +668,12 @@ impl Integrator {
             let h = if last { dist } else { h_prop };
             let t_new = if last { t_end } else { self.t + h };
             if t_new == self.t {
-                return Err(SolverError::StepSizeUnderflow { t: self.t, h });
+                return Err(SolverError::StepSizeUnderflow {
+                    t: self.t,
+                    h,
+                    h_min: self.h_floor(),
+                    limit: StepLimit::Unknown,
+                });
             }
             sys.begin_step();
             self.stages(sys, h, t_new);
@@ -652,6 +683,7 @@ impl Integrator {
                     return Err(SolverError::NonFinite {
                         t: self.t,
                         component: i,
+                        derivative: false,
                     });
                 }
             } else {
@@ -667,6 +699,8 @@ impl Integrator {
                         return Err(SolverError::StepSizeUnderflow {
                             t: self.t,
                             h: h_new,
+                            h_min: self.h_floor(),
+                            limit: self.step_limit(h, err),
                         });
                     }
                     self.h_next = h_new;

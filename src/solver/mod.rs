@@ -30,7 +30,7 @@ pub mod system;
 pub mod tableau;
 
 pub use dense::{grid_points, StepView};
-pub use error::SolverError;
+pub use error::{SolverError, StepLimit};
 pub use integrator::{AdvanceOutcome, Checkpoint, Integrator};
 pub use method::Method;
 pub use options::Options;
