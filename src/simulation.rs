@@ -129,7 +129,7 @@ impl fmt::Display for SimError {
             SimError::Config(e) => write!(f, "{e}"),
             SimError::Input(m) => write!(f, "invalid input: {m}"),
             SimError::Solver { t, message } => {
-                write!(f, "integration failed at t = {t:.9} s: {message}")
+                write!(f, "integration failed at t = {t} s: {message}")
             }
             SimError::Unsupported(m) => write!(f, "unsupported: {m}"),
             SimError::State(m) => write!(f, "cannot restore state: {m}"),
@@ -889,12 +889,19 @@ impl Simulation {
         let attempts = |s: crate::solver::Stats| s.steps + s.rejected;
         let used0 = attempts(self.integrator.stats());
         let mut other = 0u64;
-        let exhausted = |t: f64| SimError::Solver {
-            t,
-            message: format!(
-                "step budget exhausted: {budget} steps (solver.max_steps) attempted in this \
-                 advance, stopped at t = {t} s"
-            ),
+        let exhausted = |sim: &mut Self, other: u64| {
+            let s = sim.integrator.stats();
+            let tried = attempts(s) - used0;
+            sim.failure(format!(
+                "step budget exhausted: {budget} units of work (solver.max_steps) used in this \
+                 advance ({tried} integrator steps attempted{}), the last accepted step {:.3e} s",
+                if other > 0 {
+                    format!(", {other} other units")
+                } else {
+                    String::new()
+                },
+                s.h_last
+            ))
         };
         let caught_up = |t: f64, e: String| SimError::Solver {
             t,
@@ -908,7 +915,7 @@ impl Simulation {
             let before = attempts(self.integrator.stats());
             let used = before - used0 + other;
             if used >= budget {
-                return Err(exhausted(t));
+                return Err(exhausted(self, other));
             }
             self.integrator.set_max_steps(budget - used);
             let stop = self.model.next_stop(t, self.integrator.y(), t_end);
@@ -979,13 +986,12 @@ impl Simulation {
             let event = match result {
                 Ok(event) => event,
                 Err(crate::solver::SolverError::StepBudget { .. }) => {
-                    return Err(exhausted(self.integrator.t()))
+                    return Err(exhausted(self, other))
                 }
                 Err(e) => {
-                    return Err(SimError::Solver {
-                        t: self.integrator.t(),
-                        message: e.to_string(),
-                    })
+                    let model = self.model.as_ref();
+                    let message = e.describe(&|i| format!("{} (state {i})", model.state_name(i)));
+                    return Err(self.failure(message));
                 }
             };
             if stop.is_some() || event {
@@ -1000,6 +1006,17 @@ impl Simulation {
             .catch_up(t_end, self.integrator.y(), budget.saturating_sub(used))
             .map_err(|e| caught_up(t_end, e))?;
         Ok(())
+    }
+
+    /// The error of an advance that stopped at the integrator's current state, for `cause`, with
+    /// what the model can tell about that state ([`Model::diagnose`]).
+    fn failure(&mut self, cause: String) -> SimError {
+        let t = self.integrator.t();
+        let message = match self.model.diagnose(t, self.integrator.y()) {
+            Some(facts) => format!("{cause}; there {facts}"),
+            None => cause,
+        };
+        SimError::Solver { t, message }
     }
 
     /// The output table of this simulation.

@@ -586,6 +586,38 @@ impl Model for LumpedModel {
         }
     }
 
+    fn state_name(&self, i: usize) -> String {
+        match i {
+            X | Y | Z => format!("inner-ring displacement along {}", ["x", "y", "z"][i - X]),
+            VX | VY | VZ => format!("inner-ring velocity along {}", ["x", "y", "z"][i - VX]),
+            YP => "pedestal displacement along y".into(),
+            ZP => "pedestal displacement along z".into(),
+            VYP => "pedestal velocity along y".into(),
+            VZP => "pedestal velocity along z".into(),
+            CAGE => "cage angle θ_c".into(),
+            SHAFT => "shaft angle φ".into(),
+            ZR => "resonator displacement along z".into(),
+            VZR => "resonator velocity along z".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
+    /// Whether any ball still carries load (a positive force under the clamped contact law).
+    fn diagnose(&mut self, t: f64, y: &[f64]) -> Option<String> {
+        let mut carrying = 0;
+        self.approaches(t, y, |_, a| {
+            if a.delta > 0.0 && a.q_raw > 0.0 {
+                carrying += 1;
+            }
+        });
+        (carrying == 0).then(|| {
+            format!(
+                "contact is lost at every ball (none of the {} balls presses on both races)",
+                self.z
+            )
+        })
+    }
+
     fn nominal(&self, out: &mut [f64]) {
         // Deflection-scale displacements 1e-5 m, vibration velocities 1e-2 m/s, angles 1 rad.
         for (i, v) in out.iter_mut().enumerate() {

@@ -116,6 +116,19 @@ pub trait Model: Send {
     /// Nominal magnitude of each state: the absolute tolerance is `rtol × nominal`.
     fn nominal(&self, out: &mut [f64]);
 
+    /// What state `i` is, for failure messages: e.g. "ball 3 orbital rate θ̇" or "pedestal
+    /// velocity along z" (balls counted from 1, as in the outputs). Default: its index.
+    fn state_name(&self, i: usize) -> String {
+        format!("state component {i}")
+    }
+
+    /// Facts the model can tell about the state (t, y) at which an advance failed, for the
+    /// message: e.g. that contact is lost at every ball. `None`: nothing to add. Called only on
+    /// a failure (it may allocate and disturb caches: the simulation rolls back afterwards).
+    fn diagnose(&mut self, _t: f64, _y: &[f64]) -> Option<String> {
+        None
+    }
+
     /// The initial state at t = 0 (from L1 equilibrium, spec §7).
     fn initial_state(&self, y: &mut [f64]);
 

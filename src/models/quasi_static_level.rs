@@ -265,6 +265,14 @@ impl Model for QuasiStaticModel {
         out.iter_mut().for_each(|v| *v = 1.0);
     }
 
+    fn state_name(&self, i: usize) -> String {
+        match i {
+            CAGE => "cage angle θ_c".into(),
+            SHAFT => "shaft angle φ".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
     fn initial_state(&self, y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
     }

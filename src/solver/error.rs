@@ -74,65 +74,66 @@ pub enum SolverError {
 
 impl std::fmt::Display for SolverError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.describe(&|i| format!("state component {i}")))
+    }
+}
+
+impl SolverError {
+    /// The message, with state components called `name(i)` (a caller that knows what they
+    /// are names them; [`std::fmt::Display`] says "state component i").
+    pub fn describe(&self, name: &dyn Fn(usize) -> String) -> String {
         match self {
             SolverError::StepSizeUnderflow { t, h, h_min, limit } => {
-                write!(
-                    f,
+                let base = format!(
                     "step size {h:.3e} s fell below the minimum {h_min:.1e} s at t = {t} s"
-                )?;
+                );
                 match limit {
-                    StepLimit::Error { component, ratio } => write!(
-                        f,
-                        ": the error estimate of state component {component} is {ratio:.3e} \
-                         times its tolerance at the last step size tried"
+                    StepLimit::Error { component, ratio } => format!(
+                        "{base}: the error estimate of {} is {ratio:.3e} times its tolerance at \
+                         the last step size tried",
+                        name(*component)
                     ),
-                    StepLimit::NonFiniteDerivative { component, t } => write!(
-                        f,
-                        ": the right-hand side gives a non-finite value (NaN or ∞) in the \
-                         derivative of state component {component} (first at t = {t} s), at every \
-                         step size tried"
+                    StepLimit::NonFiniteDerivative { component, t } => format!(
+                        "{base}: the right-hand side gives a non-finite value (NaN or ∞) in the \
+                         derivative of {} (first at t = {t} s), at every step size tried",
+                        name(*component)
                     ),
-                    StepLimit::NonFiniteState { component } => write!(
-                        f,
-                        ": state component {component} overflows to a non-finite value at every \
-                         step size tried"
+                    StepLimit::NonFiniteState { component } => format!(
+                        "{base}: {} overflows to a non-finite value at every step size tried",
+                        name(*component)
                     ),
-                    StepLimit::Unknown => Ok(()),
+                    StepLimit::Unknown => base,
                 }
             }
             SolverError::NonFinite {
                 t,
                 component,
                 derivative: true,
-            } => write!(
-                f,
-                "the right-hand side is not finite (NaN or ∞) in the derivative of state \
-                 component {component} at the accepted state at t = {t} s"
+            } => format!(
+                "the right-hand side is not finite (NaN or ∞) in the derivative of {} at the \
+                 accepted state at t = {t} s",
+                name(*component)
             ),
             SolverError::NonFinite {
                 t,
                 component,
                 derivative: false,
-            } => write!(
-                f,
-                "state component {component} became non-finite (NaN or ∞) in the fixed step \
-                 from t = {t} s"
+            } => format!(
+                "{} became non-finite (NaN or ∞) in the fixed step from t = {t} s",
+                name(*component)
             ),
-            SolverError::StepBudget { t, steps } => write!(
-                f,
+            SolverError::StepBudget { t, steps } => format!(
                 "step budget exhausted: {steps} steps attempted in one call, stopped at t = {t} s"
             ),
-            SolverError::InvalidOptions(msg) => write!(f, "invalid solver options: {msg}"),
-            SolverError::InvalidTarget { t, t_end } => write!(
-                f,
-                "cannot integrate from t = {t} s to t_end = {t_end} s (only finite, \
-                 forward targets are supported)"
+            SolverError::InvalidOptions(msg) => format!("invalid solver options: {msg}"),
+            SolverError::InvalidTarget { t, t_end } => format!(
+                "cannot integrate from t = {t} s to t_end = {t_end} s (only finite, forward \
+                 targets are supported)"
             ),
-            SolverError::DimensionMismatch { expected, found } => write!(
-                f,
-                "dimension mismatch: integrator has {expected} states, got {found}"
-            ),
-            SolverError::StateMismatch(msg) => write!(f, "cannot restore solver state: {msg}"),
+            SolverError::DimensionMismatch { expected, found } => {
+                format!("dimension mismatch: integrator has {expected} states, got {found}")
+            }
+            SolverError::StateMismatch(msg) => format!("cannot restore solver state: {msg}"),
         }
     }
 }

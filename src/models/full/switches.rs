@@ -429,6 +429,25 @@ macro_rules! switched_model_events {
             self.sw.event_fired(index);
         }
 
+        /// Whether any ball still carries load: both its contacts with a positive force under
+        /// the clamped law (the contact event functions positive).
+        fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
+            use $crate::models::full::switches::SwitchedModel;
+            let (inner, outer) = self.ring_poses(y);
+            let carrying = (0..self.z)
+                .filter(|&j| {
+                    let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+                    gi > 0.0 && go > 0.0
+                })
+                .count();
+            (carrying == 0).then(|| {
+                format!(
+                    "contact is lost at every ball (none of the {} balls presses on both races)",
+                    self.z
+                )
+            })
+        }
+
         /// The frozen modes and their switch memory (nothing else changes in an advance).
         fn checkpoint(&self, b: &mut Vec<f64>) {
             b.clear();
