@@ -433,6 +433,7 @@ impl Simulation {
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
         let n_out = output_table(bearing.z).len();
+        let n_events = model.n_events();
         let mut sim = Self {
             scene: scene.clone(),
             bearing,
@@ -449,7 +450,10 @@ impl Simulation {
             start_loads: [inputs.fx, inputs.fy, inputs.fz],
             l1_speed: inputs.shaft_speed,
             qs_motion: None,
-            start: Start::default(),
+            start: Start {
+                integrator: Checkpoint::with_capacity(n, n_events),
+                ..Start::default()
+            },
         };
         if scene.coupling == CouplingMode::Motion {
             // The journal starts where the loads of the scene put the ring (the L1 start,

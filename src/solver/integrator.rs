@@ -73,6 +73,17 @@ pub struct Checkpoint {
 }
 
 impl Checkpoint {
+    /// An empty checkpoint with room for a state of dimension `dim` and `n_events` event
+    /// functions: taking one then never allocates (the default one grows on first use).
+    pub fn with_capacity(dim: usize, n_events: usize) -> Self {
+        Self {
+            y: Vec::with_capacity(dim),
+            fsal: Vec::with_capacity(dim),
+            event_mask: Vec::with_capacity(n_events),
+            ..Self::default()
+        }
+    }
+
     /// The time it was taken at.
     pub fn t(&self) -> f64 {
         self.t
@@ -370,7 +381,10 @@ impl Integrator {
         c.y.extend_from_slice(&self.y);
         c.h_next = self.h_next;
         c.fsal_valid = self.fsal_valid;
+        // Room for the FSAL stage even when it is not valid now, so that a later checkpoint
+        // holding it does not allocate.
         c.fsal.clear();
+        c.fsal.reserve(self.n);
         if self.fsal_valid {
             c.fsal.extend_from_slice(&self.k[..self.n]);
         }
