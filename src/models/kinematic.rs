@@ -343,6 +343,11 @@ impl KinematicModel {
             return Ok(0);
         }
         let psi = self.phase(y);
+        // Nothing due (the usual case at every output): no further work.
+        let next_exit_due = self.next_exit < self.next_entry && self.exit_thr <= self.entry_thr;
+        if psi < if next_exit_due { self.exit_thr } else { self.entry_thr } {
+            return Ok(0);
+        }
         let (ring_inner, theta0) = (d.ring() == Race::Inner, d.theta0());
         let race = if ring_inner {
             "inner-race"
