@@ -38,6 +38,9 @@ raceway = { path = "$src" }
 [profile.release]
 panic = "unwind"
 debug = 1
+
+# Not a member of the checkout's workspace (it lives under its target/).
+[workspace]
 TOML
   echo "building $v ($commit) ..."
   (cd "$bench" && cargo build --release --quiet)
