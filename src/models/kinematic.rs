@@ -344,8 +344,13 @@ impl KinematicModel {
         }
         let psi = self.phase(y);
         // Nothing due (the usual case at every output): no further work.
-        let next_exit_due = self.next_exit < self.next_entry && self.exit_thr <= self.entry_thr;
-        if psi < if next_exit_due { self.exit_thr } else { self.entry_thr } {
+        let exit_first = self.next_exit < self.next_entry && self.exit_thr <= self.entry_thr;
+        let next = if exit_first {
+            self.exit_thr
+        } else {
+            self.entry_thr
+        };
+        if psi < next {
             return Ok(0);
         }
         let (ring_inner, theta0) = (d.ring() == Race::Inner, d.theta0());
