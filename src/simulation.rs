@@ -1004,11 +1004,19 @@ impl Simulation {
                 self.integrator.discontinuity();
             }
         }
-        // Leave the model caught up at the end, so that reading the outputs costs no more.
+        // Leave the model caught up at the end, so that reading the outputs costs no more. A
+        // sampled advance leaves the work after its last sample to the next sample, where it
+        // would have been done (done here, at an end between samples, it would round the pass
+        // times differently from a run cut into other advances), and only checks that it fits
+        // in what the budget leaves, so that no later call is unbounded either.
         let used = attempts(self.integrator.stats()) - used0 + other;
-        self.model
-            .catch_up(t_end, self.integrator.y(), budget.saturating_sub(used))
-            .map_err(|e| caught_up(t_end, e))?;
+        let left = budget.saturating_sub(used);
+        let y = self.integrator.y();
+        match sampling {
+            None => self.model.catch_up(t_end, y, left).map(|_| ()),
+            Some(_) => self.model.check_catch_up(t_end, y, left),
+        }
+        .map_err(|e| caught_up(t_end, e))?;
         Ok(())
     }
 

@@ -335,8 +335,15 @@ impl KinematicModel {
     /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order,
     /// at most `limit` passes (entries): returns how many it registered. Needing more (an absurd
     /// cage speed, an enormous step) is an error naming the numbers, with nothing registered: the
-    /// passes stay pending, and the work per call is bounded by `limit`.
-    fn register_passes(&mut self, t: f64, y: &[f64], limit: u64) -> Result<u64, String> {
+    /// passes stay pending, and the work per call is bounded by `limit`. With `register` false
+    /// only that check is made (to within one pass), and nothing is registered.
+    fn register_passes(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        limit: u64,
+        register: bool,
+    ) -> Result<u64, String> {
         let Some(d) = &self.defect else { return Ok(0) };
         let rate = self.phase_rate();
         if rate <= 0.0 {
@@ -374,6 +381,9 @@ impl KinematicModel {
         // (A NaN phase, from a non-finite cage speed, is refused too.)
         if due.is_nan() || due > limit as f64 + 1.0 {
             return Err(too_many(due, self));
+        }
+        if !register {
+            return Ok(0);
         }
         // Within one of the limit: count exactly, and put everything back when over.
         let saved = (
@@ -565,7 +575,7 @@ impl Model for KinematicModel {
         };
         // Steps reached under the old speed are registered with the old rates first (none, when
         // the simulation has caught up at t, as it does at the end of every advance).
-        self.register_passes(t, y, self.max_passes)
+        self.register_passes(t, y, self.max_passes, true)
             .map_err(|e| SimError::Input(format!("the inputs cannot change at t = {t} s: {e}")))?;
         self.inputs = *inputs;
         if let Some(table) = table {
@@ -590,18 +600,22 @@ impl Model for KinematicModel {
     /// Registers the passes reached by (t, y) if they are within the budget; otherwise they stay
     /// pending (registered by the next call that can, or refused by [`Model::catch_up`]).
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        let _ = self.register_passes(t, y, self.max_passes);
+        let _ = self.register_passes(t, y, self.max_passes, true);
     }
 
     /// The budget of spall passes is [`Model::catch_up`]'s, which the simulation calls before
     /// any output; if more passes were still due here, the pedestal's z outputs (which the passes
     /// drive) would be NaN rather than wrong.
     fn catch_up(&mut self, t: f64, y: &[f64], budget: u64) -> Result<u64, String> {
-        self.register_passes(t, y, budget)
+        self.register_passes(t, y, budget, true)
+    }
+
+    fn check_catch_up(&mut self, t: f64, y: &[f64], budget: u64) -> Result<(), String> {
+        self.register_passes(t, y, budget, false).map(|_| ())
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
-        let caught_up = self.register_passes(t, y, self.max_passes).is_ok();
+        let caught_up = self.register_passes(t, y, self.max_passes, true).is_ok();
         static_outputs(
             &self.table,
             &self.bearing,

@@ -181,6 +181,12 @@ pub trait Model: Send {
         Ok(0)
     }
 
+    /// [`Model::catch_up`]'s check alone (to within one unit): the work fits in `budget`, or the
+    /// same error; nothing is done. Default: nothing to do.
+    fn check_catch_up(&mut self, _t: f64, _y: &[f64], _budget: u64) -> Result<(), String> {
+        Ok(())
+    }
+
     /// Fills the output vector (layout of [`crate::simulation::output_table`]). `out` is either
     /// the whole vector or its first [`crate::simulation::out::BEARING_OUTPUTS`] entries (the
     /// bearing-level outputs, without the per-ball block): then the per-ball quantities are
