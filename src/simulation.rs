@@ -2,8 +2,9 @@
 //!
 //! A [`Simulation`] owns one dynamic [`Model`] (chosen by the scene's
 //! fidelity) and one [`Integrator`]. Inputs (shaft speed, loads) may
-//! change between advances; each change is a discontinuity for the integrator. Failures of the
-//! integrator are returned as values and leave the simulation at its last good time.
+//! change between advances; each change is a discontinuity for the integrator. Failures of an
+//! advance are returned as values (naming the time the integrator stopped at) and leave the
+//! simulation exactly where the advance started.
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
@@ -11,8 +12,8 @@ use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
-    grid_points, AdvanceOutcome, EventAction, EventSystem, Integrator, IntegratorState, Method,
-    Options, StepView, System,
+    grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
+    Method, Options, StepView, System,
 };
 use std::fmt;
 
@@ -111,7 +112,10 @@ pub enum SimError {
     Config(ConfigError),
     /// An input is invalid (named in the message).
     Input(String),
-    /// The integrator could not continue; the simulation stays at `t`, its last good time.
+    /// An advance could not reach its end: it stopped at `t` (the last step the integrator
+    /// accepted, or the time whose outputs the model could not catch up to within the step
+    /// budget), for the reason in `message`. The simulation is back where the advance started
+    /// ([`Simulation::time`]), as if it had not been asked.
     Solver { t: f64, message: String },
     /// The requested feature is not available at this fidelity level.
     Unsupported(String),
@@ -125,7 +129,7 @@ impl fmt::Display for SimError {
             SimError::Config(e) => write!(f, "{e}"),
             SimError::Input(m) => write!(f, "invalid input: {m}"),
             SimError::Solver { t, message } => {
-                write!(f, "integration failed at t = {t:.9} s: {message}")
+                write!(f, "integration failed at t = {t} s: {message}")
             }
             SimError::Unsupported(m) => write!(f, "unsupported: {m}"),
             SimError::State(m) => write!(f, "cannot restore state: {m}"),
@@ -331,6 +335,19 @@ pub struct Simulation {
     l1_speed: f64,
     /// Motion coupling at levels without ring states (L0, L1).
     qs_motion: Option<QsMotion>,
+    /// Where the current (or last) advance started: put back when it fails
+    /// ([`Simulation::undo_advance`]); buffers reused from advance to advance.
+    start: Start,
+}
+
+/// The simulation at the start of an advance: what an advance can change.
+#[derive(Default)]
+struct Start {
+    integrator: Checkpoint,
+    model: Vec<f64>,
+    l1_speed: f64,
+    /// True from a successful advance until anything else changes the simulation.
+    undoable: bool,
 }
 
 /// Lets the integrator drive a model (the integrator knows nothing about bearings): the event
@@ -416,6 +433,7 @@ impl Simulation {
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
         let n_out = output_table(bearing.z).len();
+        let n_events = model.n_events();
         let mut sim = Self {
             scene: scene.clone(),
             bearing,
@@ -432,6 +450,10 @@ impl Simulation {
             start_loads: [inputs.fx, inputs.fy, inputs.fz],
             l1_speed: inputs.shaft_speed,
             qs_motion: None,
+            start: Start {
+                integrator: Checkpoint::with_capacity(n, n_events),
+                ..Start::default()
+            },
         };
         if scene.coupling == CouplingMode::Motion {
             // The journal starts where the loads of the scene put the ring (the L1 start,
@@ -467,6 +489,7 @@ impl Simulation {
             ));
         }
         j.check()?;
+        self.start.undoable = false;
         let t = self.integrator.t();
         if let Some(rs) = self.model.ring_states() {
             let n = self.model.dim();
@@ -622,6 +645,7 @@ impl Simulation {
                 inputs.fx, self.inputs.fx
             )));
         }
+        self.start.undoable = false;
         let t = self.integrator.t();
         let (eff, applied) = self.effective_inputs(&inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y())?;
@@ -736,9 +760,46 @@ impl Simulation {
     }
 
     /// Advances to exactly `t_end`, landing on every known discontinuity of the model on the way.
-    /// On failure the simulation stays at its last good time ([`SimError::Solver`]).
+    /// On failure the simulation is back where the advance started (state, modes, operating
+    /// point, work counters), and the error says where the integrator stopped and what the
+    /// discarded attempt cost ([`SimError::Solver`]).
     pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
         self.advance_impl(t_end, None)
+    }
+
+    /// Puts the simulation back where the last advance started, for a caller that rejects the
+    /// advance's result (the FMU when an output it reads at the end is not finite). Possible only
+    /// right after a successful advance: any other change since (inputs, journal, a restored
+    /// state) makes it an error.
+    pub fn undo_advance(&mut self) -> Result<(), SimError> {
+        if !self.start.undoable {
+            return Err(SimError::State(
+                "no advance to undo: the simulation changed since the last one".into(),
+            ));
+        }
+        self.rollback()
+    }
+
+    /// Takes the checkpoint an advance starts from (no allocation once the buffers have their
+    /// size).
+    fn checkpoint(&mut self) {
+        self.integrator.checkpoint(&mut self.start.integrator);
+        self.model.checkpoint(&mut self.start.model);
+        self.start.l1_speed = self.l1_speed;
+        self.start.undoable = false;
+    }
+
+    /// Puts back the checkpoint of the last advance.
+    fn rollback(&mut self) -> Result<(), SimError> {
+        self.start.undoable = false;
+        self.integrator.rollback(&self.start.integrator);
+        self.l1_speed = self.start.l1_speed;
+        let t = self.integrator.t();
+        self.model
+            .rollback(&self.start.model, t, self.integrator.y())
+            .map_err(|e| {
+                SimError::State(format!("the model could not be put back at t = {t} s: {e}"))
+            })
     }
 
     /// Whether the samplers ([`Simulation::advance_sampled`] and
@@ -785,11 +846,10 @@ impl Simulation {
         self.advance_impl(t_end, Some((dt, sample)))
     }
 
-    fn advance_impl(
-        &mut self,
-        t_end: f64,
-        mut sampling: Option<Sampler<'_>>,
-    ) -> Result<(), SimError> {
+    /// Checks the target, takes the checkpoint, advances, and on any failure puts the
+    /// checkpoint back. (Samples already handed to the sampler stay delivered: they are points
+    /// of the trajectory the integrator accepted before it stopped.)
+    fn advance_impl(&mut self, t_end: f64, sampling: Option<Sampler<'_>>) -> Result<(), SimError> {
         if !t_end.is_finite() {
             return Err(SimError::Input(format!("end time {t_end} is not finite")));
         }
@@ -799,29 +859,78 @@ impl Simulation {
                 "cannot advance backwards from t = {t0} s to {t_end} s"
             )));
         }
+        self.checkpoint();
+        match self.advance_from_checkpoint(t_end, sampling) {
+            Ok(()) => {
+                self.start.undoable = true;
+                Ok(())
+            }
+            Err(mut e) => {
+                if let SimError::Solver { message, .. } = &mut e {
+                    // The counters go back with the rest: say what the failed attempt cost.
+                    let (now, then) = (self.integrator.stats(), self.start.integrator.stats());
+                    message.push_str(&format!(
+                        " (work discarded with the advance: {} steps accepted, {} rejected, {} \
+                         right-hand-side evaluations)",
+                        now.steps - then.steps,
+                        now.rejected - then.rejected,
+                        now.rhs_evals - then.rhs_evals
+                    ));
+                }
+                match self.rollback() {
+                    Ok(()) => Err(e),
+                    Err(r) => Err(SimError::State(format!("{e}; then {r}"))),
+                }
+            }
+        }
+    }
+
+    fn advance_from_checkpoint(
+        &mut self,
+        t_end: f64,
+        mut sampling: Option<Sampler<'_>>,
+    ) -> Result<(), SimError> {
         self.update_l1_point()?;
         // The sampler below reads the dense output only at multiples of dt: the integrator
         // builds it only for the steps that contain one (or need it for an event).
         self.integrator
             .set_sample_grid(sampling.as_ref().map(|(dt, _)| *dt));
         let n = self.model.dim();
-        // The step budget (solver.max_steps) holds for the whole advance (one communication
-        // step), not for each integrator call between two stops or events.
+        // The budget (solver.max_steps) holds for the whole advance (one communication step),
+        // not for each integrator call between two stops or events, and covers every unit of
+        // work whose count the inputs decide: attempted integrator steps, the model's catch-up
+        // ([`Model::catch_up`]), and one unit for an integrator call that took no step.
         let budget = self.scene.solver.max_steps;
         let attempts = |s: crate::solver::Stats| s.steps + s.rejected;
         let used0 = attempts(self.integrator.stats());
-        let exhausted = |t: f64| SimError::Solver {
+        let mut other = 0u64;
+        let exhausted = |sim: &mut Self, other: u64| {
+            let s = sim.integrator.stats();
+            let tried = attempts(s) - used0;
+            sim.failure(format!(
+                "step budget exhausted: {budget} units of work (solver.max_steps) used in this \
+                 advance ({tried} integrator steps attempted{}), the last accepted step {:.3e} s",
+                if other > 0 {
+                    format!(", {other} other units")
+                } else {
+                    String::new()
+                },
+                s.h_last
+            ))
+        };
+        let caught_up = |t: f64, e: String| SimError::Solver {
             t,
             message: format!(
-                "step budget exhausted: {budget} steps (solver.max_steps) attempted in this \
-                 advance, stopped at t = {t} s"
+                "{e} (solver.max_steps = {budget} units of work per communication step: \
+                 integrator steps and spall passes)"
             ),
         };
         while self.integrator.t() < t_end {
             let t = self.integrator.t();
-            let used = attempts(self.integrator.stats()) - used0;
+            let before = attempts(self.integrator.stats());
+            let used = before - used0 + other;
             if used >= budget {
-                return Err(exhausted(t));
+                return Err(exhausted(self, other));
             }
             self.integrator.set_max_steps(budget - used);
             let stop = self.model.next_stop(t, self.integrator.y(), t_end);
@@ -868,10 +977,18 @@ impl Simulation {
                     }
                 }
             };
+            if attempts(self.integrator.stats()) == before {
+                other += 1;
+            }
             // Outputs of the samples of this interval use its (frozen) discrete mode.
             if let Some((_, cb)) = sampling.as_mut() {
                 for (i, &ts) in self.sample_times.iter().enumerate() {
                     let y = &self.samples[i * n..(i + 1) * n];
+                    let used = attempts(self.integrator.stats()) - used0 + other;
+                    other += self
+                        .model
+                        .catch_up(ts, y, budget.saturating_sub(used))
+                        .map_err(|e| caught_up(ts, e))?;
                     let o = &mut self.out_scratch[..self.sampled_outputs];
                     self.model.outputs(ts, y, o);
                     if let Some(qs) = self.qs_motion.as_mut() {
@@ -884,13 +1001,12 @@ impl Simulation {
             let event = match result {
                 Ok(event) => event,
                 Err(crate::solver::SolverError::StepBudget { .. }) => {
-                    return Err(exhausted(self.integrator.t()))
+                    return Err(exhausted(self, other))
                 }
                 Err(e) => {
-                    return Err(SimError::Solver {
-                        t: self.integrator.t(),
-                        message: e.to_string(),
-                    })
+                    let model = self.model.as_ref();
+                    let message = e.describe(&|i| format!("{} (state {i})", model.state_name(i)));
+                    return Err(self.failure(message));
                 }
             };
             if stop.is_some() || event {
@@ -899,7 +1015,31 @@ impl Simulation {
                 self.integrator.discontinuity();
             }
         }
+        // Leave the model caught up at the end, so that reading the outputs costs no more. A
+        // sampled advance leaves the work after its last sample to the next sample, where it
+        // would have been done (done here, at an end between samples, it would round the pass
+        // times differently from a run cut into other advances), and only checks that it fits
+        // in what the budget leaves, so that no later call is unbounded either.
+        let used = attempts(self.integrator.stats()) - used0 + other;
+        let left = budget.saturating_sub(used);
+        let y = self.integrator.y();
+        match sampling {
+            None => self.model.catch_up(t_end, y, left).map(|_| ()),
+            Some(_) => self.model.check_catch_up(t_end, y, left),
+        }
+        .map_err(|e| caught_up(t_end, e))?;
         Ok(())
+    }
+
+    /// The error of an advance that stopped at the integrator's current state, for `cause`, with
+    /// what the model can tell about that state ([`Model::diagnose`]).
+    fn failure(&mut self, cause: String) -> SimError {
+        let t = self.integrator.t();
+        let message = match self.model.diagnose(t, self.integrator.y()) {
+            Some(facts) => format!("{cause}; there {facts}"),
+            None => cause,
+        };
+        SimError::Solver { t, message }
     }
 
     /// The output table of this simulation.
@@ -985,6 +1125,7 @@ impl Simulation {
             )));
         }
         snap.inputs.check()?;
+        self.start.undoable = false;
         self.integrator
             .restore(&snap.integrator)
             .map_err(|e| SimError::State(e.to_string()))?;
@@ -998,14 +1139,17 @@ impl Simulation {
         if let Some(s) = snap.l1_speed {
             self.l1_speed = s;
         }
+        // The discrete state first (the L1 operating point, the spall passes registered so
+        // far), so that the inputs find the model where it was: no L1 re-solve, and no catch-up
+        // from t = 0 (unbounded for a late snapshot) at the kinematic level.
+        self.model
+            .set_discrete_state(&snap.model)
+            .map_err(SimError::State)?;
         let (eff, applied) = self.effective_inputs(&snap.inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y())?;
         if let (Some(qs), Some(load)) = (self.qs_motion.as_mut(), applied) {
             qs.applied_load = load;
         }
-        self.model
-            .set_discrete_state(&snap.model)
-            .map_err(SimError::State)?;
         self.model.update_mode(t, self.integrator.y());
         Ok(())
     }

@@ -61,3 +61,32 @@ fn stepping_does_not_allocate() {
         assert_eq!(n, 0, "{m}: {n} allocations while stepping");
     }
 }
+
+/// A checkpoint puts the integrator back exactly: after work that is then discarded, the
+/// continuation from the rollback equals (bit for bit, work counters included) the continuation
+/// of a copy that never did that work, events included; taking and restoring checkpoints does
+/// not allocate once the checkpoint has its size.
+#[test]
+fn rollback_to_a_checkpoint_continues_bit_identically_without_allocating() {
+    for m in [Method::Rkf45, Method::Dopri5, Method::Dop853] {
+        let mut a = Integrator::new(Options::new(m, 1e-8, vec![1e-8]), 0.0, &[1.0, 0.0]).unwrap();
+        // Stop just after a bounce, so the event memory is part of the state.
+        a.advance_with_events(&mut Ball, 0.7, None).unwrap();
+        let mut c = Checkpoint::default();
+        a.checkpoint(&mut c);
+        let mut reference = a.clone();
+        reference.advance_with_events(&mut Ball, 2.3, None).unwrap();
+        let (n, ()) = allocations_during(|| {
+            a.checkpoint(&mut c);
+            a.advance_with_events(&mut Ball, 1.9, None).unwrap();
+            a.rollback(&c);
+        });
+        assert_eq!(n, 0, "{m}: {n} allocations in checkpoint/rollback");
+        assert_eq!(a.t(), 0.7, "{m}");
+        a.advance_with_events(&mut Ball, 2.3, None).unwrap();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(a.y()), bits(reference.y()), "{m}");
+        assert_eq!(a.h_next().to_bits(), reference.h_next().to_bits(), "{m}");
+        assert_eq!(a.stats(), reference.stats(), "{m}");
+    }
+}

@@ -909,3 +909,62 @@ fn sample_grid_builds_dense_output_only_where_sampled() {
     let (b, _, _) = sampled(&mut Level { times: Vec::new() }, &[1.0, 0.0], true, true);
     assert_eq!(a, b, "oscillator with level events");
 }
+
+/// A collapsed step says what limited it, by component: the error estimate's largest component
+/// when the solution blows up in one component only, and the first non-finite derivative (its
+/// component and stage time) when the right-hand side stops being defined.
+#[test]
+fn a_collapsed_step_names_the_limiting_component() {
+    // y0' = −y0 is tame; y1' = y1² blows up at t = 1.
+    struct Pair;
+    impl System for Pair {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], d: &mut [f64]) {
+            d[0] = -y[0];
+            d[1] = y[1] * y[1];
+        }
+    }
+    // y0 = t; y1' = √(0.5 − y0) has no value past t = 0.5.
+    struct Edge;
+    impl System for Edge {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], d: &mut [f64]) {
+            d[0] = 1.0;
+            d[1] = (0.5 - y[0]).sqrt();
+        }
+    }
+    for m in [Method::Rkf45, Method::Dopri5, Method::Dop853] {
+        let o = Options::new(m, 1e-6, vec![1e-6]);
+        let mut it = Integrator::new(o.clone(), 0.0, &[1.0, 1.0]).unwrap();
+        match it.advance(&mut Pair, 2.0, None).unwrap_err() {
+            SolverError::StepSizeUnderflow { limit, .. } => match limit {
+                StepLimit::Error { component, ratio } => {
+                    assert_eq!(component, 1, "{m}");
+                    assert!(ratio > 1.0, "{m}: {ratio}");
+                }
+                StepLimit::NonFiniteDerivative { component, .. }
+                | StepLimit::NonFiniteState { component } => assert_eq!(component, 1, "{m}"),
+                StepLimit::Unknown => panic!("{m}: no limit named"),
+            },
+            SolverError::NonFinite { component, .. } => assert_eq!(component, 1, "{m}"),
+            e => panic!("{m}: {e}"),
+        }
+        let mut it = Integrator::new(o, 0.0, &[0.0, 0.0]).unwrap();
+        let e = it.advance(&mut Edge, 1.0, None).unwrap_err();
+        match e {
+            SolverError::StepSizeUnderflow {
+                limit: StepLimit::NonFiniteDerivative { component, t },
+                ..
+            } => {
+                assert_eq!(component, 1, "{m}");
+                assert!(t > 0.5 && t < 0.5 + 1e-6, "{m}: {t}");
+            }
+            e => panic!("{m}: {e:?}"),
+        }
+        assert!(e.to_string().contains("non-finite"), "{m}: {e}");
+    }
+}

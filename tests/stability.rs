@@ -196,9 +196,10 @@ fn t2_loose_tolerances_finish_without_blow_up() {
 
 /// T3: tight tolerances across spall edges (outer and inner) with the edges as known-time stops.
 /// Criterion: rtol 1e-10 and 1e-12 either finish or fail within 30 s of wall time with a
-/// `Solver` error; a stall forced by a small step budget ends with a message naming the budget,
-/// at a time before the target, in under a second (the budget, 5 attempted steps, holds for the
-/// whole advance, spall stops and contact events included).
+/// `Solver` error; a stall forced by a small step budget ends with a message naming the budget
+/// and the time before the target where the integrator stopped, in under a second (the budget,
+/// 5 attempted steps, holds for the whole advance, spall stops and contact events included), and
+/// leaves the simulation where the advance started.
 #[test]
 fn t3_tight_tolerances_across_spall_edges_finish_or_fail_fast() {
     for ring in [Race::Outer, Race::Inner] {
@@ -228,7 +229,8 @@ fn t3_tight_tolerances_across_spall_edges_finish_or_fail_fast() {
     assert!(start.elapsed().as_secs_f64() < 1.0);
     match &err {
         SimError::Solver { t, message } => {
-            assert!(*t < 0.05 && sim.time() == *t, "{err}");
+            // Stopped on the way; the simulation is back where the advance started.
+            assert!(*t > 0.0 && *t < 0.05 && sim.time() == 0.0, "{err}");
             assert!(message.contains("step budget"), "{err}");
         }
         other => panic!("expected a solver error, got {other}"),

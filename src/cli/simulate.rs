@@ -122,14 +122,18 @@ pub fn run(args: Args) -> Result<(), String> {
     };
     let started = Instant::now();
     let mut write_err: Option<std::io::Error> = None;
+    // Time of the last row written: a failed advance puts the simulation back to its start, but
+    // the rows it wrote before the integrator stopped (accepted steps) stay in the file.
+    let mut written_to = 0.0;
     // Advance in chunks of 1 % of the run so the progress bar moves.
     let chunks = 100;
     for c in 1..=chunks {
         let t_end = duration * c as f64 / chunks as f64;
         let result = sim.advance_sampled(t_end, dt, &mut |t, out| {
             if write_err.is_none() {
-                if let Err(e) = write_row(&mut w, &mut line, t, out, &columns) {
-                    write_err = Some(e);
+                match write_row(&mut w, &mut line, t, out, &columns) {
+                    Ok(()) => written_to = t,
+                    Err(e) => write_err = Some(e),
                 }
             }
         });
@@ -140,8 +144,7 @@ pub fn run(args: Args) -> Result<(), String> {
             bar.abandon();
             w.flush().map_err(io)?;
             return Err(format!(
-                "{e}\n(the outputs up to t = {:.6} s are in {})",
-                sim.time(),
+                "{e}\n(the outputs up to t = {written_to:.6} s are in {})",
                 args.out.display()
             ));
         }

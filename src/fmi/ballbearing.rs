@@ -62,8 +62,13 @@ pub struct BallBearing {
     tolerance: Option<f64>,
     initialized: bool,
     live: Option<Live>,
+    /// The outputs at the simulation's current time when `outputs_valid` (computed on demand,
+    /// and by every successful step). A failed step leaves them (and the simulation) at its
+    /// start, the last successful communication point.
     outputs: Vec<f64>,
     outputs_valid: bool,
+    /// Where a step computes the outputs at its end before it accepts them.
+    step_outputs: Vec<f64>,
 }
 
 fn sim_err(e: SimError) -> String {
@@ -96,6 +101,7 @@ impl BallBearing {
             live: None,
             outputs: vec![0.0; n_out],
             outputs_valid: false,
+            step_outputs: vec![0.0; n_out],
         }
     }
 
@@ -247,20 +253,22 @@ impl FmuModel for BallBearing {
         Ok(())
     }
 
+    /// Advances the simulation to `t_end` and computes the outputs there; the step counts only
+    /// if both succeed and every output is finite. Otherwise the simulation is put back to `t`
+    /// (a failed advance does that itself) and the outputs stay those of `t`: the master reads
+    /// the last successful communication point, never a failed attempt.
     fn do_step(&mut self, t: f64, t_end: f64, log: &Logger) -> StepResult {
         let start = self.start_time;
         let Some(live) = self.live.as_mut() else {
             return StepResult::Error("no simulation (internal error)".into());
         };
         let before = live.sim.stats();
-        let r = live.sim.advance(t_end - start);
-        self.outputs_valid = false;
-        match r {
+        match live.sim.advance(t_end - start) {
             Ok(()) => {}
             Err(SimError::Solver { t: tg, message }) => {
                 return StepResult::Discard {
-                    message: format!("integration failed at t = {}: {message}", start + tg),
-                    last_good_time: start + tg,
+                    message: format!("the advance stopped at t = {}: {message}", start + tg),
+                    last_good_time: t,
                 }
             }
             Err(e) => return StepResult::Error(e.to_string()),
@@ -278,21 +286,41 @@ impl FmuModel for BallBearing {
                 ),
             );
         }
-        if let Err(e) = self.refresh_outputs() {
-            return StepResult::Error(e);
-        }
-        if let Some(i) = self.outputs.iter().position(|v| !v.is_finite()) {
-            let name = self
-                .roles
+        let failure = match live.sim.try_outputs(&mut self.step_outputs) {
+            Err(e) => Some(StepResult::Error(format!(
+                "the outputs at t = {t_end} cannot be computed: {e}"
+            ))),
+            Ok(()) => self
+                .step_outputs
                 .iter()
-                .zip(&self.vars)
-                .find(|(r, _)| **r == Role::Output(i))
-                .map_or("?", |(_, v)| v.name.as_str());
-            return StepResult::Discard {
-                message: format!("output '{name}' became {} at t = {t_end}", self.outputs[i]),
-                last_good_time: t,
+                .position(|v| !v.is_finite())
+                .map(|i| {
+                    let name = self
+                        .roles
+                        .iter()
+                        .zip(&self.vars)
+                        .find(|(r, _)| **r == Role::Output(i))
+                        .map_or("?", |(_, v)| v.name.as_str());
+                    StepResult::Discard {
+                        message: format!(
+                            "output '{name}' became {} at t = {t_end}",
+                            self.step_outputs[i]
+                        ),
+                        last_good_time: t,
+                    }
+                }),
+        };
+        if let Some(f) = failure {
+            return match (live.sim.undo_advance(), f) {
+                (Ok(()), f) => f,
+                (Err(e), StepResult::Discard { message, .. } | StepResult::Error(message)) => {
+                    StepResult::Error(format!("{message}; then {e}"))
+                }
+                (Err(e), StepResult::Ok) => StepResult::Error(e.to_string()),
             };
         }
+        std::mem::swap(&mut self.outputs, &mut self.step_outputs);
+        self.outputs_valid = true;
         StepResult::Ok
     }
 

@@ -261,13 +261,14 @@ pub struct InstantiateArgs {
 pub enum StepResult {
     /// The model is now exactly at the requested end time.
     Ok,
-    /// The model cannot continue (integrator failure); it stays valid at `last_good_time`,
-    /// whose outputs remain readable.
+    /// The model cannot complete the step (integrator failure); it is valid at
+    /// `last_good_time`, whose outputs are what the master reads from now on.
     Discard {
         message: String,
         last_good_time: f64,
     },
-    /// Something else went wrong; the instance goes to the Error state.
+    /// Something else went wrong; the instance goes to the Error state. The model should stay
+    /// at the step's start, whose outputs remain readable.
     Error(String),
 }
 
@@ -1849,16 +1850,22 @@ pub unsafe fn do_step<M: FmuModel>(
                         Fmi2Status::Discard,
                         LOG_STATUS_DISCARD,
                         &format!(
-                            "{F}: step from {t} to {t_end} discarded: {message}; the simulation \
-                             cannot continue (fmi2Terminated = true, fmi2LastSuccessfulTime = \
-                             {last_good_time})"
+                            "{F}: step from {t} to {t_end} discarded: {message}; the FMU stays \
+                             at t = {last_good_time} with the outputs of that point \
+                             (fmi2LastSuccessfulTime = {last_good_time}, fmi2Terminated = true)"
                         ),
                     );
                     Fmi2Status::Discard
                 }
                 StepResult::Error(message) => {
                     me.state = CallState::Error;
-                    me.error(F, format!("step from {t} to {t_end} failed: {message}"))
+                    me.error(
+                        F,
+                        format!(
+                            "step from {t} to {t_end} failed: {message}; the outputs are those \
+                             of t = {t}"
+                        ),
+                    )
                 }
             }
         })

@@ -417,7 +417,7 @@ impl Param {
             Param::SolverRtol => ("solver.rtol", R, None, Some(crate::scene::MIN_RTOL), Some(0.1),
                 "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it"),
             Param::SolverMaxSteps => ("solver.max_steps", I, None, Some(1.0), Some(imax),
-                "Step budget per communication step; when exhausted the step returns fmi2Discard"),
+                "Work budget per communication step: attempted integrator steps and, at the kinematic level, spall passes registered (one unit each); when exhausted the step returns fmi2Discard and the FMU stays at the step's start"),
             Param::LumpedCageSpeed => ("lumped.cage_speed", I, None, Some(0.0), Some(1.0),
                 "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control"),
             Param::SolverPiBeta => ("solver.pi_beta", R, None, Some(0.0), Some(crate::scene::MAX_PI_BETA),

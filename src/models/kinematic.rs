@@ -13,6 +13,9 @@
 //! spacings, i.e. 0.5–2 % for 0.005–0.02; deterministic in `lumped.seed` and n, clipped to ±0.45).
 //! The entries and exits are registered at their exact times (ψ is linear in t between input
 //! changes) when the outputs or an input change reach them, so they need no integrator stops.
+//! The simulation has them registered before every output it takes ([`Model::catch_up`]), each
+//! pass one unit of the step budget (`solver.max_steps`): an absurd cage speed or an enormous
+//! communication step is an error naming the passes it would take, not an endless loop.
 //!
 //! Impulse shape and resonance (the documented choice). Each pass is a rectangular dip of the
 //! contact force on the pedestal: the ball loses ΔQ = Q(θ)·[1 − (1 − g/δ)^1.5] of its load
@@ -86,6 +89,9 @@ pub struct KinematicModel {
     exit_thr: f64,
     /// The modal amplitudes at the last output time, for equally spaced outputs.
     memo: Memo,
+    /// Most passes registered in one call from the outputs, a mode update or an input change
+    /// (the scene's `solver.max_steps`; the simulation's own catch-up is budgeted per advance).
+    max_passes: u64,
 }
 
 /// Outputs usually come at equally spaced times t_k: the superposed response then advances by
@@ -147,6 +153,7 @@ impl KinematicModel {
             entry_thr: 0.0,
             exit_thr: 0.0,
             memo: Memo::default(),
+            max_passes: scene.solver.max_steps,
         };
         m.theta_start = m.choose_theta_start();
         m.modes = m.compute_modes();
@@ -332,16 +339,71 @@ impl KinematicModel {
     }
 
     /// Registers every spall entry and exit the fault phase has passed by (t, y), each at its exact
-    /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order.
-    fn catch_up(&mut self, t: f64, y: &[f64]) {
-        let Some(d) = &self.defect else { return };
+    /// time t_k = t − (ψ − ψ_k)/ψ̇ (the rates are constant since the last input change), in order,
+    /// at most `limit` passes (entries): returns how many it registered. Needing more (an absurd
+    /// cage speed, an enormous step) is an error naming the numbers, with nothing registered: the
+    /// passes stay pending, and the work per call is bounded by `limit`. With `register` false
+    /// only that check is made (to within one pass), and nothing is registered.
+    fn register_passes(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        limit: u64,
+        register: bool,
+    ) -> Result<u64, String> {
+        let Some(d) = &self.defect else { return Ok(0) };
         let rate = self.phase_rate();
         if rate <= 0.0 {
-            return;
+            return Ok(0);
         }
         let psi = self.phase(y);
-        let ring_inner = d.ring() == Race::Inner;
-        let theta0 = d.theta0();
+        // Nothing due (the usual case at every output): no further work.
+        let exit_first = self.next_exit < self.next_entry && self.exit_thr <= self.entry_thr;
+        let next = if exit_first {
+            self.exit_thr
+        } else {
+            self.entry_thr
+        };
+        if psi < next {
+            return Ok(0);
+        }
+        let (ring_inner, theta0) = (d.ring() == Race::Inner, d.theta0());
+        let race = if ring_inner {
+            "inner-race"
+        } else {
+            "outer-race"
+        };
+        // Consecutive thresholds lie 1 ± 0.9 apart (jitter within ±0.45), so about ψ − ψ_next + 1
+        // passes are due: far more than allowed is refused before any work.
+        let due = (psi - self.entry_thr).floor() + 1.0;
+        let too_many = |due: f64, m: &Self| {
+            format!(
+                "registering the spall passes up to t = {t} s would take {due:.3e} passes (the \
+                 {race} spall is passed {rate:.6e} times per second at the cage speed {:.6e} \
+                 rad/s and shaft speed {:.6e} rad/s; next pass number {}), more than the {limit} \
+                 allowed",
+                m.table.cage_speed, m.inputs.shaft_speed, m.next_entry
+            )
+        };
+        // (A NaN phase, from a non-finite cage speed, is refused too.)
+        if due.is_nan() || due > limit as f64 + 1.0 {
+            return Err(too_many(due, self));
+        }
+        if !register {
+            return Ok(0);
+        }
+        // Within one of the limit: count exactly, and put everything back when over.
+        let saved = (
+            self.next_entry,
+            self.next_exit,
+            self.dip,
+            self.acc,
+            self.t_ref,
+            self.entry_thr,
+            self.exit_thr,
+            self.memo,
+        );
+        let mut passes = 0u64;
         loop {
             let (entry, exit) = (self.entry_thr, self.exit_thr);
             let is_exit = self.next_exit < self.next_entry && exit <= entry;
@@ -364,14 +426,29 @@ impl KinematicModel {
                 self.next_exit += 1;
                 self.exit_thr = self.exit_threshold(self.next_exit);
             } else {
+                if passes == limit {
+                    (
+                        self.next_entry,
+                        self.next_exit,
+                        self.dip,
+                        self.acc,
+                        self.t_ref,
+                        self.entry_thr,
+                        self.exit_thr,
+                        self.memo,
+                    ) = saved;
+                    return Err(too_many(due.max(limit as f64 + 1.0), self));
+                }
+                passes += 1;
                 // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
-                let Some(d) = &self.defect else { return };
+                let Some(d) = &self.defect else { break };
                 self.dip = self.load_loss(d, theta);
                 self.push_event(tk, -self.dip * e_rz);
                 self.next_entry += 1;
                 self.entry_thr = self.entry_threshold(self.next_entry);
             }
         }
+        Ok(passes)
     }
 
     /// Adds a step of force f [N] on the pedestal (−f on the ring) at time t.
@@ -396,10 +473,15 @@ impl KinematicModel {
         let dt = t - self.t_ref;
         let memo = &mut self.memo;
         let step = t - memo.t;
+        // Asked again at the memo's time: the same values, and the memo stays as it is (reading
+        // the outputs twice does not change the later ones).
+        let again = memo.valid && step == 0.0;
         let reuse = memo.valid && memo.reuses < 1024 && (step - memo.h).abs() <= 1e-9 * memo.h;
         let (mut x, mut v, mut a) = (0.0, 0.0, 0.0);
         for (k, (m, acc)) in self.modes.iter().zip(self.acc.iter()).enumerate() {
-            let (re, im) = if reuse {
+            let (re, im) = if again {
+                memo.c[k]
+            } else if reuse {
                 // C(t) = C(t_prev) e^{λh} (1 + λδ), λ = −σ + iω_d.
                 let d = step - memo.h;
                 let (fr, fi) = memo.f[k];
@@ -428,6 +510,9 @@ impl KinematicModel {
             a += re - r * im;
             v += im / m.omega_d;
             x += (acc.2 - (re + r * im)) / (m.omega * m.omega);
+        }
+        if again {
+            return (x, v, a);
         }
         if reuse {
             memo.reuses += 1;
@@ -472,6 +557,14 @@ impl Model for KinematicModel {
         out.iter_mut().for_each(|v| *v = 1.0);
     }
 
+    fn state_name(&self, i: usize) -> String {
+        match i {
+            CAGE => "cage angle θ_c".into(),
+            SHAFT => "shaft angle φ".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
     fn initial_state(&self, y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
@@ -488,8 +581,10 @@ impl Model for KinematicModel {
         } else {
             None
         };
-        // Steps reached under the old speed are registered with the old rates first.
-        self.catch_up(t, y);
+        // Steps reached under the old speed are registered with the old rates first (none, when
+        // the simulation has caught up at t, as it does at the end of every advance).
+        self.register_passes(t, y, self.max_passes, true)
+            .map_err(|e| SimError::Input(format!("the inputs cannot change at t = {t} s: {e}")))?;
         self.inputs = *inputs;
         if let Some(table) = table {
             self.table = table;
@@ -510,12 +605,25 @@ impl Model for KinematicModel {
         None
     }
 
+    /// Registers the passes reached by (t, y) if they are within the budget; otherwise they stay
+    /// pending (registered by the next call that can, or refused by [`Model::catch_up`]).
     fn update_mode(&mut self, t: f64, y: &[f64]) {
-        self.catch_up(t, y);
+        let _ = self.register_passes(t, y, self.max_passes, true);
+    }
+
+    /// The budget of spall passes is [`Model::catch_up`]'s, which the simulation calls before
+    /// any output; if more passes were still due here, the pedestal's z outputs (which the passes
+    /// drive) would be NaN rather than wrong.
+    fn catch_up(&mut self, t: f64, y: &[f64], budget: u64) -> Result<u64, String> {
+        self.register_passes(t, y, budget, true)
+    }
+
+    fn check_catch_up(&mut self, t: f64, y: &[f64], budget: u64) -> Result<(), String> {
+        self.register_passes(t, y, budget, false).map(|_| ())
     }
 
     fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
-        self.catch_up(t, y);
+        let caught_up = self.register_passes(t, y, self.max_passes, true).is_ok();
         static_outputs(
             &self.table,
             &self.bearing,
@@ -524,7 +632,11 @@ impl Model for KinematicModel {
             y[CAGE],
             o,
         );
-        let (x, v, a) = self.response(t);
+        let (x, v, a) = if caught_up {
+            self.response(t)
+        } else {
+            (f64::NAN, f64::NAN, f64::NAN)
+        };
         o[out::PEDESTAL_Z] += x;
         o[out::PEDESTAL_V_Z] = v;
         o[out::PEDESTAL_A_Z] = a;
@@ -562,13 +674,22 @@ impl Model for KinematicModel {
             s.extend_from_slice(&[acc.0, acc.1, acc.2]);
         }
         s.push(t[4]);
+        // The output memo, so that a restored run's outputs keep their bits (its spacing is NaN
+        // until known: stored as 0, which no spacing is).
+        let m = &self.memo;
+        let h = if m.h.is_nan() { 0.0 } else { m.h };
+        s.extend_from_slice(&[f64::from(u8::from(m.valid)), m.t, h, f64::from(m.reuses)]);
+        for k in 0..2 {
+            s.extend_from_slice(&[m.f[k].0, m.f[k].1, m.c[k].0, m.c[k].1]);
+        }
         s
     }
 
     fn set_discrete_state(&mut self, s: &[f64]) -> Result<(), String> {
-        if !(14..=15).contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
+        // 14 or 15 values from snapshots taken before the cage speed and the memo were kept.
+        if ![14, 15, 27].contains(&s.len()) || s.iter().any(|v| !v.is_finite()) {
             return Err(format!(
-                "kinematic model state has 15 finite values, got {}",
+                "kinematic model state has 27 finite values, got {}",
                 s.len()
             ));
         }
@@ -585,6 +706,67 @@ impl Model for KinematicModel {
         }
         self.refresh_thresholds();
         self.memo.valid = false;
+        if let Some(m) = s.get(15..27) {
+            self.memo = Memo {
+                valid: m[0] != 0.0,
+                t: m[1],
+                h: if m[2] == 0.0 { f64::NAN } else { m[2] },
+                reuses: m[3] as u32,
+                f: [(m[4], m[5]), (m[8], m[9])],
+                c: [(m[6], m[7]), (m[10], m[11])],
+            };
+        }
+        Ok(())
+    }
+
+    /// The registered passes, the modal amplitudes and the output memo (the L1 table changes
+    /// only with the inputs, between advances).
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        b.clear();
+        b.extend_from_slice(&[
+            self.next_entry as f64,
+            self.next_exit as f64,
+            self.dip,
+            self.t_ref,
+            self.entry_thr,
+            self.exit_thr,
+        ]);
+        for a in &self.acc {
+            b.extend_from_slice(&[a.0, a.1, a.2]);
+        }
+        let m = &self.memo;
+        b.extend_from_slice(&[f64::from(u8::from(m.valid)), m.t, m.h, f64::from(m.reuses)]);
+        for k in 0..2 {
+            b.extend_from_slice(&[m.f[k].0, m.f[k].1, m.c[k].0, m.c[k].1]);
+        }
+    }
+
+    fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        if b.len() != 24 {
+            return Err(format!(
+                "kinematic checkpoint has 24 values, got {}",
+                b.len()
+            ));
+        }
+        self.next_entry = b[0] as i64;
+        self.next_exit = b[1] as i64;
+        self.dip = b[2];
+        self.t_ref = b[3];
+        self.entry_thr = b[4];
+        self.exit_thr = b[5];
+        for (k, a) in self.acc.iter_mut().enumerate() {
+            *a = (b[6 + 3 * k], b[7 + 3 * k], b[8 + 3 * k]);
+        }
+        let m = &mut self.memo;
+        m.valid = b[12] != 0.0;
+        m.t = b[13];
+        m.h = b[14];
+        m.reuses = b[15] as u32;
+        for k in 0..2 {
+            let i = 16 + 4 * k;
+            m.f[k] = (b[i], b[i + 1]);
+            m.c[k] = (b[i + 2], b[i + 3]);
+        }
         Ok(())
     }
 

@@ -604,6 +604,38 @@ impl Model for LumpedModel {
         }
     }
 
+    fn state_name(&self, i: usize) -> String {
+        match i {
+            X | Y | Z => format!("inner-ring displacement along {}", ["x", "y", "z"][i - X]),
+            VX | VY | VZ => format!("inner-ring velocity along {}", ["x", "y", "z"][i - VX]),
+            YP => "pedestal displacement along y".into(),
+            ZP => "pedestal displacement along z".into(),
+            VYP => "pedestal velocity along y".into(),
+            VZP => "pedestal velocity along z".into(),
+            CAGE => "cage angle θ_c".into(),
+            SHAFT => "shaft angle φ".into(),
+            ZR => "resonator displacement along z".into(),
+            VZR => "resonator velocity along z".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
+    /// Whether any ball still carries load (a positive force under the clamped contact law).
+    fn diagnose(&mut self, t: f64, y: &[f64]) -> Option<String> {
+        let mut carrying = 0;
+        self.approaches(t, y, |_, a| {
+            if a.delta > 0.0 && a.q_raw > 0.0 {
+                carrying += 1;
+            }
+        });
+        (carrying == 0).then(|| {
+            format!(
+                "contact is lost at every ball (none of the {} balls presses on both races)",
+                self.z
+            )
+        })
+    }
+
     fn nominal(&self, out: &mut [f64]) {
         // Deflection-scale displacements 1e-5 m, vibration velocities 1e-2 m/s, angles 1 rad.
         for (i, v) in out.iter_mut().enumerate() {
@@ -833,6 +865,60 @@ impl Model for LumpedModel {
             fy: s[3],
             fz: s[4],
         };
+        Ok(())
+    }
+
+    /// The L1 operating point (moved at the start of an advance in motion coupling) and the
+    /// frozen modes: contact per ball, spall zone per ball, pending event flips.
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        let i = &self.l1_inputs;
+        b.clear();
+        b.extend_from_slice(&[self.cage_ratio, i.shaft_speed, i.fx, i.fy, i.fz]);
+        b.extend_from_slice(&self.ring_offset);
+        b.push(f64::from(u8::from(self.modes_set)));
+        let flag = |on: bool| f64::from(u8::from(on));
+        b.extend(self.in_contact.iter().map(|&c| flag(c)));
+        b.extend(self.fired.iter().map(|&f| flag(f)));
+        b.extend(self.zones.iter().map(|z| match z {
+            Zone::Outside => 0.0,
+            Zone::FirstHalf => 1.0,
+            Zone::SecondHalf => 2.0,
+        }));
+    }
+
+    fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        let z = self.z;
+        if b.len() != 9 + 3 * z {
+            return Err(format!(
+                "lumped checkpoint has {} values, got {}",
+                9 + 3 * z,
+                b.len()
+            ));
+        }
+        self.cage_ratio = b[0];
+        self.l1_inputs = Inputs {
+            shaft_speed: b[1],
+            fx: b[2],
+            fy: b[3],
+            fz: b[4],
+        };
+        self.ring_offset.copy_from_slice(&b[5..8]);
+        self.modes_set = b[8] != 0.0;
+        let (contact, rest) = b[9..].split_at(z);
+        let (fired, zones) = rest.split_at(z);
+        for (m, &v) in self.in_contact.iter_mut().zip(contact) {
+            *m = v != 0.0;
+        }
+        for (f, &v) in self.fired.iter_mut().zip(fired) {
+            *f = v != 0.0;
+        }
+        for (zone, &v) in self.zones.iter_mut().zip(zones) {
+            *zone = match v as u8 {
+                1 => Zone::FirstHalf,
+                2 => Zone::SecondHalf,
+                _ => Zone::Outside,
+            };
+        }
         Ok(())
     }
 

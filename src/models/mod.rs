@@ -162,6 +162,19 @@ pub trait Model: Send {
     /// Nominal magnitude of each state: the absolute tolerance is `rtol × nominal`.
     fn nominal(&self, out: &mut [f64]);
 
+    /// What state `i` is, for failure messages: e.g. "ball 3 orbital rate θ̇" or "pedestal
+    /// velocity along z" (balls counted from 1, as in the outputs). Default: its index.
+    fn state_name(&self, i: usize) -> String {
+        format!("state component {i}")
+    }
+
+    /// Facts the model can tell about the state (t, y) at which an advance failed, for the
+    /// message: e.g. that contact is lost at every ball. `None`: nothing to add. Called only on
+    /// a failure (it may allocate and disturb caches: the simulation rolls back afterwards).
+    fn diagnose(&mut self, _t: f64, _y: &[f64]) -> Option<String> {
+        None
+    }
+
     /// The initial state at t = 0 (from L1 equilibrium, spec §7).
     fn initial_state(&self, y: &mut [f64]);
 
@@ -204,6 +217,22 @@ pub trait Model: Send {
     /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.
     fn event_fired(&mut self, _index: usize) {}
 
+    /// Does now the work that the outputs at (t, y) would do lazily (the kinematic level
+    /// registers the spall passes reached by then), at most `budget` units (one unit a spall
+    /// pass): returns the units used. Needing more is an error naming the cause and the numbers,
+    /// with nothing done. The simulation calls it before every output it takes in an advance,
+    /// and at the advance's end, charging it to the advance's step budget (`solver.max_steps`),
+    /// so that no call does unbounded work. Default: nothing to do.
+    fn catch_up(&mut self, _t: f64, _y: &[f64], _budget: u64) -> Result<u64, String> {
+        Ok(0)
+    }
+
+    /// [`Model::catch_up`]'s check alone (to within one unit): the work fits in `budget`, or the
+    /// same error; nothing is done. Default: nothing to do.
+    fn check_catch_up(&mut self, _t: f64, _y: &[f64], _budget: u64) -> Result<(), String> {
+        Ok(())
+    }
+
     /// Fills the output vector (layout of [`crate::simulation::output_table`]). `out` is either
     /// the whole vector or its first [`crate::simulation::out::BEARING_OUTPUTS`] entries (the
     /// bearing-level outputs, without the per-ball block): then the per-ball quantities are
@@ -217,6 +246,26 @@ pub trait Model: Send {
 
     /// Restores what [`Model::discrete_state`] returned.
     fn set_discrete_state(&mut self, _s: &[f64]) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Writes into `buf` (cleared first) everything an advance can change in the model besides
+    /// the state vector (operating point, frozen modes, what the outputs remember), so that
+    /// [`Model::rollback`] puts the model back bit for bit: a failed communication step leaves
+    /// no trace. The simulation calls it at the start of every advance, so it must not allocate
+    /// once `buf` has its size. The default stores [`Model::discrete_state`] (which allocates,
+    /// and whose restore re-derives the modes); the levels of the ladder override both.
+    fn checkpoint(&self, buf: &mut Vec<f64>) {
+        buf.clear();
+        buf.extend_from_slice(&self.discrete_state());
+    }
+
+    /// Puts back what [`Model::checkpoint`] wrote on this model, at time `t` and state `y` (the
+    /// integrator's, rolled back too). The default restores the discrete state and re-derives
+    /// the modes. An error means the model could not be put back (the simulation reports it).
+    fn rollback(&mut self, buf: &[f64], t: f64, y: &[f64]) -> Result<(), String> {
+        self.set_discrete_state(buf)?;
+        self.update_mode(t, y);
         Ok(())
     }
 

@@ -301,6 +301,14 @@ impl Model for QuasiStaticModel {
         out.iter_mut().for_each(|v| *v = 1.0);
     }
 
+    fn state_name(&self, i: usize) -> String {
+        match i {
+            CAGE => "cage angle θ_c".into(),
+            SHAFT => "shaft angle φ".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
     fn initial_state(&self, y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
@@ -346,6 +354,15 @@ impl Model for QuasiStaticModel {
             ));
         }
         self.table.restore(&self.bearing, s)
+    }
+
+    /// Nothing: the L1 table changes only with the inputs, between advances.
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        b.clear();
+    }
+
+    fn rollback(&mut self, _b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        Ok(())
     }
 
     fn cage_speed(&self) -> f64 {

@@ -517,6 +517,19 @@ impl Model for ReducedModel {
         self.lay.dim()
     }
 
+    fn state_name(&self, i: usize) -> String {
+        use super::full::layout::{ball_state_name, pedestal_state_name, ring_state_name};
+        let (lay, ring, pedestal) = (self.lay, self.lay.ring(), self.lay.pedestal());
+        match i {
+            _ if i < ring => ball_state_name(i / PER_BALL, i % PER_BALL, &["spin rate ω_s"]),
+            _ if i < pedestal => ring_state_name(i - ring),
+            _ if i < lay.psi() => pedestal_state_name(i - pedestal),
+            _ if i == lay.psi() => "reference cage angle ψ".into(),
+            _ if i == lay.phi() => "shaft angle φ".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
     fn nominal(&self, out: &mut [f64]) {
         // As the full model: deflection-scale positions 1e-5 m, velocities 1e-2 m/s, angle
         // deviations 1e-3 rad, orbital rates 100 rad/s, spins 1e3 rad/s.

@@ -38,6 +38,26 @@ pub fn error_norm(
     }
 }
 
+/// The component with the largest weighted error |err5_i| / sc_i (`sc_i` as in [`error_norm`])
+/// and that ratio: where an attempt's error estimate is largest.
+pub fn largest_weighted_error(
+    y0: &[f64],
+    y1: &[f64],
+    atol: &[f64],
+    rtol: &[f64],
+    err5: &[f64],
+) -> (usize, f64) {
+    let mut best = (0, f64::NEG_INFINITY);
+    for i in 0..y0.len() {
+        let sc = (atol[i] + rtol[i] * y0[i].abs().max(y1[i].abs())).max(f64::MIN_POSITIVE);
+        let r = (err5[i] / sc).abs();
+        if r > best.1 {
+            best = (i, r);
+        }
+    }
+    best
+}
+
 /// Controller memory and decisions.
 #[derive(Clone, Copy, Debug)]
 pub struct Controller {

@@ -1,8 +1,8 @@
 //! The generic tableau-driven stepping engine.
 
-use super::controller::{error_norm, initial_step, Controller};
+use super::controller::{error_norm, initial_step, largest_weighted_error, Controller};
 use super::dense::{DenseOutput, StepView};
-use super::error::SolverError;
+use super::error::{SolverError, StepLimit};
 use super::options::{broadcast, check_atol, check_rtol_scale, Options};
 use super::state::{IntegratorState, Stats};
 use super::system::System;
@@ -53,6 +53,46 @@ pub struct Integrator {
     /// Sample spacing of an observer that interpolates only at multiples of it
     /// ([`Integrator::set_sample_grid`]).
     pub(super) sample_grid: Option<f64>,
+}
+
+/// The integrator's state at one time (time, state, proposed step, FSAL stage, controller and
+/// event memory, work counters), in buffers that [`Integrator::checkpoint`] reuses: for putting
+/// the integrator back exactly where it was ([`Integrator::rollback`]) without allocating, e.g.
+/// when a communication step fails and has to leave no trace. Unlike [`IntegratorState`] it is
+/// not serializable.
+#[derive(Clone, Debug, Default)]
+pub struct Checkpoint {
+    t: f64,
+    y: Vec<f64>,
+    h_next: f64,
+    fsal: Vec<f64>,
+    fsal_valid: bool,
+    ctrl: Controller,
+    event_mask: Vec<bool>,
+    stats: Stats,
+}
+
+impl Checkpoint {
+    /// An empty checkpoint with room for a state of dimension `dim` and `n_events` event
+    /// functions: taking one then never allocates (the default one grows on first use).
+    pub fn with_capacity(dim: usize, n_events: usize) -> Self {
+        Self {
+            y: Vec::with_capacity(dim),
+            fsal: Vec::with_capacity(dim),
+            event_mask: Vec::with_capacity(n_events),
+            ..Self::default()
+        }
+    }
+
+    /// The time it was taken at.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// The work counters at that time.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
 }
 
 /// Index of the first non-finite entry.
@@ -334,6 +374,45 @@ impl Integrator {
         }
     }
 
+    /// Copies the state into `c` (no allocation once `c` has held a state of this dimension).
+    pub fn checkpoint(&self, c: &mut Checkpoint) {
+        c.t = self.t;
+        c.y.clear();
+        c.y.extend_from_slice(&self.y);
+        c.h_next = self.h_next;
+        c.fsal_valid = self.fsal_valid;
+        // Room for the FSAL stage even when it is not valid now, so that a later checkpoint
+        // holding it does not allocate.
+        c.fsal.clear();
+        c.fsal.reserve(self.n);
+        if self.fsal_valid {
+            c.fsal.extend_from_slice(&self.k[..self.n]);
+        }
+        c.ctrl = self.ctrl;
+        c.event_mask.clear();
+        c.event_mask.extend_from_slice(&self.event_mask);
+        c.stats = self.stats;
+    }
+
+    /// Puts the state back to `c` (taken from this integrator): the next step is the one that
+    /// would have followed the checkpoint, and the work counters are those of the checkpoint
+    /// (read [`Integrator::stats`] before to know the work done since). The options stay as
+    /// they are. No allocation.
+    pub fn rollback(&mut self, c: &Checkpoint) {
+        debug_assert_eq!(c.y.len(), self.n, "a checkpoint of another integrator");
+        self.t = c.t;
+        self.y.copy_from_slice(&c.y);
+        self.h_next = c.h_next;
+        self.fsal_valid = c.fsal_valid;
+        if c.fsal_valid {
+            self.k[..self.n].copy_from_slice(&c.fsal);
+        }
+        self.ctrl = c.ctrl;
+        self.event_mask.clear();
+        self.event_mask.extend_from_slice(&c.event_mask);
+        self.stats = c.stats;
+    }
+
     /// Restore a snapshot (same method and dimension; the options stay those of `self`).
     pub fn restore(&mut self, s: &IntegratorState) -> Result<(), SolverError> {
         if s.method != self.opts.method {
@@ -429,6 +508,7 @@ impl Integrator {
                 return Err(SolverError::NonFinite {
                     t: self.t,
                     component: i,
+                    derivative: true,
                 });
             }
             self.fsal_valid = true;
@@ -479,6 +559,31 @@ impl Integrator {
         if !tab.fsal {
             combine(&self.y, h, tab.b, &self.k, &mut self.y_new);
         }
+    }
+
+    /// What limited the attempt of size `h` just rejected with error norm `err` (its stages,
+    /// trial state and error vector are still in the buffers): the first stage whose derivative
+    /// is non-finite, else a non-finite trial state, else the largest weighted error component.
+    /// Only on the failure path.
+    fn step_limit(&self, h: f64, err: f64) -> StepLimit {
+        let n = self.n;
+        if !err.is_finite() {
+            // Slot 0 is f(t, y), finite (checked when computed).
+            for s in 1..self.tab.stages {
+                if let Some(i) = first_non_finite(&self.k[s * n..(s + 1) * n]) {
+                    return StepLimit::NonFiniteDerivative {
+                        component: i,
+                        t: self.t + self.tab.c[s] * h,
+                    };
+                }
+            }
+            if let Some(i) = first_non_finite(&self.y_new) {
+                return StepLimit::NonFiniteState { component: i };
+            }
+        }
+        let (component, ratio) =
+            largest_weighted_error(&self.y, &self.y_new, &self.atol, &self.rtol, &self.err5);
+        StepLimit::Error { component, ratio }
     }
 
     /// Error norm of the step just computed.
@@ -577,7 +682,12 @@ impl Integrator {
             let h = if last { dist } else { h_prop };
             let t_new = if last { t_end } else { self.t + h };
             if t_new == self.t {
-                return Err(SolverError::StepSizeUnderflow { t: self.t, h });
+                return Err(SolverError::StepSizeUnderflow {
+                    t: self.t,
+                    h,
+                    h_min: self.h_floor(),
+                    limit: StepLimit::Unknown,
+                });
             }
             sys.begin_step();
             self.stages(sys, h, t_new);
@@ -587,6 +697,7 @@ impl Integrator {
                     return Err(SolverError::NonFinite {
                         t: self.t,
                         component: i,
+                        derivative: false,
                     });
                 }
             } else {
@@ -602,6 +713,8 @@ impl Integrator {
                         return Err(SolverError::StepSizeUnderflow {
                             t: self.t,
                             h: h_new,
+                            h_min: self.h_floor(),
+                            limit: self.step_limit(h, err),
                         });
                     }
                     self.h_next = h_new;

@@ -30,8 +30,8 @@ pub mod system;
 pub mod tableau;
 
 pub use dense::{grid_points, StepView};
-pub use error::SolverError;
-pub use integrator::{AdvanceOutcome, Integrator};
+pub use error::{SolverError, StepLimit};
+pub use integrator::{AdvanceOutcome, Checkpoint, Integrator};
 pub use method::Method;
 pub use options::Options;
 pub use state::{IntegratorState, Stats};

@@ -380,19 +380,23 @@ def probe_forced_failure(ctx):
     st = 0
     n_ok = 0
     for k in range(100):
+        before = ctx.outputs(s)
         st = status_of(s.doStep, t, 1e-3)
         if st != 0:
             break
         n_ok += 1
         t = (k + 1) * 1e-3
     msg = last_message()
+    level = MESSAGES[-1][0] if MESSAGES else -1
     terminated = s.getBooleanStatus(fmi2Terminated)
     last = s.getRealStatus(fmi2LastSuccessfulTime)
+    after = ctx.outputs(s)
     st_next = status_of(s.doStep, t, 1e-3)
     finite = all(math.isfinite(x) for x in s.getReal(ctx.real_outputs))
     s.terminate()
-    return {"status": st, "message": msg, "terminated": bool(terminated), "last": last,
-            "t_before": t, "steps_ok": n_ok, "next": st_next, "finite": finite}
+    return {"status": st, "message": msg, "logged_status": level, "terminated": bool(terminated),
+            "last": last, "t_before": t, "steps_ok": n_ok, "next": st_next, "finite": finite,
+            "same_outputs": after == before}
 
 
 def probe_step_invariance(ctx, t_end=0.02):

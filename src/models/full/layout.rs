@@ -70,3 +70,45 @@ impl Layout {
         PER_BALL * self.z + 16
     }
 }
+
+/// Name of the state at `offset` in ball j's block (j from 0; counted from 1 in the name, as in
+/// the outputs), for failure messages: the offsets `BX` … `BW` of this layout, then the full
+/// model's ω_x, ω_y, ω_z, or `spin` for a model with one spin rate there.
+pub fn ball_state_name(j: usize, offset: usize, spin: &[&str]) -> String {
+    let what = match offset {
+        BX => "axial position x",
+        BR => "radial position r (from the pitch circle)",
+        BTH => "orbital angle θ (from its place in the cage)",
+        BVX => "axial velocity ẋ",
+        BVR => "radial velocity ṙ",
+        BW => "orbital rate θ̇",
+        k => spin.get(k - BOM).copied().unwrap_or("state"),
+    };
+    format!("ball {} {what}", j + 1)
+}
+
+/// Name of the state at `offset` in the inner-ring block (`RX`, `RV` and, in the full model,
+/// the tilt `RBY` … `RWZ`).
+pub fn ring_state_name(offset: usize) -> String {
+    let axis = ["x", "y", "z"];
+    match offset {
+        0..=2 => format!("inner-ring displacement along {}", axis[offset - RX]),
+        3..=5 => format!("inner-ring velocity along {}", axis[offset - RV]),
+        RBY => "inner-ring tilt β_y".into(),
+        RBZ => "inner-ring tilt β_z".into(),
+        RWY => "inner-ring tilt rate β̇_y".into(),
+        RWZ => "inner-ring tilt rate β̇_z".into(),
+        k => format!("inner-ring state {k}"),
+    }
+}
+
+/// Name of the state at `offset` in the pedestal block.
+pub fn pedestal_state_name(offset: usize) -> String {
+    match offset {
+        PY => "pedestal displacement along y".into(),
+        PZ => "pedestal displacement along z".into(),
+        PVY => "pedestal velocity along y".into(),
+        PVZ => "pedestal velocity along z".into(),
+        k => format!("pedestal state {k}"),
+    }
+}

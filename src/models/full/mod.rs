@@ -508,6 +508,18 @@ impl Model for FullModel {
         self.lay.dim()
     }
 
+    fn state_name(&self, i: usize) -> String {
+        let (lay, ring, pedestal) = (self.lay, self.lay.ring(), self.lay.pedestal());
+        match i {
+            _ if i < ring => ball_state_name(i / PER_BALL, i % PER_BALL, &["ω_x", "ω_y", "ω_z"]),
+            _ if i < pedestal => ring_state_name(i - ring),
+            _ if i < lay.psi() => pedestal_state_name(i - pedestal),
+            _ if i == lay.psi() => "reference cage angle ψ".into(),
+            _ if i == lay.phi() => "shaft angle φ".into(),
+            _ => format!("state component {i}"),
+        }
+    }
+
     fn nominal(&self, out: &mut [f64]) {
         // Deflection-scale positions 1e-5 m, velocities 1e-2 m/s, angle deviations 1e-3 rad
         // (atol 1e-9 rad at rtol 1e-6), orbital rates 100 rad/s, spins 1e3 rad/s, tilts 1e-3.

@@ -143,6 +143,59 @@ impl Switches {
             .filter(|&t| t > t_old && t < t_new)
     }
 
+    /// Appends the frozen modes and the switch memory to `b` (a model's
+    /// [`crate::models::Model::checkpoint`]); [`Switches::CHECKPOINT_PER_BALL`] values per ball
+    /// and 4 more. No allocation once `b` has its size.
+    pub fn checkpoint(&self, b: &mut Vec<f64>) {
+        let flag = |on: bool| f64::from(u8::from(on));
+        let (has, t, e) = self.suspect.map_or((0.0, 0.0, 0.0), |(t, e)| (1.0, t, e));
+        b.extend_from_slice(&[flag(self.modes_set), has, t, e]);
+        b.extend_from_slice(&self.sides);
+        b.extend(self.sides_changed.iter().map(|&v| flag(v)));
+        b.extend(self.in_blend.iter().map(|&v| flag(v)));
+        b.extend(self.closed.iter().flat_map(|c| [flag(c[0]), flag(c[1])]));
+        b.extend(self.fired.iter().map(|&v| flag(v)));
+        b.extend_from_slice(&self.flipped_at);
+    }
+
+    /// Values per ball in [`Switches::checkpoint`] (sides, their changes, blends, two contacts,
+    /// and five events' flags and flip times).
+    pub const CHECKPOINT_PER_BALL: usize = 15;
+
+    /// Puts back what [`Switches::checkpoint`] wrote (exactly `4 + 15 z` values).
+    pub fn rollback(&mut self, b: &[f64]) -> Result<(), String> {
+        let z = self.z;
+        if b.len() != 4 + Self::CHECKPOINT_PER_BALL * z {
+            return Err(format!(
+                "mode checkpoint has {} values, got {}",
+                4 + Self::CHECKPOINT_PER_BALL * z,
+                b.len()
+            ));
+        }
+        self.modes_set = b[0] != 0.0;
+        self.suspect = (b[1] != 0.0).then_some((b[2], b[3]));
+        let (sides, b) = b[4..].split_at(z);
+        let (changed, b) = b.split_at(z);
+        let (blend, b) = b.split_at(z);
+        let (closed, b) = b.split_at(2 * z);
+        let (fired, flipped) = b.split_at(5 * z);
+        self.sides.copy_from_slice(sides);
+        for (v, &x) in self.sides_changed.iter_mut().zip(changed) {
+            *v = x != 0.0;
+        }
+        for (v, &x) in self.in_blend.iter_mut().zip(blend) {
+            *v = x != 0.0;
+        }
+        for (c, x) in self.closed.iter_mut().zip(closed.chunks_exact(2)) {
+            *c = [x[0] != 0.0, x[1] != 0.0];
+        }
+        for (v, &x) in self.fired.iter_mut().zip(fired) {
+            *v = x != 0.0;
+        }
+        self.flipped_at.copy_from_slice(flipped);
+        Ok(())
+    }
+
     /// Event `index` fired at the located time.
     pub fn event_fired(&mut self, index: usize) {
         if let Some(f) = self.fired.get_mut(index) {
@@ -374,6 +427,35 @@ macro_rules! switched_model_events {
 
         fn event_fired(&mut self, index: usize) {
             self.sw.event_fired(index);
+        }
+
+        /// Whether any ball still carries load: both its contacts with a positive force under
+        /// the clamped law (the contact event functions positive).
+        fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
+            use $crate::models::full::switches::SwitchedModel;
+            let (inner, outer) = self.ring_poses(y);
+            let carrying = (0..self.z)
+                .filter(|&j| {
+                    let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+                    gi > 0.0 && go > 0.0
+                })
+                .count();
+            (carrying == 0).then(|| {
+                format!(
+                    "contact is lost at every ball (none of the {} balls presses on both races)",
+                    self.z
+                )
+            })
+        }
+
+        /// The frozen modes and their switch memory (nothing else changes in an advance).
+        fn checkpoint(&self, b: &mut Vec<f64>) {
+            b.clear();
+            self.sw.checkpoint(b);
+        }
+
+        fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+            self.sw.rollback(b)
         }
 
         fn n_events(&self) -> usize {

@@ -1,0 +1,30 @@
+//! A communication step does not allocate in the steady state, at every level: the checkpoint
+//! an advance takes (so that a failure leaves no trace) reuses its buffers, and so does reading
+//! the outputs. A counting global allocator watches 0.1 ms advances after a first one.
+
+use raceway::scene::{Fidelity, Scene};
+use raceway::simulation::Simulation;
+#[path = "common/alloc_counter.rs"]
+mod alloc_counter;
+use alloc_counter::allocations_during;
+
+#[test]
+fn advances_and_outputs_do_not_allocate() {
+    for level in (0..=4).filter_map(Fidelity::from_code) {
+        let mut s = Scene::default_scene();
+        s.fidelity = level;
+        let mut sim = Simulation::new(&s).unwrap();
+        let mut o = vec![0.0; sim.output_table().len()];
+        let h = 1e-4;
+        sim.advance(h).unwrap();
+        sim.outputs(&mut o);
+        // 2 ms: spall passes, stops and events on the way at the dynamic levels.
+        let (n, ()) = allocations_during(|| {
+            for k in 2..=20 {
+                sim.advance(k as f64 * h).unwrap();
+                sim.outputs(&mut o);
+            }
+        });
+        assert_eq!(n, 0, "{}: {n} allocations in 19 advances", level.name());
+    }
+}
