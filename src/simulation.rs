@@ -8,6 +8,7 @@
 
 use crate::config::ConfigError;
 use crate::geometry::Bearing;
+use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 use crate::scene::{CouplingMode, MethodName, Scene};
@@ -338,6 +339,102 @@ pub struct Simulation {
     /// Where the current (or last) advance started: put back when it fails
     /// ([`Simulation::undo_advance`]); buffers reused from advance to advance.
     start: Start,
+    /// The plausibility limits of the loads and contacts, and the warnings not yet taken.
+    limits: Limits,
+}
+
+/// The plausibility limits ([`crate::limits`]) a simulation applies: a load beyond the static
+/// load rating or a contact beyond its pressure is a warning (given once each); a contact
+/// beyond [`MAX_CONTACT_PRESSURE`] is an error naming what caused it.
+struct Limits {
+    rating: StaticRating,
+    warned_rating: bool,
+    warned_pressure: bool,
+    warnings: Vec<String>,
+}
+
+impl Limits {
+    /// Checks the loads of `inputs` against the static load rating: beyond it a warning
+    /// (once); beyond (MAX_CONTACT_PRESSURE / RATING_PRESSURE)³ C0, the static equivalent load
+    /// at which ISO 76's load distribution puts the most loaded contact at the pressure limit
+    /// (Hertz pressure grows as the cube root of the load), an error naming the loads. A
+    /// located ring's axial reaction is not known here: only its radial load counts.
+    fn loads(&mut self, inputs: &Inputs, located: bool) -> Result<(), SimError> {
+        let fa = if located { 0.0 } else { inputs.fx };
+        let p0 = self.rating.equivalent_load(fa, inputs.fy.hypot(inputs.fz));
+        let limit = (MAX_CONTACT_PRESSURE / RATING_PRESSURE).powi(3) * self.rating.c0;
+        if p0 > limit {
+            return Err(SimError::Input(format!(
+                "the loads ({}, {}, {}) N are beyond what the bearing carries: their static \
+                 equivalent load P0 = {p0:.0} N is {:.1} times its basic static load rating C0 = \
+                 {:.0} N (ISO 76), where the most loaded contact would pass the {:.1} GPa the \
+                 model accepts ({limit:.0} N)",
+                inputs.fx,
+                inputs.fy,
+                inputs.fz,
+                p0 / self.rating.c0,
+                self.rating.c0,
+                MAX_CONTACT_PRESSURE * 1e-9
+            )));
+        }
+        if p0 > self.rating.c0 && !self.warned_rating {
+            self.warned_rating = true;
+            self.warnings.push(format!(
+                "the static equivalent load P0 = {p0:.0} N of the loads ({}, {}, {}) N exceeds the \
+                 bearing's basic static load rating C0 = {:.0} N (ISO 76, static safety factor \
+                 {:.2}): the raceways deform permanently",
+                inputs.fx,
+                inputs.fy,
+                inputs.fz,
+                self.rating.c0,
+                self.rating.c0 / p0
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks the contact forces `q_inner`, `q_outer` (per ball) at time `t`: beyond
+    /// [`MAX_CONTACT_PRESSURE`] an error naming `cause()`, beyond [`RATING_PRESSURE`] a warning
+    /// (once). Non-finite forces are left to the callers' checks of the outputs.
+    fn contacts(
+        &mut self,
+        b: &Bearing,
+        q_inner: &[f64],
+        q_outer: &[f64],
+        t: f64,
+        cause: impl Fn() -> String,
+    ) -> Result<(), SimError> {
+        let (p, j, race, q) = peak_contact(b, q_inner, q_outer);
+        if p > MAX_CONTACT_PRESSURE {
+            return Err(SimError::Input(format!(
+                "{} puts ball {}'s {} contact at {q:.0} N, a peak Hertz pressure of {:.2} GPa at \
+                 t = {t:.9} s, beyond the {:.1} GPa the model accepts: hardened bearing steel \
+                 deforms grossly there and the elastic contact no longer holds (the static load \
+                 rating C0 = {:.0} N corresponds to {:.1} GPa)",
+                cause(),
+                j + 1,
+                race.name(),
+                p * 1e-9,
+                MAX_CONTACT_PRESSURE * 1e-9,
+                self.rating.c0,
+                RATING_PRESSURE * 1e-9
+            )));
+        }
+        if p > RATING_PRESSURE && !self.warned_pressure {
+            self.warned_pressure = true;
+            self.warnings.push(format!(
+                "{} puts ball {}'s {} contact at {q:.0} N, a peak Hertz pressure of {:.2} GPa at \
+                 t = {t:.9} s, beyond the {:.1} GPa of the static load rating (ISO 76): the raceways \
+                 deform permanently",
+                cause(),
+                j + 1,
+                race.name(),
+                p * 1e-9,
+                RATING_PRESSURE * 1e-9
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// The simulation at the start of an advance: what an advance can change.
@@ -423,8 +520,20 @@ impl Simulation {
     pub fn new(scene: &Scene) -> Result<Self, SimError> {
         scene.validate()?;
         let bearing = Bearing::new(&scene.bearing)?;
+        // The loads against the static load rating first (a load the bearing cannot carry is
+        // refused before any model is built on it).
+        let mut limits = Limits {
+            rating: StaticRating::of(&bearing),
+            warned_rating: false,
+            warned_pressure: false,
+            warnings: Vec::new(),
+        };
         let inputs = Inputs::from_scene(scene);
         inputs.check()?;
+        if scene.coupling == CouplingMode::Force {
+            let located = scene.mounting.axial == crate::scene::AxialMount::Located;
+            limits.loads(&inputs, located)?;
+        }
         let mut model = crate::models::build(scene, &bearing, &inputs)?;
         let n = model.dim();
         let mut y0 = vec![0.0; n];
@@ -454,7 +563,13 @@ impl Simulation {
                 integrator: Checkpoint::with_capacity(n, n_events),
                 ..Start::default()
             },
+            limits,
         };
+        if scene.coupling == CouplingMode::Force {
+            sim.check_contacts(|| {
+                format!("the start's {}", crate::models::operating_point(&inputs))
+            })?;
+        }
         if scene.coupling == CouplingMode::Motion {
             // The journal starts where the loads of the scene put the ring (the L1 start,
             // spec §7), at rest.
@@ -468,6 +583,24 @@ impl Simulation {
             sim.set_journal(Journal { x, v: [0.0; 3] })?;
         }
         Ok(sim)
+    }
+
+    /// The plausibility of the contacts at the current state ([`crate::limits`]): an error
+    /// naming `cause()` beyond [`MAX_CONTACT_PRESSURE`], a warning (once) beyond the rating.
+    fn check_contacts(&mut self, cause: impl Fn() -> String) -> Result<(), SimError> {
+        let t = self.integrator.t();
+        let z = self.bearing.z;
+        self.model
+            .outputs(t, self.integrator.y(), &mut self.out_scratch);
+        let (qi, qo) = self.out_scratch[out::CONTACT_START..out::CONTACT_START + 2 * z].split_at(z);
+        self.limits.contacts(&self.bearing, qi, qo, t, cause)
+    }
+
+    /// The warnings since the last call (loads beyond the static load rating, contacts beyond
+    /// its pressure: each given once per simulation), for the caller to show: the FMU logs
+    /// them with status fmi2Warning, the CLI prints them.
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.limits.warnings)
     }
 
     /// The coupling mode of the scene.
@@ -491,6 +624,12 @@ impl Simulation {
         j.check()?;
         self.start.undoable = false;
         let t = self.integrator.t();
+        let cause = || {
+            format!(
+                "the journal at ({:e}, {:e}, {:e}) m",
+                j.x[0], j.x[1], j.x[2]
+            )
+        };
         if let Some(rs) = self.model.ring_states() {
             let n = self.model.dim();
             self.y_scratch[..n].copy_from_slice(self.integrator.y());
@@ -498,10 +637,21 @@ impl Simulation {
                 self.y_scratch[rs.pos[k]] = j.x[k];
                 self.y_scratch[rs.vel[k]] = j.v[k];
             }
+            // The contacts the prescribed ring would press, before it is taken.
+            let z = self.bearing.z;
+            self.model
+                .outputs(t, &self.y_scratch[..n], &mut self.out_scratch);
+            let (qi, qo) =
+                self.out_scratch[out::CONTACT_START..out::CONTACT_START + 2 * z].split_at(z);
+            self.limits.contacts(&self.bearing, qi, qo, t, cause)?;
             self.integrator.set_state(t, &self.y_scratch[..n]);
         } else if let Some(qs) = self.qs_motion.as_mut() {
             // L0/L1: the model runs at the load the displaced ring needs.
-            let load = qs.solve(self.inputs.shaft_speed, j.x)?.load;
+            let r = qs.solve(self.inputs.shaft_speed, j.x)?;
+            let qi: Vec<f64> = r.solution.balls.iter().map(|b| b.q_inner).collect();
+            let qo: Vec<f64> = r.solution.balls.iter().map(|b| b.q_outer).collect();
+            self.limits.contacts(&self.bearing, &qi, &qo, t, cause)?;
+            let load = r.load;
             let eff = Inputs {
                 fx: load[0],
                 fy: load[1],
@@ -646,6 +796,10 @@ impl Simulation {
             )));
         }
         self.start.undoable = false;
+        if self.scene.coupling == CouplingMode::Force {
+            let located = self.scene.mounting.axial == crate::scene::AxialMount::Located;
+            self.limits.loads(&inputs, located)?;
+        }
         let t = self.integrator.t();
         let (eff, applied) = self.effective_inputs(&inputs, t)?;
         self.model.set_inputs(&eff, t, self.integrator.y())?;
@@ -860,7 +1014,23 @@ impl Simulation {
             )));
         }
         self.checkpoint();
-        match self.advance_from_checkpoint(t_end, sampling) {
+        let checked = self
+            .advance_from_checkpoint(t_end, sampling)
+            .and_then(|()| {
+                let (inputs, journal) = (self.inputs, self.journal.at(t_end - self.journal_t));
+                let motion = self.scene.coupling == CouplingMode::Motion;
+                self.check_contacts(|| {
+                    if motion {
+                        format!(
+                            "the journal at ({:e}, {:e}, {:e}) m",
+                            journal[0], journal[1], journal[2]
+                        )
+                    } else {
+                        crate::models::operating_point(&inputs)
+                    }
+                })
+            });
+        match checked {
             Ok(()) => {
                 self.start.undoable = true;
                 Ok(())

@@ -851,3 +851,59 @@ fn the_reason_of_a_discard_is_logged_with_status_discard() {
         sh::free_instance::<BallBearing>(c);
     }
 }
+
+/// Plausibility warnings reach the importer with status fmi2Warning although logging is off,
+/// and the step that raised them returns fmi2Warning: a radial load of 30 kN on the Table-1
+/// bearing (beyond its static load rating, 29.3 kN) set during a run; an absurd one (1e9 N) is
+/// refused by the setter with fmi2Error naming it.
+#[test]
+fn loads_beyond_the_rating_warn_and_absurd_loads_are_refused() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, t) = ready_at(&h, &b, 2, 0, 2_000_000, 2, None);
+    unsafe {
+        let fz = vr(&b, "load.Fz");
+        let heavy = -30000.0;
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &heavy),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t, H_GOOD, 1),
+            Fmi2Status::Warning
+        );
+        let warnings: Vec<String> = h
+            .log
+            .lock()
+            .unwrap()
+            .iter()
+            .filter(|(s, _)| *s == Fmi2Status::Warning)
+            .map(|(_, m)| m.clone())
+            .collect();
+        assert!(
+            warnings.iter().any(|m| m.contains("static load rating C0")),
+            "{warnings:?}"
+        );
+        // Given once: the next step is Ok.
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t + H_GOOD, H_GOOD, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        let absurd = -1e9;
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &absurd),
+            Fmi2Status::Error
+        );
+        let (logged, message) = h.last_entry();
+        assert_eq!(logged, Fmi2Status::Error);
+        assert!(
+            message.contains("load.Fz") || message.contains("-1000000000"),
+            "{message}"
+        );
+        sh::free_instance::<BallBearing>(c);
+    }
+}

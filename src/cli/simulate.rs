@@ -89,6 +89,12 @@ pub fn run(args: Args) -> Result<(), String> {
     scene.validate().map_err(|e| e.to_string())?;
 
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
+    let warn = |sim: &mut Simulation| {
+        for w in sim.take_warnings() {
+            eprintln!("raceway: warning: {w}");
+        }
+    };
+    warn(&mut sim);
     let all: Vec<String> = sim.output_table().into_iter().map(|o| o.name).collect();
     let columns = select_columns(&all, args.columns.as_deref())?;
     // Only bearing-level columns: the samplers get (and the models compute) no per-ball block.
@@ -140,6 +146,7 @@ pub fn run(args: Args) -> Result<(), String> {
         if let Some(e) = write_err.take() {
             return Err(io(e));
         }
+        warn(&mut sim);
         if let Err(e) = result {
             bar.abandon();
             w.flush().map_err(io)?;

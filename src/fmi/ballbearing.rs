@@ -230,7 +230,14 @@ impl FmuModel for BallBearing {
 
     fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
         // Always rebuild: the provisional simulation may predate the last parameter change.
-        let live = self.build()?;
+        let mut live = self.build()?;
+        for w in live.sim.take_warnings() {
+            log.log(
+                super::bindings::Fmi2Status::Warning,
+                super::shell::LOG_STATUS_WARNING,
+                &format!("fmi2ExitInitializationMode: {w}"),
+            );
+        }
         if log.enabled(LOG_EVENTS) {
             log.log(
                 super::bindings::Fmi2Status::Ok,
@@ -316,12 +323,20 @@ impl FmuModel for BallBearing {
                 (Err(e), StepResult::Discard { message, .. } | StepResult::Error(message)) => {
                     StepResult::Error(format!("{message}; then {e}"))
                 }
-                (Err(e), StepResult::Ok) => StepResult::Error(e.to_string()),
+                (Err(e), StepResult::Ok | StepResult::Warning(_)) => {
+                    StepResult::Error(e.to_string())
+                }
             };
         }
         std::mem::swap(&mut self.outputs, &mut self.step_outputs);
         self.outputs_valid = true;
-        StepResult::Ok
+        // Plausibility warnings of this step and of the inputs set before it.
+        let warnings = live.sim.take_warnings();
+        if warnings.is_empty() {
+            StepResult::Ok
+        } else {
+            StepResult::Warning(warnings)
+        }
     }
 
     fn reset(&mut self) -> Result<(), String> {

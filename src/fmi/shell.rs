@@ -10,8 +10,8 @@
 //!   has no effect (the instance stays in its state). A failure of the model itself during
 //!   `fmi2ExitInitializationMode` or `fmi2DoStep` moves the instance to the Error state, from
 //!   which `fmi2Reset`, `fmi2SetFMUstate` and `fmi2FreeInstance` lead out.
-//! - Messages with status Discard, Error or Fatal are always passed to the logger; all others
-//!   only when `loggingOn` and their category are enabled.
+//! - Messages with status Warning, Discard, Error or Fatal are always passed to the logger; all
+//!   others only when `loggingOn` and their category are enabled.
 //! - A panic inside any entry point becomes `fmi2Fatal` (the instance is then only freeable).
 
 use super::bindings::*;
@@ -169,7 +169,10 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
         LOG_SOLVER,
         "Integrator work per communication step (steps, rejected steps, right-hand-side evaluations)",
     ),
-    (LOG_STATUS_WARNING, "Calls that return fmi2Warning"),
+    (
+        LOG_STATUS_WARNING,
+        "Calls that return fmi2Warning (always logged)",
+    ),
     (
         LOG_STATUS_DISCARD,
         "Calls that return fmi2Discard (always logged)",
@@ -210,10 +213,10 @@ impl Logger {
         all || Self::index(category).is_some_and(|i| self.enabled[i])
     }
 
-    /// Logs `message`. Discard, Error and Fatal always reach the logger; others only if their
-    /// category is enabled.
+    /// Logs `message`. Warning, Discard, Error and Fatal always reach the logger; others only
+    /// if their category is enabled.
     pub fn log(&self, status: Fmi2Status, category: &str, message: &str) {
-        if status < Fmi2Status::Discard && !self.enabled(category) {
+        if status < Fmi2Status::Warning && !self.enabled(category) {
             return;
         }
         self.emit(status, category, message);
@@ -261,6 +264,9 @@ pub struct InstantiateArgs {
 pub enum StepResult {
     /// The model is now exactly at the requested end time.
     Ok,
+    /// As `Ok`, with warnings the model raised in the step (each logged with status
+    /// fmi2Warning; the call returns fmi2Warning).
+    Warning(Vec<String>),
     /// The model cannot complete the step (integrator failure); it is valid at
     /// `last_good_time`, whose outputs are what the master reads from now on.
     Discard {
@@ -1837,6 +1843,18 @@ pub unsafe fn do_step<M: FmuModel>(
                     me.time = t_end;
                     me.last_successful_time = t_end;
                     Fmi2Status::Ok
+                }
+                StepResult::Warning(messages) => {
+                    me.time = t_end;
+                    me.last_successful_time = t_end;
+                    for m in messages {
+                        me.logger.log(
+                            Fmi2Status::Warning,
+                            LOG_STATUS_WARNING,
+                            &format!("{F}: step from {t} to {t_end}: {m}"),
+                        );
+                    }
+                    Fmi2Status::Warning
                 }
                 StepResult::Discard {
                     message,
