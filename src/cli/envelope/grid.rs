@@ -2,6 +2,7 @@
 //! points built from them.
 
 use raceway::geometry::Bearing;
+use raceway::limits::StaticRating;
 use raceway::scene::Fidelity;
 use serde::{Deserialize, Serialize};
 
@@ -10,11 +11,8 @@ use serde::{Deserialize, Serialize};
 /// paper's 9900 rpm on the Table-1 bearing (dm = 70 mm) is 0.69e6.
 pub const DMN_LIMIT: f64 = 1.0e6;
 
-/// Contact pressure that defines the static load rating (ISO 76, ball bearings) \[Pa\].
-pub const P_ISO76: f64 = 4200e6;
-
-/// ISO 76's load of the most heavily loaded ball under a radial load:
-/// Q_max = 5 Fr/(Z cos α) (Stribeck's 4.37 for zero play, rounded up for the play).
+/// ISO 76's load of the most heavily loaded ball at P0 = C0: Q_max = 5 C0/(Z cos α0)
+/// (Stribeck's 4.37 for zero play, rounded up for the play).
 pub const STRIBECK: f64 = 5.0;
 
 /// Loads as fractions of C0: light, medium, heavy.
@@ -122,14 +120,15 @@ pub struct Scales {
     pub b_total: f64,
     /// Ball mass \[kg\].
     pub ball_mass: f64,
-    /// Ball load at which the peak Hertz pressure of the more stressed contact reaches
-    /// [`P_ISO76`] \[N\].
-    pub q_lim: f64,
-    /// Static load rating C0 = Z Q_lim cos α0 / 5 \[N\] (ISO 76's definition with the Hertz
-    /// pressure computed from this bearing's own geometry).
+    /// Static load rating C0 \[N\] ([`StaticRating`], ISO 76: f0 from the standard's table).
     pub c0: f64,
+    /// The rating with its factors X0, Y0 of the static equivalent load.
+    pub rating: StaticRating,
     /// ISO 76's factor f0 = C0/(Z D² cos α0), D in mm.
     pub f0: f64,
+    /// Peak Hertz pressure \[Pa\] of ISO 76's ball load at P0 = C0, Q = 5 C0/(Z cos α0), with
+    /// this bearing's own curvatures (ISO's 4200 MPa assumes groove radii of 0.52 D and 0.53 D).
+    pub p0_at_c0: f64,
     /// Limiting speed DMN_LIMIT/dm \[rpm\].
     pub n_lim: f64,
     /// The preset's pedestal stiffness (k_z) \[N/m\].
@@ -144,15 +143,15 @@ impl Scales {
     }
 
     pub fn new(source: &str, b: &Bearing) -> Self {
-        // p0 grows as Q^(1/3): the load at the limit pressure follows from the pressure at 1 N.
-        let p1 = b
-            .hertz_inner
-            .peak_pressure(1.0)
-            .max(b.hertz_outer.peak_pressure(1.0));
-        let q_lim = (P_ISO76 / p1).powi(3);
         let cos_a = b.alpha0.cos();
-        let c0 = b.z as f64 * q_lim * cos_a / STRIBECK;
+        let rating = StaticRating::of(b);
+        let c0 = rating.c0;
         let d_mm = b.d * 1e3;
+        let q_c0 = STRIBECK * c0 / (b.z as f64 * cos_a);
+        let p0_at_c0 = b
+            .hertz_inner
+            .peak_pressure(q_c0)
+            .max(b.hertz_outer.peak_pressure(q_c0));
         Self {
             source: source.to_string(),
             name: if b.file.name.is_empty() {
@@ -166,9 +165,10 @@ impl Scales {
             alpha0_deg: b.alpha0.to_degrees(),
             b_total: b.b_total,
             ball_mass: b.ball_mass,
-            q_lim,
             c0,
+            rating,
             f0: c0 / (b.z as f64 * d_mm * d_mm * cos_a),
+            p0_at_c0,
             n_lim: DMN_LIMIT / (b.dm * 1e3),
             k_preset: b.file.pedestal.k_z,
         }
@@ -333,14 +333,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn static_load_rating_is_iso76_sized() {
-        // ISO 76's f0 of radial ball bearings lies between about 12 and 17 for the usual
-        // conformities (tighter grooves carry more); the Table-1 bearing's grooves are tight
-        // (0.515/0.52).
+    fn the_load_scale_is_the_librarys_static_rating() {
+        // One C0 in every document: the library's ISO 76 rating. At ISO's ball load for
+        // P0 = C0 the presets' own contacts stay below 4200 MPa (their grooves conform more
+        // closely than the standard's 0.52/0.53 D) and above half of it.
         for (name, _) in raceway::config::PRESETS {
             let b = Bearing::load(name).unwrap();
             let s = Scales::new(name, &b);
-            assert!(s.f0 > 11.0 && s.f0 < 20.0, "{name}: f0 = {}", s.f0);
+            assert_eq!(s.c0, StaticRating::of(&b).c0, "{name}");
+            assert!(s.f0 > 9.4 && s.f0 < 16.5, "{name}: f0 = {}", s.f0);
+            assert!(
+                s.p0_at_c0 > 0.5 * raceway::limits::RATING_PRESSURE
+                    && s.p0_at_c0 <= raceway::limits::RATING_PRESSURE,
+                "{name}: {} Pa",
+                s.p0_at_c0
+            );
             assert!(
                 s.n_lim > 10_000.0 && s.n_lim < 40_000.0,
                 "{name}: {}",

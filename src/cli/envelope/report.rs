@@ -76,8 +76,9 @@ pub struct Bounds {
     pub force_factor: f64,
     /// Largest contact deflection allowed for in the ring-displacement bound, over D.
     pub deflection_over_d: f64,
-    /// Largest peak Hertz pressure as a multiple of ISO 76's 4200 MPa.
-    pub pressure_factor: f64,
+    /// Largest peak Hertz pressure \[Pa\]: the model's own limit, beyond which `raceway static`
+    /// refuses a load ([`raceway::limits::MAX_CONTACT_PRESSURE`]).
+    pub pressure_limit: f64,
     /// Neighbour flags: the cage ratio's change between neighbours beyond what the
     /// race-control range itself moves, relative, at the levels with the traction's cage speed
     /// (kinematic, quasi-static, lumped) and at the levels with free balls (reduced, full).
@@ -98,7 +99,7 @@ impl Default for Bounds {
             static_force_tol: 1e-3,
             force_factor: 5.0,
             deflection_over_d: raceway::quasi_static::MAX_DEFLECTION_OVER_D,
-            pressure_factor: 2.0,
+            pressure_limit: raceway::limits::MAX_CONTACT_PRESSURE,
             jump_traction: 0.01,
             jump_balls: 0.05,
             level_outlier: 0.05,
@@ -286,7 +287,7 @@ pub fn classify(p: &GridPoint, s: &Scales, raw: &Raw, wall: f64, b: &Bounds) -> 
                 e.max_ped
             ));
         }
-        let p_lim = b.pressure_factor * grid::P_ISO76;
+        let p_lim = b.pressure_limit;
         if m.max_pressure > p_lim {
             bad.push(format!(
                 "peak Hertz pressure {:.0} MPa (bound {:.0} MPa)",
@@ -732,19 +733,35 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         speeds.join(", "),
         grid::DMN_LIMIT
     );
+    // The largest static equivalent load P0/C0 of the load cases on the bearings run.
+    let p0_max = cx
+        .scales
+        .iter()
+        .flat_map(|sc| {
+            ax.loads
+                .iter()
+                .map(|l| sc.rating.equivalent_load(l.fa, l.fr))
+        })
+        .fold(0.0, f64::max);
     let _ = writeln!(
         s,
-        "- Loads: fractions of the static load rating C0 (ISO 76): C0 = Z·Q_lim·cos α0 / 5, with \
-         Q_lim the ball load at which the peak Hertz pressure of the more stressed contact \
-         (computed from the bearing's own curvatures and elastic constants) reaches 4200 MPa, \
-         and 5 ISO 76's ratio Q_max·Z·cos α / Fr; f0 = C0/(Z D² cos α0) below is ISO 76's factor (its tables assume groove radii of 0.52 D and 0.53 D; these presets' grooves are closer, so their f0 comes out higher). \
-         Light {}, medium {}, heavy {} C0. Loads beyond C0 are left out: the bounds below are made for loads \
-         within the rating (with the spall at 3 C0 the reduced and full levels' balls slow by up to 8 % below the \
-         race-control range within 4 ms), and L1 refuses a load that needs contact deflections above 1 % of D \
-         (30 C0 on the Table-1 bearing) with a clear message.",
+        "- Loads: fractions of the basic static load rating C0 of ISO 76 as the library computes it \
+         (`limits::StaticRating`, the one C0 that `raceway static` prints: C0 = f0·Z·D²·cos α0 with f0 from the \
+         standard's table over D cos α0 / dm; P0 = C0 is where the most heavily loaded contact reaches {:.0} MPa). \
+         The table below also gives the peak Hertz pressure at ISO's ball load for P0 = C0, Q = {}·C0/(Z cos α0), \
+         with each bearing's own curvatures: below {:.0} MPa where the grooves conform more closely than the \
+         standard's 0.52 D and 0.53 D. Light {}, medium {}, heavy {} C0; the static equivalent load \
+         P0 = max(X0 Fr + Y0 Fa, Fr) of the heaviest case is {:.2} C0, well inside the rating. Nothing here approaches the model's pressure \
+         limit of {:.0} MPa (`limits::MAX_CONTACT_PRESSURE`, about P0 = 3.2 C0, beyond which `raceway static` \
+         refuses a load); it is the pressure bound below, and \"Headroom\" shows how close the grid comes.",
+        raceway::limits::RATING_PRESSURE / 1e6,
+        grid::STRIBECK,
+        raceway::limits::RATING_PRESSURE / 1e6,
         grid::LIGHT,
         grid::MEDIUM,
-        grid::HEAVY
+        grid::HEAVY,
+        p0_max,
+        raceway::limits::MAX_CONTACT_PRESSURE / 1e6
     );
     let _ = writeln!(
         s,
@@ -783,21 +800,21 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
     }
     let _ = writeln!(
         s,
-        "\n| bearing | Z | D [mm] | dm [mm] | α0 [°] | B | Q_lim [N] | C0 [N] | f0 | n_lim [rpm] | k_preset [N/m] |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "\n| bearing | Z | D [mm] | dm [mm] | α0 [°] | B | C0 [N] | f0 | p0 at C0 [MPa] | n_lim [rpm] | k_preset [N/m] |\n|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for sc in cx.scales {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.0} | {:.0} | {:.2} | {:.0} | {:e} |",
+            "| {} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.0} | {:.2} | {:.0} | {:.0} | {:e} |",
             sc.name,
             sc.z,
             sc.d * 1e3,
             sc.dm * 1e3,
             sc.alpha0_deg,
             sc.b_total,
-            sc.q_lim,
             sc.c0,
             sc.f0,
+            sc.p0_at_c0 / 1e6,
             sc.n_lim,
             sc.k_preset
         );
@@ -840,7 +857,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
          - Lumped, reduced, full: |bearing.F| ≤ {}·(|load| + Z·m_b·(dm/2)·Ω²) (spall impacts and the start transient load the rings dynamically; at speed the impacts scale with the balls' centrifugal forces, not with the load; \"Headroom\" below has the largest values over the grid).\n\
          - Inner ring relative to the outer ring (ring.x, ring.y − pedestal.y, ring.z − pedestal.z): ≤ (2B + 2·{})·D (the groove-centre distance grows from B·D by at most two contact deflections of {}·D, L1's own limit, and turns at most half a turn).\n\
          - Pedestal displacement ≤ the force bound above over k.\n\
-         - Peak Hertz pressure of the largest contact forces ≤ {}·4200 MPa (ISO 76's permanent-deformation pressure; Hertz theory and steel do not carry much beyond it).\n\n\
+         - Peak Hertz pressure of the largest contact forces ≤ {:.0} MPa (the model's own limit, `limits::MAX_CONTACT_PRESSURE`: gross plastic deformation of the races beyond it, where elastic Hertz contacts no longer describe them).\n\n\
          Flags (they do not change the class):\n\n\
          - `jump_speed`: an ok point's cage ratio differs from its ok neighbour along the speed axis (same level, load, pedestal, spall) by more than the race-control range itself moves plus {:.0} % (kinematic, quasi-static, lumped: one cage speed from the traction solve) or {:.0} % (reduced, full: a 4-ms mean of free balls).\n\
          - `jump_pedestal`, `jump_spall`: the same between pedestals, or spall on and off, at the same speed (L1, and so the range, depends on neither; the traction solve runs on the healthy bearing).\n\
@@ -854,7 +871,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         b.force_factor,
         b.deflection_over_d,
         b.deflection_over_d,
-        b.pressure_factor,
+        b.pressure_limit / 1e6,
         100.0 * b.jump_traction,
         100.0 * b.jump_balls,
         100.0 * b.level_outlier,
@@ -1048,7 +1065,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
                 },
                 m.ok.max_ring / b.ring(sc),
                 m.ok.max_ped / (force / p.k_pedestal),
-                m.max_pressure / (b.pressure_factor * grid::P_ISO76),
+                m.max_pressure / b.pressure_limit,
             ];
             for (w, v) in worst.iter_mut().zip(vals) {
                 if v > w.0 {
