@@ -45,8 +45,9 @@ pub struct Args {
     /// Wall-time limit of one point [s]: beyond it the worker is killed and the point is a hang
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub time_limit: f64,
-    /// Relative margin around the loaded balls' race-control range of the cage speed at the
-    /// kinematic, quasi-static, lumped and reduced levels (default 0.02; the full level's is 0.06)
+    /// Relative numerical margin around the loaded balls' race-control range of the cage speed
+    /// with finite contacts at the kinematic, quasi-static and lumped levels (default 0.001; the
+    /// reduced and full levels' is 0.01)
     #[arg(long, allow_negative_numbers = true)]
     pub cage_margin: Option<f64>,
     /// No progress bar

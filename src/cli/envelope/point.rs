@@ -6,7 +6,7 @@ use raceway::config::BearingFile;
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::kinematics::{inner_race_control_cage_ratio, outer_race_control};
-use raceway::quasi_static::{self, LoadCase};
+use raceway::quasi_static::{self, BallEquilibrium, LoadCase};
 use raceway::scene::{Fidelity, Operating, Scene};
 use raceway::simulation::{out, Simulation};
 use serde::{Deserialize, Serialize};
@@ -19,9 +19,15 @@ const SAMPLE_RATE: f64 = 51_200.0;
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct L1Ref {
     /// Smallest and largest race-control cage ratio ω_c/Ω over the loaded balls (inner-race
-    /// control and outer-race control at each ball's loaded angles).
+    /// control and outer-race control at each ball's loaded angles): point contacts.
     pub rc_lo: f64,
     pub rc_hi: f64,
+    /// The same with each ball's rolling points anywhere across its contact ellipses
+    /// ([`ellipse_range`]): the range the cage ratio is checked against.
+    pub ell_lo: f64,
+    pub ell_hi: f64,
+    /// Largest relative change of a ball's range with 9 samples per angle instead of 3.
+    pub ell_check: f64,
     /// L1's own cage ratio (outer-race control, load-weighted mean over the loaded balls).
     pub orc_ratio: f64,
     /// Number of loaded balls.
@@ -211,21 +217,66 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     Ok(scene)
 }
 
+/// Outer- and inner-race-control cage ratios ω_c/Ω of a ball rolling at contact angles
+/// `alpha_i`, `alpha_o` \[rad\]: (smaller, larger).
+fn race_control(b: &Bearing, alpha_i: f64, alpha_o: f64) -> (f64, f64) {
+    let orc = outer_race_control(b, alpha_i, alpha_o).cage_ratio;
+    let irc = inner_race_control_cage_ratio(b, alpha_i, alpha_o);
+    (orc.min(irc), orc.max(irc))
+}
+
+/// Race-control cage ratios of a loaded ball whose rolling points lie anywhere across its
+/// finite contacts: (smallest, largest). A contact ellipse's semi-major axis a lies across the
+/// track in the plane of the contact angle, so a rolling point s from its centre rolls at the
+/// contact angle shifted by s/R (R the ball radius); each angle goes over
+/// [α − a/R, α + a/R], sampled at `n` ≥ 2 evenly spaced points (ends included), with both race
+/// controls. The grid takes 3 (ends and middle) and checks them against 9 ([`L1Ref::ell_check`]).
+pub fn ellipse_range(b: &Bearing, e: &BallEquilibrium, n: usize) -> (f64, f64) {
+    let r = 0.5 * b.d;
+    let shift_i = b.hertz(Race::Inner).semi_axes(e.q_inner).0 / r;
+    let shift_o = b.hertz(Race::Outer).semi_axes(e.q_outer).0 / r;
+    let at = |k: usize| 2.0 * k as f64 / (n - 1) as f64 - 1.0;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for ki in 0..n {
+        for ko in 0..n {
+            let (l, h) = race_control(
+                b,
+                e.alpha_inner + at(ki) * shift_i,
+                e.alpha_outer + at(ko) * shift_o,
+            );
+            lo = lo.min(l);
+            hi = hi.max(h);
+        }
+    }
+    (lo, hi)
+}
+
 /// L1 at the point and the race-control cage ratios of its loaded balls.
 fn l1_reference(b: &Bearing, p: &PointSpec) -> Result<L1Ref, String> {
     let case = LoadCase::from_fa_fr_rpm(p.fa, p.fr, p.speed_rpm);
     let q = quasi_static::solve(b, &case).map_err(|e| e.to_string())?;
     let (mut lo, mut hi, mut n) = (f64::INFINITY, f64::NEG_INFINITY, 0);
+    let (mut ell_lo, mut ell_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut ell_check: f64 = 0.0;
     for e in q.loaded_balls() {
-        let orc = outer_race_control(b, e.alpha_inner, e.alpha_outer).cage_ratio;
-        let irc = inner_race_control_cage_ratio(b, e.alpha_inner, e.alpha_outer);
-        lo = lo.min(orc.min(irc));
-        hi = hi.max(orc.max(irc));
+        let (l, h) = race_control(b, e.alpha_inner, e.alpha_outer);
+        lo = lo.min(l);
+        hi = hi.max(h);
+        let (l, h) = ellipse_range(b, e, 3);
+        ell_lo = ell_lo.min(l);
+        ell_hi = ell_hi.max(h);
+        let (fl, fh) = ellipse_range(b, e, 9);
+        ell_check = ell_check
+            .max(((l - fl) / fl).abs())
+            .max(((h - fh) / fh).abs());
         n += 1;
     }
     Ok(L1Ref {
         rc_lo: lo,
         rc_hi: hi,
+        ell_lo,
+        ell_hi,
+        ell_check,
         orc_ratio: if case.speed > 0.0 {
             q.cage_speed / case.speed
         } else {
