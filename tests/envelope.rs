@@ -84,6 +84,12 @@ fn quick_grid_has_no_hang_crash_or_garbage() {
             assert!(ok > 0, "{preset} {lv}: no point ran to the end\n{summary}");
         }
     }
+    // L1's reference once per operating point.
+    let l1 = csv::Reader::from_path(dir.join("envelope-l1.csv"))
+        .expect("envelope-l1.csv")
+        .records()
+        .count();
+    assert_eq!(l1, 4 * 4 * 3, "{l1}");
     // The summary starts with the command that made it.
     assert!(
         summary.contains("raceway envelope --quick --all-presets"),

@@ -36,7 +36,7 @@ pub struct Args {
     /// heavy, Fr ≈ Fa, partial load zone); the preset's and a soft pedestal; spall on
     #[arg(long)]
     pub quick: bool,
-    /// Output folder for envelope.csv and envelope.md
+    /// Output folder for envelope.csv, envelope-l1.csv and envelope.md
     #[arg(long, default_value = "docs/envelope")]
     pub out: PathBuf,
     /// Worker processes at a time (default: one per core)
@@ -125,7 +125,8 @@ pub fn run(args: Args) -> Result<(), String> {
     report::flag_neighbours(&points, &mut outcomes, &bounds);
 
     let csv = args.out.join("envelope.csv");
-    report::write_csv(&csv, &points, &outcomes, &scales)?;
+    let l1_csv = args.out.join("envelope-l1.csv");
+    report::write_csv(&csv, &l1_csv, &points, &outcomes, &scales)?;
     let cx = report::Context {
         command: command_line(),
         revision: git_revision(),
@@ -148,10 +149,11 @@ pub fn run(args: Args) -> Result<(), String> {
         .collect();
     let flagged = outcomes.iter().filter(|o| !o.flags.is_empty()).count();
     eprintln!(
-        "envelope: {} points in {total_wall:.1} s: {}; {flagged} flagged; wrote {} and {}",
+        "envelope: {} points in {total_wall:.1} s: {}; {flagged} flagged; wrote {}, {} and {}",
         points.len(),
         counts.join(", "),
         csv.display(),
+        l1_csv.display(),
         md.display()
     );
     let failing = outcomes.iter().filter(|o| o.class.fails()).count();

@@ -44,8 +44,9 @@ enum Command {
     /// stiff pedestal, spall off and on; every point briefly at every level, each in its own
     /// worker process under a watchdog. A point is ok (finite outputs within physical bounds),
     /// error (a clear error message), garbage (non-finite or out-of-bounds outputs returned as
-    /// success), hang (past --time-limit, killed) or crash. Writes envelope.csv (every point)
-    /// and envelope.md (the command, the bounds, counts per bearing and level, the failures);
+    /// success), hang (past --time-limit, killed) or crash. Writes envelope.csv (every point),
+    /// envelope-l1.csv (L1's reference at each operating point) and envelope.md (the command,
+    /// the bounds, counts per bearing and level, the failures);
     /// the exit status is non-zero when any point hangs, crashes or returns garbage.
     Envelope(envelope::Args),
 }

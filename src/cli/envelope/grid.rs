@@ -205,8 +205,6 @@ pub struct GridPoint {
     /// Index of the bearing in the run's list of bearings.
     pub bearing: usize,
     pub level: Fidelity,
-    /// Speed as a fraction of the limiting speed.
-    pub speed_frac: f64,
     /// Index along the speed axis; `None` for the issue-17 points off the grid.
     pub i_speed: Option<usize>,
     /// Load-case name and index.
@@ -284,7 +282,6 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                                 },
                                 bearing: ib,
                                 level,
-                                speed_frac: frac,
                                 i_speed: Some(is),
                                 load: lc.name,
                                 i_load: il,
@@ -313,7 +310,6 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                             },
                             bearing: ib,
                             level,
-                            speed_frac: rpm / s.n_lim,
                             i_speed: None,
                             load: name,
                             i_load: ax.loads.len() + i,

@@ -461,28 +461,54 @@ pub fn pattern(msg: &str) -> String {
 /// A number with 6 significant digits, trailing zeros dropped (the table is committed: full
 /// precision would double its size for digits nobody reads).
 fn csv_f(x: f64) -> String {
+    csv_digits(x, 6)
+}
+
+/// A number with `n` significant digits, trailing zeros dropped, in exponent form outside
+/// [1e-4, 10^n).
+fn csv_digits(x: f64, n: i32) -> String {
     if !x.is_finite() {
         return x.to_string();
     }
     if x == 0.0 {
         return "0".into();
     }
-    let e = x.abs().log10().floor() as i32;
-    if (-4..6).contains(&e) {
-        let s = format!("{:.*}", (5 - e).max(0) as usize, x);
+    let trim = |s: &str| {
         if s.contains('.') {
             s.trim_end_matches('0').trim_end_matches('.').to_string()
         } else {
-            s
+            s.to_string()
         }
+    };
+    let e = x.abs().log10().floor() as i32;
+    if (-4..n).contains(&e) {
+        trim(&format!("{:.*}", (n - 1 - e).max(0) as usize, x))
     } else {
-        format!("{x:.5e}")
+        let s = format!("{:.*e}", (n - 1) as usize, x);
+        match s.split_once('e') {
+            Some((m, ex)) => format!("{}e{ex}", trim(m)),
+            None => s,
+        }
     }
 }
 
-/// Writes one row per point.
+/// A measured output (force, displacement, pressure) with 4 significant digits.
+fn csv_m(x: f64) -> String {
+    csv_digits(x, 4)
+}
+
+/// Longest message in the CSV (characters): the summary has each kind in full.
+const CSV_MESSAGE: usize = 200;
+
+/// Writes one row per point to `path` and L1's reference once per operating point to
+/// `l1_path`. The table is committed: columns that follow from others or from the summary
+/// (speed fractions, durations, cage speeds in rad/s, the excursions, the pedestal's name) are
+/// left out, L1's reference is the same at every level, pedestal and spall state of an
+/// operating point, measured outputs have 4 digits, and messages are cut at [`CSV_MESSAGE`]
+/// characters (the whole table stays near 2 MB).
 pub fn write_csv(
     path: &Path,
+    l1_path: &Path,
     points: &[GridPoint],
     outcomes: &[Outcome],
     scales: &[Scales],
@@ -492,36 +518,23 @@ pub fn write_csv(
         "bearing",
         "level",
         "speed_rpm",
-        "speed_frac",
         "load_case",
         "fa",
         "fr",
-        "pedestal",
         "k_pedestal",
         "spall",
-        "duration",
         "class",
         "flags",
         "wall_s",
-        "t_reached",
-        "cage_speed",
+        "t_stop",
         "cage_ratio",
-        "ell_lo",
-        "ell_hi",
-        "cage_excursion",
-        "rc_lo",
-        "rc_hi",
-        "plain_excursion",
-        "orc_ratio",
-        "loaded_balls",
         "bearing_fx",
-        "bearing_fy",
         "bearing_fz",
         "start_force_dev",
         "max_force_dev",
         "max_force",
-        "max_ring_disp",
-        "max_pedestal_disp",
+        "max_ring_um",
+        "max_pedestal_um",
         "max_pressure_mpa",
         "steps",
         "message",
@@ -529,64 +542,104 @@ pub fn write_csv(
     w.write_record(head).map_err(|e| e.to_string())?;
     for (p, o) in points.iter().zip(outcomes) {
         let m = o.measured.as_ref();
-        let l1 = m.and_then(|m| m.l1.as_ref());
-        let num = |f: &dyn Fn(&Measured) -> f64| m.map_or(String::new(), |m| csv_f(f(m)));
-        let lnum =
-            |f: &dyn Fn(&super::point::L1Ref) -> f64| l1.map_or(String::new(), |l| csv_f(f(l)));
+        let num = |f: &dyn Fn(&Measured) -> f64| m.map_or(String::new(), |m| csv_m(f(m)));
+        let dynamic = |f: &dyn Fn(&Measured) -> f64| {
+            if is_static(p.level) {
+                String::new()
+            } else {
+                num(f)
+            }
+        };
+        let message: String = if o.message.chars().count() > CSV_MESSAGE {
+            o.message.chars().take(CSV_MESSAGE).collect::<String>() + "…"
+        } else {
+            o.message.clone()
+        };
         let row = vec![
             scales[p.bearing].name.clone(),
             p.level.name().to_string(),
-            csv_f(p.spec.speed_rpm),
-            csv_f(p.speed_frac),
+            csv_digits(p.spec.speed_rpm, 5),
             p.load.to_string(),
-            csv_f(p.spec.fa),
-            csv_f(p.spec.fr),
-            p.pedestal.to_string(),
+            csv_digits(p.spec.fa, 5),
+            csv_digits(p.spec.fr, 5),
             csv_f(p.k_pedestal),
             (p.spec.spall as u8).to_string(),
-            csv_f(p.spec.duration),
             o.class.name().to_string(),
             o.flags.join(" "),
             format!("{:.3}", o.wall),
-            num(&|m| m.t_reached),
-            num(&|m| m.cage_speed),
+            m.filter(|m| m.error.is_some())
+                .map_or(String::new(), |m| csv_f(m.t_reached)),
             if m.is_some() {
                 csv_f(o.cage_ratio)
             } else {
                 String::new()
             },
-            lnum(&|l| l.ell_lo),
-            lnum(&|l| l.ell_hi),
-            if m.is_some() {
-                csv_f(o.excursion)
-            } else {
-                String::new()
-            },
-            lnum(&|l| l.rc_lo),
-            lnum(&|l| l.rc_hi),
-            if m.is_some() {
-                csv_f(o.plain_excursion)
-            } else {
-                String::new()
-            },
-            lnum(&|l| l.orc_ratio),
-            l1.map_or(String::new(), |l| l.loaded.to_string()),
             num(&|m| m.f_end[0]),
-            num(&|m| m.f_end[1]),
             num(&|m| m.f_end[2]),
-            num(&|m| {
+            dynamic(&|m| {
                 let f = m.f_start;
                 (f[0] + p.spec.fa).hypot(f[1]).hypot(f[2] - p.spec.fr)
             }),
-            num(&|m| m.ok.max_f_dev),
+            if is_static(p.level) {
+                num(&|m| m.ok.max_f_dev)
+            } else {
+                String::new()
+            },
             num(&|m| m.ok.max_f),
-            num(&|m| m.ok.max_ring),
-            num(&|m| m.ok.max_ped),
+            num(&|m| m.ok.max_ring * 1e6),
+            num(&|m| m.ok.max_ped * 1e6),
             num(&|m| m.max_pressure / 1e6),
             m.map_or(String::new(), |m| m.steps.to_string()),
-            o.message.clone(),
+            message,
         ];
         w.write_record(&row).map_err(|e| e.to_string())?;
+    }
+    w.flush().map_err(|e| e.to_string())?;
+
+    // L1 once per operating point (every level, pedestal and spall state has the same).
+    let mut w =
+        csv::Writer::from_path(l1_path).map_err(|e| format!("{}: {e}", l1_path.display()))?;
+    w.write_record([
+        "bearing",
+        "speed_rpm",
+        "load_case",
+        "fa",
+        "fr",
+        "loaded_balls",
+        "rc_lo",
+        "rc_hi",
+        "ell_lo",
+        "ell_hi",
+        "l1_cage_ratio",
+        "l1_error",
+    ])
+    .map_err(|e| e.to_string())?;
+    let mut seen = std::collections::BTreeSet::new();
+    for (p, o) in points.iter().zip(outcomes) {
+        let Some(m) = o.measured.as_ref() else {
+            continue;
+        };
+        if !seen.insert((p.bearing, p.i_load, p.spec.speed_rpm.to_bits())) {
+            continue;
+        }
+        let l = m.l1.as_ref();
+        let lnum =
+            |f: &dyn Fn(&super::point::L1Ref) -> f64| l.map_or(String::new(), |l| csv_f(f(l)));
+        w.write_record([
+            scales[p.bearing].name.clone(),
+            csv_digits(p.spec.speed_rpm, 5),
+            p.load.to_string(),
+            csv_digits(p.spec.fa, 5),
+            csv_digits(p.spec.fr, 5),
+            l.map_or(String::new(), |l| l.loaded.to_string()),
+            lnum(&|l| l.rc_lo),
+            lnum(&|l| l.rc_hi),
+            lnum(&|l| l.ell_lo),
+            lnum(&|l| l.ell_hi),
+            lnum(&|l| l.orc_ratio),
+            m.l1_error.clone().unwrap_or_default(),
+        ])
+        .map_err(|e| e.to_string())?;
     }
     w.flush().map_err(|e| e.to_string())
 }
@@ -785,7 +838,8 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
     let _ = writeln!(
         s,
         "(`cargo run --release -- {}` from the repository root{}; {} points in {:.0} s wall on \
-         {} worker processes at a time; the CSV of every point is `envelope.csv` beside this file.)\n",
+         {} worker processes at a time; every point is a row of `envelope.csv` beside this file, and L1's reference \
+         at each operating point a row of `envelope-l1.csv`: \"Tables\" at the end says what their columns hold.)\n",
         cx.command.trim_start_matches("raceway "),
         cx.revision
             .as_ref()
@@ -1303,6 +1357,22 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
                 .unwrap_or_default()
         );
     }
+    let _ = writeln!(s, "\n## Tables\n");
+    let _ = writeln!(
+        s,
+        "`envelope.csv`, one row per point: the point (bearing, level, speed_rpm, load_case, fa and fr [N], \
+         k_pedestal [N/m], spall 0/1), its class and flags, wall_s (the worker's wall time), t_stop (the simulated time \
+         where an error stopped it; empty: it ran to the end), cage_ratio (the mean cage.speed/Ω over the second half), \
+         bearing_fx and bearing_fz at the end [N], start_force_dev (|bearing.F + load| at t = 0 [N], dynamic levels), \
+         max_force_dev (the largest |bearing.F + load| [N], static levels), max_force (the largest |bearing.F| [N]), \
+         max_ring_um and max_pedestal_um (the largest ring displacement relative to the outer ring and pedestal \
+         displacement [µm]), max_pressure_mpa (the peak Hertz pressure of the largest contact forces), steps (integrator \
+         steps, rejected ones included) and the message (cut at {CSV_MESSAGE} characters; each kind is in full above). \
+         Measured outputs have 4 significant digits, ratios 6.\n\n\
+         `envelope-l1.csv`, one row per operating point (bearing, speed, load case): L1's loaded balls, the \
+         point-contact race-control range rc_lo … rc_hi, the finite contacts' range ell_lo … ell_hi (the bound), L1's \
+         own cage ratio (outer-race control, weighted by the inner loads) and L1's error where it has none."
+    );
     s
 }
 
@@ -1495,12 +1565,16 @@ mod tests {
     }
 
     #[test]
-    fn csv_numbers_have_six_digits() {
+    fn csv_numbers_have_six_or_four_digits() {
         assert_eq!(csv_f(14285.714285714286), "14285.7");
         assert_eq!(csv_f(0.42672781803746), "0.426728");
         assert_eq!(csv_f(-13816.995), "-13817");
         assert_eq!(csv_f(3.0724666e-6), "3.07247e-6");
-        assert_eq!(csv_f(2.2e16), "2.20000e16");
+        assert_eq!(csv_f(2.2e16), "2.2e16");
+        assert_eq!(csv_f(1e9), "1e9");
+        assert_eq!(csv_m(2.974_56e-6), "2.975e-6");
+        assert_eq!(csv_m(14285.714), "1.429e4");
+        assert_eq!(csv_m(-345.4), "-345.4");
         assert_eq!(csv_f(0.1), "0.1");
         assert_eq!(csv_f(f64::NAN), "NaN");
     }
