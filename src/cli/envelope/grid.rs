@@ -33,20 +33,40 @@ pub const SPALL_DEPTH_OVER_D: f64 = 0.2 / 12.7;
 const SPEEDS_FULL: [f64; 8] = [0.0, 0.05, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0];
 const SPEEDS_QUICK: [f64; 3] = [0.0, 0.5, 1.0];
 
-/// One load case: Fa and Fr as fractions of C0.
+/// One load case: Fa and Fr as fractions of C0, and how the inner ring is held axially.
 #[derive(Debug, Clone, Copy)]
 pub struct LoadCase {
     pub name: &'static str,
     pub what: &'static str,
     pub fa: f64,
     pub fr: f64,
+    /// The ring axially located (`[mounting] axial = "located"`, at its unloaded place since
+    /// Fa = 0); run on angular-contact bearings only (α0 > 0), where a free ring cannot carry
+    /// a pure radial load (those points stay in the grid as clear errors).
+    pub located: bool,
 }
 
 const fn load(name: &'static str, what: &'static str, fa: f64, fr: f64) -> LoadCase {
-    LoadCase { name, what, fa, fr }
+    LoadCase {
+        name,
+        what,
+        fa,
+        fr,
+        located: false,
+    }
 }
 
-const LOADS_FULL: [LoadCase; 15] = [
+const fn located(name: &'static str, what: &'static str, fr: f64) -> LoadCase {
+    LoadCase {
+        name,
+        what,
+        fa: 0.0,
+        fr,
+        located: true,
+    }
+}
+
+const LOADS_FULL: [LoadCase; 17] = [
     load("axial-light", "pure axial, light", LIGHT, 0.0),
     load("axial-heavy", "pure axial, heavy", HEAVY, 0.0),
     load("radial-light", "pure radial, light", 0.0, LIGHT),
@@ -82,9 +102,25 @@ const LOADS_FULL: [LoadCase; 15] = [
         LIGHT,
         HEAVY,
     ),
+    located(
+        "radial-light-located",
+        "pure radial, light, ring located axially (α0 > 0 only)",
+        LIGHT,
+    ),
+    located(
+        "radial-heavy-located",
+        "pure radial, heavy, ring located axially (α0 > 0 only)",
+        HEAVY,
+    ),
 ];
 
-const LOADS_QUICK: [LoadCase; 4] = [LOADS_FULL[1], LOADS_FULL[3], LOADS_FULL[9], LOADS_FULL[13]];
+const LOADS_QUICK: [LoadCase; 5] = [
+    LOADS_FULL[1],
+    LOADS_FULL[3],
+    LOADS_FULL[9],
+    LOADS_FULL[13],
+    LOADS_FULL[16],
+];
 
 /// Simulated time per level \[s\]: enough for a few ball passes at the cheap levels, a few
 /// milliseconds (several ball-pass periods at speed) at the per-ball levels.
@@ -191,6 +227,9 @@ pub struct PointSpec {
     pub k_pedestal: Option<f64>,
     /// The outer-race spall on or off.
     pub spall: bool,
+    /// The inner ring axially located (`[mounting] axial = "located"`, default offset).
+    #[serde(default)]
+    pub located: bool,
     /// Simulated time \[s\].
     pub duration: f64,
     /// Test hook: the worker sleeps instead of running (exercises the watchdog).
@@ -262,6 +301,9 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
         };
         for &level in levels {
             for (il, lc) in ax.loads.iter().enumerate() {
+                if lc.located && s.alpha0_deg <= 0.0 {
+                    continue;
+                }
                 for &(pname, k) in &pedestals {
                     for spall in [false, true] {
                         if quick && !spall {
@@ -277,6 +319,7 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                                     fr: lc.fr * s.c0,
                                     k_pedestal: k,
                                     spall,
+                                    located: lc.located,
                                     duration: duration(level),
                                     stall: false,
                                 },
@@ -305,6 +348,7 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                                 fr,
                                 k_pedestal: k,
                                 spall,
+                                located: false,
                                 duration: duration(level),
                                 stall: false,
                             },
@@ -357,15 +401,30 @@ mod tests {
         let b = Bearing::load("niu2014-table1").unwrap();
         let s = vec![Scales::new("niu2014-table1", &b)];
         let levels = [Fidelity::Kinematic, Fidelity::Full];
-        // 15 loads × 3 pedestals × 2 spall states × 8 speeds + 6 issue points × 2, per level.
-        assert_eq!(build(&s, &levels, false).len(), 2 * (720 + 12));
+        // 17 loads (2 of them located) × 3 pedestals × 2 spall states × 8 speeds + 6 issue
+        // points × 2, per level.
+        assert_eq!(build(&s, &levels, false).len(), 2 * (816 + 12));
         // The quick grid's load cases.
         let names: Vec<&str> = axes(true).loads.iter().map(|l| l.name).collect();
         assert_eq!(
             names,
-            ["axial-heavy", "radial-heavy", "near-equal", "partial-zone"]
+            [
+                "axial-heavy",
+                "radial-heavy",
+                "near-equal",
+                "partial-zone",
+                "radial-heavy-located"
+            ]
         );
-        // 4 loads × 2 pedestals × spall × 3 speeds per level.
-        assert_eq!(build(&s, &levels, true).len(), 2 * 24);
+        // 5 loads × 2 pedestals × spall × 3 speeds per level.
+        let quick = build(&s, &levels, true);
+        assert_eq!(quick.len(), 2 * 30);
+        assert_eq!(quick.iter().filter(|p| p.spec.located).count(), 2 * 6);
+        // A deep-groove bearing carries a pure radial load on a free ring: no located points.
+        let b = Bearing::load("cwru-6205-de").unwrap();
+        let s = vec![Scales::new("cwru-6205-de", &b)];
+        let quick = build(&s, &levels, true);
+        assert_eq!(quick.len(), 2 * 24);
+        assert!(quick.iter().all(|p| !p.spec.located));
     }
 }

@@ -7,8 +7,8 @@ use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::kinematics::{inner_race_control_cage_ratio, outer_race_control};
 use raceway::quasi_static::{self, BallEquilibrium, LoadCase};
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::scene::{AxialMount, Fidelity, Mounting, Operating, Scene};
+use raceway::simulation::{out, Inputs, Simulation};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -30,6 +30,10 @@ pub struct L1Ref {
     pub ell_check: f64,
     /// L1's own cage ratio (outer-race control, load-weighted mean over the loaded balls).
     pub orc_ratio: f64,
+    /// A located ring: where it is held \[m\] and the axial force the location supplies \[N\]
+    /// (L1's `ring_force()[0]`: bearing.F.x is its negative at the static levels).
+    pub held: Option<f64>,
+    pub reaction: f64,
     /// Number of loaded balls.
     pub loaded: usize,
 }
@@ -57,6 +61,9 @@ pub struct Extremes {
     /// Smallest and largest cage.speed over all samples \[rad/s\].
     pub cage_min: f64,
     pub cage_max: f64,
+    /// Smallest and largest ring.x \[m\] and bearing.F.x \[N\] (for a located ring).
+    pub ring_x: [f64; 2],
+    pub fx: [f64; 2],
 }
 
 impl Default for Extremes {
@@ -74,7 +81,18 @@ impl Default for Extremes {
             cage_n: 0,
             cage_min: f64::INFINITY,
             cage_max: f64::NEG_INFINITY,
+            ring_x: [f64::INFINITY, f64::NEG_INFINITY],
+            fx: [f64::INFINITY, f64::NEG_INFINITY],
         }
+    }
+}
+
+/// Widens `[lo, hi]` to hold `v`, a NaN included (it sticks).
+fn widen(r: &mut [f64; 2], v: f64) {
+    if v.is_nan() || r[0].is_nan() {
+        *r = [f64::NAN; 2];
+    } else {
+        *r = [r[0].min(v), r[1].max(v)];
     }
 }
 
@@ -112,6 +130,8 @@ impl Extremes {
             o[out::RING_Z] - o[out::PEDESTAL_Z],
         ];
         self.max_ring = max_nan(self.max_ring, norm(ring));
+        widen(&mut self.ring_x, o[out::RING_X]);
+        widen(&mut self.fx, f[0]);
         self.max_ped = max_nan(self.max_ped, o[out::PEDESTAL_Y].hypot(o[out::PEDESTAL_Z]));
         if out::has_ball_block(o, z) {
             let q = &o[out::CONTACT_START..out::CONTACT_START + 2 * z];
@@ -150,6 +170,12 @@ impl Extremes {
             self.cage_min.min(o.cage_min)
         };
         self.cage_max = max_nan(self.cage_max, o.cage_max);
+        for (r, v) in [(&mut self.ring_x, o.ring_x), (&mut self.fx, o.fx)] {
+            if v[0] <= v[1] || v[0].is_nan() {
+                widen(r, v[0]);
+                widen(r, v[1]);
+            }
+        }
     }
 }
 
@@ -205,6 +231,12 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     );
     scene.name = "envelope".into();
     scene.fidelity = level;
+    if p.located {
+        scene.mounting = Mounting {
+            axial: AxialMount::Located,
+            axial_offset: None,
+        };
+    }
     if p.spall {
         scene.defect = Some(DefectSpec {
             ring: Race::Outer,
@@ -251,10 +283,17 @@ pub fn ellipse_range(b: &Bearing, e: &BallEquilibrium, n: usize) -> (f64, f64) {
     (lo, hi)
 }
 
-/// L1 at the point and the race-control cage ratios of its loaded balls.
-fn l1_reference(b: &Bearing, p: &PointSpec) -> Result<L1Ref, String> {
+/// L1 at the point (of the scene's mounting) and the race-control cage ratios of its loaded
+/// balls.
+fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, String> {
     let case = LoadCase::from_fa_fr_rpm(p.fa, p.fr, p.speed_rpm);
-    let q = quasi_static::solve(b, &case).map_err(|e| e.to_string())?;
+    let held = raceway::models::held_axial(scene, b, &Inputs::from_scene(scene))
+        .map_err(|e| e.to_string())?;
+    let q = match held {
+        None => quasi_static::solve(b, &case),
+        Some(d) => quasi_static::solve_located(b, &case, d),
+    }
+    .map_err(|e| e.to_string())?;
     let (mut lo, mut hi, mut n) = (f64::INFINITY, f64::NEG_INFINITY, 0);
     let (mut ell_lo, mut ell_hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut ell_check: f64 = 0.0;
@@ -271,6 +310,19 @@ fn l1_reference(b: &Bearing, p: &PointSpec) -> Result<L1Ref, String> {
             .max(((h - fh) / fh).abs());
         n += 1;
     }
+    // The location's reaction; at the lumped level L1's at rest, since that level has no
+    // centrifugal ball forces (they change the reaction: 204 N at rest, 1796 N at 14286 rpm
+    // under Fr 293 N on the Table-1 bearing held at 0).
+    let reaction = match held {
+        None => p.fa,
+        Some(d) if scene.fidelity == Fidelity::Lumped => {
+            let rest = LoadCase { speed: 0.0, ..case };
+            quasi_static::solve_located(b, &rest, d)
+                .map_err(|e| e.to_string())?
+                .ring_force()[0]
+        }
+        Some(_) => q.ring_force()[0],
+    };
     Ok(L1Ref {
         rc_lo: lo,
         rc_hi: hi,
@@ -283,6 +335,8 @@ fn l1_reference(b: &Bearing, p: &PointSpec) -> Result<L1Ref, String> {
             f64::NAN
         },
         loaded: n,
+        held,
+        reaction,
     })
 }
 
@@ -312,12 +366,14 @@ pub fn run(p: &PointSpec) -> Measured {
             return m;
         }
     };
-    match l1_reference(&bearing, p) {
+    match l1_reference(&bearing, &scene, p) {
         Ok(r) => m.l1 = Some(r),
         Err(e) => m.l1_error = Some(e),
     }
     let z = bearing.z;
-    let applied = [p.fa, 0.0, -p.fr];
+    // The axial force on the ring: Fa, or a located ring's reaction from L1.
+    let fa = m.l1.as_ref().map_or(p.fa, |l| l.reaction);
+    let applied = [fa, 0.0, -p.fr];
     let half = 0.5 * p.duration;
     m.stage = "build".into();
     let started = Instant::now();

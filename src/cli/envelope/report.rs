@@ -89,6 +89,8 @@ pub struct Bounds {
     pub level_outlier: f64,
     /// Start flag (dynamic levels): |bearing.F + load| at t = 0 over |load|.
     pub start_balance: f64,
+    /// Largest |ring.x − its held place| of a located ring \[m\].
+    pub located_tol: f64,
 }
 
 impl Default for Bounds {
@@ -105,6 +107,7 @@ impl Default for Bounds {
             jump_balls: 0.05,
             level_outlier: 0.05,
             start_balance: 0.1,
+            located_tol: 1e-9,
         }
     }
 }
@@ -160,6 +163,12 @@ pub struct Outcome {
     pub excursion: f64,
     /// The same outside the point-contact range (for information).
     pub plain_excursion: f64,
+}
+
+/// The axial force on the ring \[N\]: Fa, or for a located ring the reaction of its location
+/// from L1 (the load the bearing then carries axially).
+fn axial_load(p: &GridPoint, m: &Measured) -> f64 {
+    m.l1.as_ref().map_or(p.spec.fa, |l| l.reaction)
 }
 
 fn is_static(level: Fidelity) -> bool {
@@ -255,8 +264,19 @@ pub fn classify(p: &GridPoint, s: &Scales, raw: &Raw, wall: f64, b: &Bounds) -> 
                 ));
             }
         }
-        let load = p.spec.fa.hypot(p.spec.fr);
+        let fa = axial_load(p, m);
+        let load = fa.hypot(p.spec.fr);
         let force = b.force(s, load, omega);
+        if let Some(held) = m.l1.as_ref().and_then(|l| l.held) {
+            let [lo, hi] = e.ring_x;
+            let off = (lo - held).abs().max((hi - held).abs());
+            if off.is_nan() || off > b.located_tol {
+                bad.push(format!(
+                    "located ring.x {lo:.6e} … {hi:.6e} m, held at {held:.6e} m (bound ± {:.0e} m)",
+                    b.located_tol
+                ));
+            }
+        }
         if is_static(p.level) {
             if e.max_f_dev > b.static_force_tol * load + 1e-6 {
                 bad.push(format!(
@@ -272,7 +292,7 @@ pub fn classify(p: &GridPoint, s: &Scales, raw: &Raw, wall: f64, b: &Bounds) -> 
                 ));
             }
             let f0 = m.f_start;
-            let dev0 = (f0[0] + p.spec.fa).hypot(f0[1]).hypot(f0[2] - p.spec.fr);
+            let dev0 = (f0[0] + fa).hypot(f0[1]).hypot(f0[2] - p.spec.fr);
             // Healthy scenes only: a ball inside the spall at t = 0 unbalances any start.
             if !p.spec.spall && dev0 > b.start_balance * load {
                 o.flags.push("off_balance_start".into());
@@ -578,7 +598,9 @@ pub fn write_csv(
             num(&|m| m.f_end[2]),
             dynamic(&|m| {
                 let f = m.f_start;
-                (f[0] + p.spec.fa).hypot(f[1]).hypot(f[2] - p.spec.fr)
+                (f[0] + axial_load(p, m))
+                    .hypot(f[1])
+                    .hypot(f[2] - p.spec.fr)
             }),
             if is_static(p.level) {
                 num(&|m| m.ok.max_f_dev)
@@ -596,7 +618,8 @@ pub fn write_csv(
     }
     w.flush().map_err(|e| e.to_string())?;
 
-    // L1 once per operating point (every level, pedestal and spall state has the same).
+    // L1 once per operating point: the first level's (not the lumped one's, whose located
+    // reaction is L1's at rest).
     let mut w =
         csv::Writer::from_path(l1_path).map_err(|e| format!("{}: {e}", l1_path.display()))?;
     w.write_record([
@@ -611,11 +634,15 @@ pub fn write_csv(
         "ell_lo",
         "ell_hi",
         "l1_cage_ratio",
+        "axial_reaction",
         "l1_error",
     ])
     .map_err(|e| e.to_string())?;
     let mut seen = std::collections::BTreeSet::new();
-    for (p, o) in points.iter().zip(outcomes) {
+    let lumped = |p: &&GridPoint| p.level == Fidelity::Lumped;
+    let others = points.iter().zip(outcomes).filter(|(p, _)| !lumped(p));
+    let last = points.iter().zip(outcomes).filter(|(p, _)| lumped(p));
+    for (p, o) in others.chain(last) {
         let Some(m) = o.measured.as_ref() else {
             continue;
         };
@@ -637,6 +664,8 @@ pub fn write_csv(
             lnum(&|l| l.ell_lo),
             lnum(&|l| l.ell_hi),
             lnum(&|l| l.orc_ratio),
+            l.and_then(|l| l.held.map(|_| csv_m(l.reaction)))
+                .unwrap_or_default(),
             m.l1_error.clone().unwrap_or_default(),
         ])
         .map_err(|e| e.to_string())?;
@@ -817,6 +846,71 @@ fn excursion_table(
     }
 }
 
+/// The located-ring points per level: how far ring.x left its place and bearing.F.x against
+/// L1's reaction of the location.
+fn located_section(s: &mut String, cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) {
+    if !points.iter().any(|p| p.spec.located) {
+        return;
+    }
+    let _ = writeln!(s, "\n## Located ring\n");
+    let _ = writeln!(
+        s,
+        "The points with the ring located axially, per level: classes; over those that delivered outputs, the largest \
+         |ring.x − its held place| (bound {:.0e} m) and the range of −bearing.F.x over L1's axial reaction R of the \
+         location at the point's speed (at the static levels bearing.F.x = −R; the lumped level has no centrifugal ball \
+         forces, and its R is L1's at rest; the dynamic levels ring after the start and carry the spall's impacts). bearing.F.x is finite at every delivered sample wherever the class is ok.\n",
+        cx.bounds.located_tol
+    );
+    let _ = writeln!(
+        s,
+        "| level | points | ok | error | garbage | hang | crash | max \\|ring.x − held\\| [m] | −F.x/R min | −F.x/R max | R range [N] |\n|---|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for &lv in cx.levels {
+        let idx: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i].level == lv && points[i].spec.located)
+            .collect();
+        if idx.is_empty() {
+            continue;
+        }
+        let count = |c: Class| idx.iter().filter(|&&i| outcomes[i].class == c).count();
+        let (mut off, mut lo, mut hi) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
+        let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &i in &idx {
+            let Some(m) = &outcomes[i].measured else {
+                continue;
+            };
+            let Some(l1) = &m.l1 else { continue };
+            let Some(held) = l1.held else { continue };
+            if m.ok.samples == 0 || m.ok.ring_x[0] > m.ok.ring_x[1] {
+                continue;
+            }
+            off = off
+                .max((m.ok.ring_x[0] - held).abs())
+                .max((m.ok.ring_x[1] - held).abs());
+            lo = lo.min(-m.ok.fx[1] / l1.reaction);
+            hi = hi.max(-m.ok.fx[0] / l1.reaction);
+            r_lo = r_lo.min(l1.reaction);
+            r_hi = r_hi.max(l1.reaction);
+        }
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {:.1e} | {:.3} | {:.3} | {:.0} … {:.0} |",
+            lv.name(),
+            idx.len(),
+            count(Class::Ok),
+            count(Class::Error),
+            count(Class::Garbage),
+            count(Class::Hang),
+            count(Class::Crash),
+            off,
+            lo,
+            hi,
+            r_lo,
+            r_hi
+        );
+    }
+}
+
 /// Why the cage margins are what they are (from the full grid's data).
 const MARGIN_WHY: &str = "the range's ends are exact evaluations at the sampled angles (\"sampling\" \
      below: how much 9 samples per angle instead of 3 change any ball's range over the grid), and the kinematic, \
@@ -940,6 +1034,14 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         grid::SPALL_WIDTH_OVER_D,
         grid::SPALL_DEPTH_OVER_D
     );
+    let _ = writeln!(
+        s,
+        "- Mounting: the inner ring free axially (the axial load Fa acts on it), and for the angular-contact \
+         bearings (α0 > 0) the pure-radial cases once more with the ring located axially (`[mounting] axial = \
+         \"located\"`, held where Fa = 0 puts it: its unloaded place), as a shaft shoulder holds it. On a free ring \
+         those cases stay in the grid: an angular-contact bearing cannot carry a pure radial load there, and the \
+         points must stop with a clear error."
+    );
     if !cx.quick && cx.scales.iter().any(|s| s.source == "niu2014-table1") {
         let _ = writeln!(
             s,
@@ -977,18 +1079,23 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
     }
     let _ = writeln!(
         s,
-        "\n| load case | what | Fa/C0 | Fr/C0 |\n|---|---|---|---|"
+        "\n| load case | what | Fa/C0 | Fr/C0 | inner ring axially |\n|---|---|---|---|---|"
     );
     for lc in ax.loads {
         // Rounded to 6 decimals: 1.0625 × 0.1 prints as 0.10625, not 0.10625000000000001.
         let r6 = |x: f64| (x * 1e6).round() / 1e6;
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} |",
             lc.name,
             lc.what,
             r6(lc.fa),
-            r6(lc.fr)
+            r6(lc.fr),
+            if lc.located {
+                "located"
+            } else {
+                "free (Fa acts)"
+            }
         );
     }
 
@@ -1171,7 +1278,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
                 continue;
             }
             let sc = &cx.scales[p.bearing];
-            let load = p.spec.fa.hypot(p.spec.fr);
+            let load = axial_load(p, m).hypot(p.spec.fr);
             let omega = p.spec.speed_rpm * std::f64::consts::PI / 30.0;
             let force = b.force(sc, load, omega);
             let vals = [
@@ -1221,6 +1328,8 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
             cell(worst[4])
         );
     }
+
+    located_section(&mut s, cx, points, outcomes);
 
     // Errors, grouped by message pattern.
     let _ = writeln!(s, "\n## Errors by message\n");
@@ -1371,7 +1480,8 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
          Measured outputs have 4 significant digits, ratios 6.\n\n\
          `envelope-l1.csv`, one row per operating point (bearing, speed, load case): L1's loaded balls, the \
          point-contact race-control range rc_lo … rc_hi, the finite contacts' range ell_lo … ell_hi (the bound), L1's \
-         own cage ratio (outer-race control, weighted by the inner loads) and L1's error where it has none."
+         own cage ratio (outer-race control, weighted by the inner loads), a located ring's axial reaction [N] and L1's \
+         error where it has none."
     );
     s
 }
@@ -1430,6 +1540,8 @@ mod tests {
                 ell_check: 0.0,
                 orc_ratio: 0.4268,
                 loaded: 14,
+                held: None,
+                reaction: 4000.0,
             }),
             ..Measured::default()
         }
@@ -1488,6 +1600,16 @@ mod tests {
             let o = judge(m);
             assert_eq!(o.class, class, "ratio {ratio}: {}", o.message);
         }
+
+        // A located ring that leaves its place.
+        let mut m = sound();
+        m.l1.as_mut().unwrap().held = Some(0.0);
+        m.ok.ring_x = [0.0, 0.0];
+        assert_eq!(judge(m.clone()).class, Class::Ok);
+        m.ok.ring_x = [-2e-6, 0.0];
+        let g = judge(m);
+        assert_eq!(g.class, Class::Garbage);
+        assert!(g.message.contains("located ring.x"), "{}", g.message);
 
         // A traction level at L1's outer-race-control speed: a silent fallback.
         let mut m = sound();
