@@ -1249,6 +1249,32 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
         "\nSampling: with 9 samples of each contact angle across its ellipse instead of 3, no loaded ball's range over \
          the grid moves by more than {sampling:.1e} (relative)."
     );
+    // How wide the two ranges are, relative to their middle, over the points at speed.
+    let mut widths: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+    for (p, o) in points.iter().zip(outcomes) {
+        let Some(l) = o.measured.as_ref().and_then(|m| m.l1.as_ref()) else {
+            continue;
+        };
+        if p.spec.speed_rpm > 0.0 && l.ell_hi.is_finite() && l.rc_hi.is_finite() {
+            widths[0].push((l.ell_hi - l.ell_lo) / (0.5 * (l.ell_hi + l.ell_lo)));
+            widths[1].push((l.rc_hi - l.rc_lo) / (0.5 * (l.rc_hi + l.rc_lo)));
+        }
+    }
+    for w in widths.iter_mut() {
+        w.sort_by(f64::total_cmp);
+    }
+    let _ = writeln!(
+        s,
+        "\nWidth: the range with finite contacts spans {:.1} % of its middle at the median point at speed ({:.1} % to \
+         {:.1} %; the point-contact range {:.2} % at the median, up to {:.1} %): wide enough that it catches a cage \
+         ratio no rolling of the loaded balls can make, not a deviation of a few per cent. Those show in the table \
+         below and in the flags.",
+        100.0 * percentile(&widths[0], 0.5),
+        100.0 * widths[0].first().copied().unwrap_or(f64::NAN),
+        100.0 * widths[0].last().copied().unwrap_or(f64::NAN),
+        100.0 * percentile(&widths[1], 0.5),
+        100.0 * widths[1].last().copied().unwrap_or(f64::NAN)
+    );
     let _ = writeln!(
         s,
         "\nFor information, the same against the point-contact range (each ball's two race controls at its L1 contact \
