@@ -114,6 +114,8 @@ pub fn run(args: Args) -> Result<(), String> {
     } else {
         args.jobs
     };
+    // The revision the grid runs at, before it writes its tables (which may be tracked files).
+    let revision = git_revision(&args.out);
     let started = Instant::now();
     let raw = run_all(&exe, &points, jobs, args.time_limit, !args.quiet)?;
     let total_wall = started.elapsed().as_secs_f64();
@@ -129,7 +131,7 @@ pub fn run(args: Args) -> Result<(), String> {
     report::write_csv(&csv, &l1_csv, &points, &outcomes, &scales)?;
     let cx = report::Context {
         command: command_line(),
-        revision: git_revision(),
+        revision,
         quick: args.quick,
         time_limit: args.time_limit,
         jobs,
@@ -363,23 +365,32 @@ fn command_line() -> String {
     format!("raceway {}", args.join(" "))
 }
 
-/// The checked-out revision, when this runs in a git work tree.
-fn git_revision() -> Option<String> {
-    let out = Command::new("git")
+/// The checked-out revision, when this runs in a git work tree, marked when tracked files
+/// other than those in the output folder `out` differ from it (regenerating committed tables
+/// is not an uncommitted change of what made them).
+fn git_revision(out: &Path) -> Option<String> {
+    let head = Command::new("git")
         .args(["rev-parse", "--short=12", "HEAD"])
         .stderr(Stdio::null())
         .output()
         .ok()?;
-    let rev = String::from_utf8(out.stdout).ok()?.trim().to_string();
-    if !out.status.success() || rev.is_empty() {
+    let rev = String::from_utf8(head.stdout).ok()?.trim().to_string();
+    if !head.status.success() || rev.is_empty() {
         return None;
     }
-    let dirty = Command::new("git")
-        .args(["status", "--porcelain", "--untracked-files=no"])
-        .stderr(Stdio::null())
-        .output()
-        .ok()
-        .is_some_and(|o| !o.stdout.is_empty());
+    let status = |extra: &[&str]| {
+        Command::new("git")
+            .args(["status", "--porcelain", "--untracked-files=no", "--", ":/"])
+            .args(extra)
+            .stderr(Stdio::null())
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| !o.stdout.is_empty())
+    };
+    // An output folder outside the work tree is no valid pathspec: then everything counts.
+    let exclude = format!(":(exclude){}", out.display());
+    let dirty = status(&[&exclude]).or_else(|| status(&[])).unwrap_or(false);
     Some(if dirty {
         format!("{rev} (with uncommitted changes)")
     } else {
