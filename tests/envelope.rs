@@ -59,8 +59,9 @@ fn quick_grid_has_no_hang_crash_or_garbage() {
         String::from_utf8_lossy(&out.stderr)
     );
     let (head, rows) = rows(&dir);
-    // 4 presets × 5 levels × (4 loads × 2 pedestals × 3 speeds).
-    assert_eq!(rows.len(), 4 * 5 * 24);
+    // 4 presets × 5 levels × (4 loads × 2 pedestals × 3 speeds), and the pure radial load on a
+    // located ring on the two angular-contact presets.
+    assert_eq!(rows.len(), 4 * 5 * 24 + 2 * 5 * 6);
     let class = col(&head, "class");
     for r in &rows {
         assert!(
@@ -84,6 +85,33 @@ fn quick_grid_has_no_hang_crash_or_garbage() {
             assert!(ok > 0, "{preset} {lv}: no point ran to the end\n{summary}");
         }
     }
+    // The angular-contact presets refuse a pure radial load on a free ring with a clear error
+    // and carry it on a located one, at every level.
+    let load = col(&head, "load_case");
+    for preset in ["niu2014-table1", "ims-za2115"] {
+        let of = |case: &str| {
+            rows.iter()
+                .filter(|r| {
+                    r[bearing] == preset && r[load] == case && r[col(&head, "speed_rpm")] != "0"
+                })
+                .map(|r| r[class].as_str())
+                .collect::<Vec<_>>()
+        };
+        let free = of("radial-heavy");
+        let located = of("radial-heavy-located");
+        assert_eq!(located.len(), 5 * 4, "{preset}");
+        assert!(free.iter().all(|&c| c == "error"), "{preset}: {free:?}");
+        assert!(
+            located.iter().all(|&c| c == "ok"),
+            "{preset}: {located:?}\n{summary}"
+        );
+    }
+    // L1's reference once per operating point.
+    let l1 = csv::Reader::from_path(dir.join("envelope-l1.csv"))
+        .expect("envelope-l1.csv")
+        .records()
+        .count();
+    assert_eq!(l1, 4 * 4 * 3 + 2 * 3, "{l1}");
     // The summary starts with the command that made it.
     assert!(
         summary.contains("raceway envelope --quick --all-presets"),

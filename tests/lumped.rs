@@ -186,6 +186,52 @@ fn at_rest_the_ring_sits_where_l1_puts_it() {
 }
 
 #[test]
+fn at_speed_the_ring_starts_at_the_lumped_equilibrium() {
+    // L2 has no centrifugal ball forces. At 14286 rpm under a light axial load they put L1's
+    // ring 56 µm back (δa < 0, outer contact angle 5°): started there, no L2 ball touched,
+    // bearing.F was 0 at t = 0 and the ring fell onto the balls at up to 9 × the load.
+    for (rpm, fa, fr) in [
+        (14286.0, 345.4, 0.0),
+        (6429.0, 345.4, 0.0),
+        (9900.0, 1000.0, 300.0),
+    ] {
+        let mut sc = scene("default.toml");
+        sc.defect = None;
+        sc.operating.speed_rpm = rpm;
+        sc.operating.fa = fa;
+        sc.operating.fr = fr;
+        let bearing = Bearing::new(&sc.bearing).unwrap();
+        let rest = quasi_static::solve(&bearing, &LoadCase::from_fa_fr_rpm(fa, fr, 0.0)).unwrap();
+        let mut sim = Simulation::new(&sc).unwrap();
+        let mut o = vec![0.0; sim.output_table().len()];
+        sim.outputs(&mut o);
+        let dev = (o[out::BEARING_F_X] + fa)
+            .hypot(o[out::BEARING_F_Y])
+            .hypot(o[out::BEARING_F_Z] - fr);
+        assert!(
+            dev < 1e-3 * fa.hypot(fr),
+            "{rpm} rpm: |F + load| = {dev} N at t = 0"
+        );
+        assert!(
+            (o[out::RING_X] / rest.delta_axial - 1.0).abs() < 0.005,
+            "{rpm} rpm: ring.x {} vs L1 at rest {}",
+            o[out::RING_X],
+            rest.delta_axial
+        );
+        // And it stays there: no fall onto the balls.
+        let mut peak: f64 = 0.0;
+        sim.advance_sampled(0.005, 1.0 / 51200.0, &mut |_, o| {
+            peak = peak.max(o[out::BEARING_F_X].hypot(o[out::BEARING_F_Z]));
+        })
+        .unwrap();
+        assert!(
+            peak < 1.05 * fa.hypot(fr),
+            "{rpm} rpm: |bearing.F| up to {peak} N"
+        );
+    }
+}
+
+#[test]
 fn communication_step_does_not_change_the_result() {
     let sc = scene("default.toml");
     let t_end = 0.03;

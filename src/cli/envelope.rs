@@ -36,7 +36,7 @@ pub struct Args {
     /// heavy, Fr ≈ Fa, partial load zone); the preset's and a soft pedestal; spall on
     #[arg(long)]
     pub quick: bool,
-    /// Output folder for envelope.csv and envelope.md
+    /// Output folder for envelope.csv, envelope-l1.csv and envelope.md
     #[arg(long, default_value = "docs/envelope")]
     pub out: PathBuf,
     /// Worker processes at a time (default: one per core)
@@ -45,8 +45,9 @@ pub struct Args {
     /// Wall-time limit of one point [s]: beyond it the worker is killed and the point is a hang
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub time_limit: f64,
-    /// Relative margin around the loaded balls' race-control range of the cage speed at the
-    /// kinematic, quasi-static, lumped and reduced levels (default 0.02; the full level's is 0.06)
+    /// Relative numerical margin around the loaded balls' race-control range of the cage speed
+    /// with finite contacts at the kinematic, quasi-static and lumped levels (default 0.001; the
+    /// reduced and full levels' is 0.01)
     #[arg(long, allow_negative_numbers = true)]
     pub cage_margin: Option<f64>,
     /// No progress bar
@@ -113,6 +114,8 @@ pub fn run(args: Args) -> Result<(), String> {
     } else {
         args.jobs
     };
+    // The revision the grid runs at, before it writes its tables (which may be tracked files).
+    let revision = git_revision(&args.out);
     let started = Instant::now();
     let raw = run_all(&exe, &points, jobs, args.time_limit, !args.quiet)?;
     let total_wall = started.elapsed().as_secs_f64();
@@ -124,10 +127,11 @@ pub fn run(args: Args) -> Result<(), String> {
     report::flag_neighbours(&points, &mut outcomes, &bounds);
 
     let csv = args.out.join("envelope.csv");
-    report::write_csv(&csv, &points, &outcomes, &scales)?;
+    let l1_csv = args.out.join("envelope-l1.csv");
+    report::write_csv(&csv, &l1_csv, &points, &outcomes, &scales)?;
     let cx = report::Context {
         command: command_line(),
-        revision: git_revision(),
+        revision,
         quick: args.quick,
         time_limit: args.time_limit,
         jobs,
@@ -147,10 +151,11 @@ pub fn run(args: Args) -> Result<(), String> {
         .collect();
     let flagged = outcomes.iter().filter(|o| !o.flags.is_empty()).count();
     eprintln!(
-        "envelope: {} points in {total_wall:.1} s: {}; {flagged} flagged; wrote {} and {}",
+        "envelope: {} points in {total_wall:.1} s: {}; {flagged} flagged; wrote {}, {} and {}",
         points.len(),
         counts.join(", "),
         csv.display(),
+        l1_csv.display(),
         md.display()
     );
     let failing = outcomes.iter().filter(|o| o.class.fails()).count();
@@ -360,23 +365,32 @@ fn command_line() -> String {
     format!("raceway {}", args.join(" "))
 }
 
-/// The checked-out revision, when this runs in a git work tree.
-fn git_revision() -> Option<String> {
-    let out = Command::new("git")
+/// The checked-out revision, when this runs in a git work tree, marked when tracked files
+/// other than those in the output folder `out` differ from it (regenerating committed tables
+/// is not an uncommitted change of what made them).
+fn git_revision(out: &Path) -> Option<String> {
+    let head = Command::new("git")
         .args(["rev-parse", "--short=12", "HEAD"])
         .stderr(Stdio::null())
         .output()
         .ok()?;
-    let rev = String::from_utf8(out.stdout).ok()?.trim().to_string();
-    if !out.status.success() || rev.is_empty() {
+    let rev = String::from_utf8(head.stdout).ok()?.trim().to_string();
+    if !head.status.success() || rev.is_empty() {
         return None;
     }
-    let dirty = Command::new("git")
-        .args(["status", "--porcelain", "--untracked-files=no"])
-        .stderr(Stdio::null())
-        .output()
-        .ok()
-        .is_some_and(|o| !o.stdout.is_empty());
+    let status = |extra: &[&str]| {
+        Command::new("git")
+            .args(["status", "--porcelain", "--untracked-files=no", "--", ":/"])
+            .args(extra)
+            .stderr(Stdio::null())
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| !o.stdout.is_empty())
+    };
+    // An output folder outside the work tree is no valid pathspec: then everything counts.
+    let exclude = format!(":(exclude){}", out.display());
+    let dirty = status(&[&exclude]).or_else(|| status(&[])).unwrap_or(false);
     Some(if dirty {
         format!("{rev} (with uncommitted changes)")
     } else {

@@ -40,13 +40,15 @@ enum Command {
     ///
     /// Speeds from 0 to the bearing's limiting speed (dm·n = 1e6 mm·rpm), axial and radial
     /// loads as fractions of its static load rating C0 (ISO 76, from its geometry: pure axial,
-    /// pure radial, Fr ≈ Fa, partial load zone, light and heavy), the preset's, a soft and a
-    /// stiff pedestal, spall off and on; every point briefly at every level, each in its own
-    /// worker process under a watchdog. A point is ok (finite outputs within physical bounds),
-    /// error (a clear error message), garbage (non-finite or out-of-bounds outputs returned as
-    /// success), hang (past --time-limit, killed) or crash. Writes envelope.csv (every point)
-    /// and envelope.md (the command, the bounds, counts per bearing and level, the failures);
-    /// the exit status is non-zero when any point hangs, crashes or returns garbage.
+    /// pure radial, Fr ≈ Fa, partial load zone, light and heavy; pure radial also on an axially
+    /// located ring where α0 > 0), the preset's, a soft and a stiff pedestal, spall off and on;
+    /// every point briefly at every level, each in its own worker process under a watchdog. A
+    /// point is ok (finite outputs within physical bounds), error (a clear error message),
+    /// garbage (non-finite or out-of-bounds outputs returned as success), hang (past
+    /// --time-limit, killed) or crash. Writes envelope.csv (every point), envelope-l1.csv (L1's
+    /// reference at each operating point) and envelope.md (the command, the bounds, counts per
+    /// bearing and level, the failures); the exit status is non-zero when any point hangs,
+    /// crashes or returns garbage.
     Envelope(envelope::Args),
 }
 

@@ -101,7 +101,8 @@ pub struct LumpedModel {
     /// Where the cage speed comes from (`lumped.cage_speed`).
     cage: CageSpeed,
     l1_inputs: Inputs,
-    /// Static ring displacement relative to the outer ring from L1 (for the initial state).
+    /// Static ring displacement relative to the outer ring from L1 at rest (for the initial
+    /// state: this model has no centrifugal ball forces, see [`LumpedModel::new`]).
     ring_offset: [f64; 3],
     zones: Vec<Zone>,
     /// Compliance K^(−2/3) of the race without the spall.
@@ -189,7 +190,22 @@ impl LumpedModel {
             q_ball: vec![0.0; bearing.z],
         };
         m.theta_start = m.choose_theta_start();
-        m.solve_l1(bearing, inputs)?;
+        let qs = m.solve_l1(bearing, inputs)?;
+        // The start: L1's ring at rest, which is this model's own equilibrium (no centrifugal
+        // ball forces here). At speed they move L1's ring by tens of µm (−56 µm axially at
+        // 14286 rpm under 345 N on the Table-1 bearing), far enough that no ball of this model
+        // touched and the Newton refinement had nothing to work with. Should L1 at rest fail
+        // where L1 at speed solved, the refinement starts from the latter as before.
+        let rest = Inputs {
+            shaft_speed: 0.0,
+            ..*inputs
+        };
+        let start = if inputs.shaft_speed > 0.0 {
+            super::solve_l1_held(bearing, &rest, m.held_axial, "L1 at rest").unwrap_or(qs)
+        } else {
+            qs
+        };
+        m.ring_offset = [start.delta_axial, start.delta_y, start.delta_z];
         Ok(m)
     }
 
@@ -205,9 +221,13 @@ impl LumpedModel {
             .unwrap_or(0.5 * spacing)
     }
 
-    /// L1 at the given inputs: the cage-speed ratio and the static ring offset (the traction
-    /// solve starts from the last ratio, solved nearby along a ramp).
-    fn solve_l1(&mut self, bearing: &Bearing, inputs: &Inputs) -> Result<(), SimError> {
+    /// L1 at the given inputs and the cage-speed ratio from it (the traction solve starts from
+    /// the last ratio, solved nearby along a ramp).
+    fn solve_l1(
+        &mut self,
+        bearing: &Bearing,
+        inputs: &Inputs,
+    ) -> Result<quasi_static::QuasiStatic, SimError> {
         let qs = super::solve_l1_held(
             bearing,
             inputs,
@@ -221,9 +241,8 @@ impl LumpedModel {
         } else {
             kinematic_cage_ratio(bearing, &qs)
         };
-        self.ring_offset = [qs.delta_axial, qs.delta_y, qs.delta_z];
         self.l1_inputs = *inputs;
-        Ok(())
+        Ok(qs)
     }
 
     /// Slip jitter of ball j in cage revolution n [rad] (deterministic in seed, ball, revolution).
@@ -483,7 +502,7 @@ impl LumpedModel {
     }
 
     /// Static equilibrium of the inner ring at t = 0 against the pedestal at its static deflection,
-    /// refined by Newton from the L1 offset so that the start is quiet.
+    /// refined by Newton from the L1 offset at rest so that the start is quiet.
     fn static_ring(&self, y: &mut [f64]) {
         let mut f = [0.0; 3];
         let residual = |m: &Self, y: &[f64], f: &mut [f64; 3]| {
@@ -935,7 +954,7 @@ impl Model for LumpedModel {
 
     fn update_operating_point(&mut self, inputs: &Inputs) -> Result<(), SimError> {
         let bearing = self.bearing.clone();
-        self.solve_l1(&bearing, inputs)
+        self.solve_l1(&bearing, inputs).map(|_| ())
     }
 
     fn set_prescribed_ring(&mut self, on: bool) {

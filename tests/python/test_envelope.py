@@ -7,7 +7,9 @@ At each level a point must either simulate to the end with finite outputs (the c
 forces), the bound of `raceway envelope`) or stop with fmi2Error / fmi2Discard, which fmpy raises
 (FMICallException) and the FMU explains in its log. The points are issue 17's: the partial load
 zone (9900 rpm, Fa 1000 N, Fr 4000 N), Fr close to Fa, the operating points that hung or returned
-garbage through fmpy, the shaft at rest, and a pure radial load. They are on the Table-1 bearing,
+garbage through fmpy, the shaft at rest, and a pure radial load, on a free ring (which an
+angular-contact bearing cannot carry: a clear error) and on an axially located one (ring.axial = 1:
+it must run at every level with the ring held in place). They are on the Table-1 bearing,
 the one the FMU is built for; the whole grid over every preset runs through the library:
 `raceway envelope --all-presets` (docs/envelope/envelope.md).
 
@@ -23,15 +25,21 @@ import sys
 
 import pytest
 
-# (name, speed [rpm], Fa [N], Fr [N], pedestal stiffness [N/m] or None for the bearing's, spall)
+# (name, speed [rpm], Fa [N], Fr [N], pedestal stiffness [N/m] or None for the bearing's, spall,
+# ring located axially)
 POINTS = [
-    ("partial-zone-9900rpm-fa1000-fr4000", 9900.0, 1000.0, 4000.0, None, True),
-    ("fr-near-fa-4000rpm-fa4000-fr4250", 4000.0, 4000.0, 4250.0, None, True),
-    ("fmpy-hang-5376rpm-fr3913.5", 5376.0, 4000.0, 3913.5, None, True),
-    ("fmpy-garbage-7140rpm-fr3000-soft-pedestal", 7140.0, 4000.0, 3000.0, 5e6, False),
-    ("at-rest-fa4000-fr1000", 0.0, 4000.0, 1000.0, None, True),
-    ("pure-radial-9900rpm-fr4000", 9900.0, 0.0, 4000.0, None, False),
+    ("partial-zone-9900rpm-fa1000-fr4000", 9900.0, 1000.0, 4000.0, None, True, False),
+    ("fr-near-fa-4000rpm-fa4000-fr4250", 4000.0, 4000.0, 4250.0, None, True, False),
+    ("fmpy-hang-5376rpm-fr3913.5", 5376.0, 4000.0, 3913.5, None, True, False),
+    ("fmpy-garbage-7140rpm-fr3000-soft-pedestal", 7140.0, 4000.0, 3000.0, 5e6, False, False),
+    ("at-rest-fa4000-fr1000", 0.0, 4000.0, 1000.0, None, True, False),
+    ("pure-radial-9900rpm-fr4000", 9900.0, 0.0, 4000.0, None, False, False),
+    ("pure-radial-9900rpm-fr4000-located", 9900.0, 0.0, 4000.0, None, True, True),
 ]
+
+# The axial reaction of the located ring at 9900 rpm, Fr 4000 N [N] (L1: `raceway static --fr 4000
+# --speed-rpm 9900 --axial-offset 0`): the axial load the bearing then carries.
+LOCATED_REACTION = 3245.35
 
 # Level code: (name, simulated time [s], communication step [s]), as `raceway envelope` runs them.
 LEVELS = {
@@ -55,7 +63,7 @@ def run_level(ctx, probes, point, code):
     """Runs one level of the point through fmpy's FMU2Slave; never raises."""
     from fmpy.fmi1 import FMICallException
 
-    name, rpm, fa, fr, k, spall = point
+    name, rpm, fa, fr, k, spall, located = point
     _, duration, step = LEVELS[code]
     omega = rpm * math.pi / 30.0
     result = {"level": code, "completed": False, "stage": "instantiate", "t": 0.0}
@@ -63,7 +71,8 @@ def run_level(ctx, probes, point, code):
     outputs = [v for v in ctx.md.modelVariables if v.causality == "output" and v.type == "Real"]
     refs = [v.valueReference for v in outputs]
     index = {v.name: i for i, v in enumerate(outputs)}
-    track = {"nonfinite": [], "cage_min": math.inf, "cage_max": -math.inf, "max_f": 0.0}
+    track = {"nonfinite": [], "cage_min": math.inf, "cage_max": -math.inf, "max_f": 0.0,
+             "ring_x": [math.inf, -math.inf]}
 
     def check(values, t):
         for v, x in zip(outputs, values):
@@ -74,6 +83,8 @@ def run_level(ctx, probes, point, code):
         track["cage_max"] = max(track["cage_max"], w)
         f = math.sqrt(sum(values[index[f"bearing.F.{a}"]] ** 2 for a in "xyz"))
         track["max_f"] = max(track["max_f"], f)
+        x = values[index["ring.x"]]
+        track["ring_x"] = [min(track["ring_x"][0], x), max(track["ring_x"][1], x)]
 
     s = None
     try:
@@ -84,6 +95,8 @@ def run_level(ctx, probes, point, code):
         s.setInteger([ctx.vr["defect.ring"]], [1 if spall else 0])
         if k is not None:
             s.setReal([ctx.vr["pedestal.k_y"], ctx.vr["pedestal.k_z"]], [k, k])
+        if located:
+            s.setInteger([ctx.vr["ring.axial"]], [1])
         s.setReal([ctx.vr["shaft.speed"], ctx.vr["load.Fx"], ctx.vr["load.Fy"], ctx.vr["load.Fz"]],
                   [omega, fa, 0.0, -fr])
         s.enterInitializationMode()
@@ -128,9 +141,18 @@ def worker(fmu_dir, point_json):
 
 def problems_of(point, r):
     """What is wrong with one level's result (empty when it is fine)."""
-    name, rpm, fa, fr, _, _ = point
+    name, rpm, fa, fr, _, _, located = point
     level = LEVELS[r["level"]][0]
     omega = rpm * math.pi / 30.0
+    if located:
+        # The located ring carries the pure radial load at every level, held in place (at 0: no
+        # load.Fx), with the location's reaction as its axial load.
+        if not r["completed"]:
+            return [f"{level}: a located ring must carry a pure radial load: "
+                    f"{r.get('exception')} at {r['stage']}"]
+        fa = LOCATED_REACTION
+        if max(abs(v) for v in r["ring_x"]) > 1e-9:
+            return [f"{level}: located ring.x moved: {r['ring_x']} m"]
     if not r["completed"]:
         # A failure must be a clear fmi2Discard or fmi2Error: fmpy raised, the FMU said why.
         bad = []

@@ -2,6 +2,7 @@
 //! points built from them.
 
 use raceway::geometry::Bearing;
+use raceway::limits::StaticRating;
 use raceway::scene::Fidelity;
 use serde::{Deserialize, Serialize};
 
@@ -10,11 +11,8 @@ use serde::{Deserialize, Serialize};
 /// paper's 9900 rpm on the Table-1 bearing (dm = 70 mm) is 0.69e6.
 pub const DMN_LIMIT: f64 = 1.0e6;
 
-/// Contact pressure that defines the static load rating (ISO 76, ball bearings) \[Pa\].
-pub const P_ISO76: f64 = 4200e6;
-
-/// ISO 76's load of the most heavily loaded ball under a radial load:
-/// Q_max = 5 Fr/(Z cos α) (Stribeck's 4.37 for zero play, rounded up for the play).
+/// ISO 76's load of the most heavily loaded ball at P0 = C0: Q_max = 5 C0/(Z cos α0)
+/// (Stribeck's 4.37 for zero play, rounded up for the play).
 pub const STRIBECK: f64 = 5.0;
 
 /// Loads as fractions of C0: light, medium, heavy.
@@ -35,20 +33,40 @@ pub const SPALL_DEPTH_OVER_D: f64 = 0.2 / 12.7;
 const SPEEDS_FULL: [f64; 8] = [0.0, 0.05, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0];
 const SPEEDS_QUICK: [f64; 3] = [0.0, 0.5, 1.0];
 
-/// One load case: Fa and Fr as fractions of C0.
+/// One load case: Fa and Fr as fractions of C0, and how the inner ring is held axially.
 #[derive(Debug, Clone, Copy)]
 pub struct LoadCase {
     pub name: &'static str,
     pub what: &'static str,
     pub fa: f64,
     pub fr: f64,
+    /// The ring axially located (`[mounting] axial = "located"`, at its unloaded place since
+    /// Fa = 0); run on angular-contact bearings only (α0 > 0), where a free ring cannot carry
+    /// a pure radial load (those points stay in the grid as clear errors).
+    pub located: bool,
 }
 
 const fn load(name: &'static str, what: &'static str, fa: f64, fr: f64) -> LoadCase {
-    LoadCase { name, what, fa, fr }
+    LoadCase {
+        name,
+        what,
+        fa,
+        fr,
+        located: false,
+    }
 }
 
-const LOADS_FULL: [LoadCase; 15] = [
+const fn located(name: &'static str, what: &'static str, fr: f64) -> LoadCase {
+    LoadCase {
+        name,
+        what,
+        fa: 0.0,
+        fr,
+        located: true,
+    }
+}
+
+const LOADS_FULL: [LoadCase; 17] = [
     load("axial-light", "pure axial, light", LIGHT, 0.0),
     load("axial-heavy", "pure axial, heavy", HEAVY, 0.0),
     load("radial-light", "pure radial, light", 0.0, LIGHT),
@@ -84,9 +102,25 @@ const LOADS_FULL: [LoadCase; 15] = [
         LIGHT,
         HEAVY,
     ),
+    located(
+        "radial-light-located",
+        "pure radial, light, ring located axially (α0 > 0 only)",
+        LIGHT,
+    ),
+    located(
+        "radial-heavy-located",
+        "pure radial, heavy, ring located axially (α0 > 0 only)",
+        HEAVY,
+    ),
 ];
 
-const LOADS_QUICK: [LoadCase; 4] = [LOADS_FULL[1], LOADS_FULL[3], LOADS_FULL[9], LOADS_FULL[13]];
+const LOADS_QUICK: [LoadCase; 5] = [
+    LOADS_FULL[1],
+    LOADS_FULL[3],
+    LOADS_FULL[9],
+    LOADS_FULL[13],
+    LOADS_FULL[16],
+];
 
 /// Simulated time per level \[s\]: enough for a few ball passes at the cheap levels, a few
 /// milliseconds (several ball-pass periods at speed) at the per-ball levels.
@@ -122,14 +156,15 @@ pub struct Scales {
     pub b_total: f64,
     /// Ball mass \[kg\].
     pub ball_mass: f64,
-    /// Ball load at which the peak Hertz pressure of the more stressed contact reaches
-    /// [`P_ISO76`] \[N\].
-    pub q_lim: f64,
-    /// Static load rating C0 = Z Q_lim cos α0 / 5 \[N\] (ISO 76's definition with the Hertz
-    /// pressure computed from this bearing's own geometry).
+    /// Static load rating C0 \[N\] ([`StaticRating`], ISO 76: f0 from the standard's table).
     pub c0: f64,
+    /// The rating with its factors X0, Y0 of the static equivalent load.
+    pub rating: StaticRating,
     /// ISO 76's factor f0 = C0/(Z D² cos α0), D in mm.
     pub f0: f64,
+    /// Peak Hertz pressure \[Pa\] of ISO 76's ball load at P0 = C0, Q = 5 C0/(Z cos α0), with
+    /// this bearing's own curvatures (ISO's 4200 MPa assumes groove radii of 0.52 D and 0.53 D).
+    pub p0_at_c0: f64,
     /// Limiting speed DMN_LIMIT/dm \[rpm\].
     pub n_lim: f64,
     /// The preset's pedestal stiffness (k_z) \[N/m\].
@@ -144,15 +179,15 @@ impl Scales {
     }
 
     pub fn new(source: &str, b: &Bearing) -> Self {
-        // p0 grows as Q^(1/3): the load at the limit pressure follows from the pressure at 1 N.
-        let p1 = b
-            .hertz_inner
-            .peak_pressure(1.0)
-            .max(b.hertz_outer.peak_pressure(1.0));
-        let q_lim = (P_ISO76 / p1).powi(3);
         let cos_a = b.alpha0.cos();
-        let c0 = b.z as f64 * q_lim * cos_a / STRIBECK;
+        let rating = StaticRating::of(b);
+        let c0 = rating.c0;
         let d_mm = b.d * 1e3;
+        let q_c0 = STRIBECK * c0 / (b.z as f64 * cos_a);
+        let p0_at_c0 = b
+            .hertz_inner
+            .peak_pressure(q_c0)
+            .max(b.hertz_outer.peak_pressure(q_c0));
         Self {
             source: source.to_string(),
             name: if b.file.name.is_empty() {
@@ -166,9 +201,10 @@ impl Scales {
             alpha0_deg: b.alpha0.to_degrees(),
             b_total: b.b_total,
             ball_mass: b.ball_mass,
-            q_lim,
             c0,
+            rating,
             f0: c0 / (b.z as f64 * d_mm * d_mm * cos_a),
+            p0_at_c0,
             n_lim: DMN_LIMIT / (b.dm * 1e3),
             k_preset: b.file.pedestal.k_z,
         }
@@ -191,6 +227,9 @@ pub struct PointSpec {
     pub k_pedestal: Option<f64>,
     /// The outer-race spall on or off.
     pub spall: bool,
+    /// The inner ring axially located (`[mounting] axial = "located"`, default offset).
+    #[serde(default)]
+    pub located: bool,
     /// Simulated time \[s\].
     pub duration: f64,
     /// Test hook: the worker sleeps instead of running (exercises the watchdog).
@@ -205,8 +244,6 @@ pub struct GridPoint {
     /// Index of the bearing in the run's list of bearings.
     pub bearing: usize,
     pub level: Fidelity,
-    /// Speed as a fraction of the limiting speed.
-    pub speed_frac: f64,
     /// Index along the speed axis; `None` for the issue-17 points off the grid.
     pub i_speed: Option<usize>,
     /// Load-case name and index.
@@ -264,6 +301,9 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
         };
         for &level in levels {
             for (il, lc) in ax.loads.iter().enumerate() {
+                if lc.located && s.alpha0_deg <= 0.0 {
+                    continue;
+                }
                 for &(pname, k) in &pedestals {
                     for spall in [false, true] {
                         if quick && !spall {
@@ -279,12 +319,12 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                                     fr: lc.fr * s.c0,
                                     k_pedestal: k,
                                     spall,
+                                    located: lc.located,
                                     duration: duration(level),
                                     stall: false,
                                 },
                                 bearing: ib,
                                 level,
-                                speed_frac: frac,
                                 i_speed: Some(is),
                                 load: lc.name,
                                 i_load: il,
@@ -308,12 +348,12 @@ pub fn build(scales: &[Scales], levels: &[Fidelity], quick: bool) -> Vec<GridPoi
                                 fr,
                                 k_pedestal: k,
                                 spall,
+                                located: false,
                                 duration: duration(level),
                                 stall: false,
                             },
                             bearing: ib,
                             level,
-                            speed_frac: rpm / s.n_lim,
                             i_speed: None,
                             load: name,
                             i_load: ax.loads.len() + i,
@@ -333,14 +373,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn static_load_rating_is_iso76_sized() {
-        // ISO 76's f0 of radial ball bearings lies between about 12 and 17 for the usual
-        // conformities (tighter grooves carry more); the Table-1 bearing's grooves are tight
-        // (0.515/0.52).
+    fn the_load_scale_is_the_librarys_static_rating() {
+        // One C0 in every document: the library's ISO 76 rating. At ISO's ball load for
+        // P0 = C0 the presets' own contacts stay below 4200 MPa (their grooves conform more
+        // closely than the standard's 0.52/0.53 D) and above half of it.
         for (name, _) in raceway::config::PRESETS {
             let b = Bearing::load(name).unwrap();
             let s = Scales::new(name, &b);
-            assert!(s.f0 > 11.0 && s.f0 < 20.0, "{name}: f0 = {}", s.f0);
+            assert_eq!(s.c0, StaticRating::of(&b).c0, "{name}");
+            assert!(s.f0 > 9.4 && s.f0 < 16.5, "{name}: f0 = {}", s.f0);
+            assert!(
+                s.p0_at_c0 > 0.5 * raceway::limits::RATING_PRESSURE
+                    && s.p0_at_c0 <= raceway::limits::RATING_PRESSURE,
+                "{name}: {} Pa",
+                s.p0_at_c0
+            );
             assert!(
                 s.n_lim > 10_000.0 && s.n_lim < 40_000.0,
                 "{name}: {}",
@@ -354,15 +401,30 @@ mod tests {
         let b = Bearing::load("niu2014-table1").unwrap();
         let s = vec![Scales::new("niu2014-table1", &b)];
         let levels = [Fidelity::Kinematic, Fidelity::Full];
-        // 15 loads × 3 pedestals × 2 spall states × 8 speeds + 6 issue points × 2, per level.
-        assert_eq!(build(&s, &levels, false).len(), 2 * (720 + 12));
+        // 17 loads (2 of them located) × 3 pedestals × 2 spall states × 8 speeds + 6 issue
+        // points × 2, per level.
+        assert_eq!(build(&s, &levels, false).len(), 2 * (816 + 12));
         // The quick grid's load cases.
         let names: Vec<&str> = axes(true).loads.iter().map(|l| l.name).collect();
         assert_eq!(
             names,
-            ["axial-heavy", "radial-heavy", "near-equal", "partial-zone"]
+            [
+                "axial-heavy",
+                "radial-heavy",
+                "near-equal",
+                "partial-zone",
+                "radial-heavy-located"
+            ]
         );
-        // 4 loads × 2 pedestals × spall × 3 speeds per level.
-        assert_eq!(build(&s, &levels, true).len(), 2 * 24);
+        // 5 loads × 2 pedestals × spall × 3 speeds per level.
+        let quick = build(&s, &levels, true);
+        assert_eq!(quick.len(), 2 * 30);
+        assert_eq!(quick.iter().filter(|p| p.spec.located).count(), 2 * 6);
+        // A deep-groove bearing carries a pure radial load on a free ring: no located points.
+        let b = Bearing::load("cwru-6205-de").unwrap();
+        let s = vec![Scales::new("cwru-6205-de", &b)];
+        let quick = build(&s, &levels, true);
+        assert_eq!(quick.len(), 2 * 24);
+        assert!(quick.iter().all(|p| !p.spec.located));
     }
 }

@@ -6,9 +6,9 @@ use raceway::config::BearingFile;
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::kinematics::{inner_race_control_cage_ratio, outer_race_control};
-use raceway::quasi_static::{self, LoadCase};
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::quasi_static::{self, BallEquilibrium, LoadCase};
+use raceway::scene::{AxialMount, Fidelity, Mounting, Operating, Scene};
+use raceway::simulation::{out, Inputs, Simulation};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -19,11 +19,21 @@ const SAMPLE_RATE: f64 = 51_200.0;
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct L1Ref {
     /// Smallest and largest race-control cage ratio ω_c/Ω over the loaded balls (inner-race
-    /// control and outer-race control at each ball's loaded angles).
+    /// control and outer-race control at each ball's loaded angles): point contacts.
     pub rc_lo: f64,
     pub rc_hi: f64,
+    /// The same with each ball's rolling points anywhere across its contact ellipses
+    /// ([`ellipse_range`]): the range the cage ratio is checked against.
+    pub ell_lo: f64,
+    pub ell_hi: f64,
+    /// Largest relative change of a ball's range with 9 samples per angle instead of 3.
+    pub ell_check: f64,
     /// L1's own cage ratio (outer-race control, load-weighted mean over the loaded balls).
     pub orc_ratio: f64,
+    /// A located ring: where it is held \[m\] and the axial force the location supplies \[N\]
+    /// (L1's `ring_force()[0]`: bearing.F.x is its negative at the static levels).
+    pub held: Option<f64>,
+    pub reaction: f64,
     /// Number of loaded balls.
     pub loaded: usize,
 }
@@ -51,6 +61,9 @@ pub struct Extremes {
     /// Smallest and largest cage.speed over all samples \[rad/s\].
     pub cage_min: f64,
     pub cage_max: f64,
+    /// Smallest and largest ring.x \[m\] and bearing.F.x \[N\] (for a located ring).
+    pub ring_x: [f64; 2],
+    pub fx: [f64; 2],
 }
 
 impl Default for Extremes {
@@ -68,7 +81,18 @@ impl Default for Extremes {
             cage_n: 0,
             cage_min: f64::INFINITY,
             cage_max: f64::NEG_INFINITY,
+            ring_x: [f64::INFINITY, f64::NEG_INFINITY],
+            fx: [f64::INFINITY, f64::NEG_INFINITY],
         }
+    }
+}
+
+/// Widens `[lo, hi]` to hold `v`, a NaN included (it sticks).
+fn widen(r: &mut [f64; 2], v: f64) {
+    if v.is_nan() || r[0].is_nan() {
+        *r = [f64::NAN; 2];
+    } else {
+        *r = [r[0].min(v), r[1].max(v)];
     }
 }
 
@@ -106,6 +130,8 @@ impl Extremes {
             o[out::RING_Z] - o[out::PEDESTAL_Z],
         ];
         self.max_ring = max_nan(self.max_ring, norm(ring));
+        widen(&mut self.ring_x, o[out::RING_X]);
+        widen(&mut self.fx, f[0]);
         self.max_ped = max_nan(self.max_ped, o[out::PEDESTAL_Y].hypot(o[out::PEDESTAL_Z]));
         if out::has_ball_block(o, z) {
             let q = &o[out::CONTACT_START..out::CONTACT_START + 2 * z];
@@ -144,6 +170,12 @@ impl Extremes {
             self.cage_min.min(o.cage_min)
         };
         self.cage_max = max_nan(self.cage_max, o.cage_max);
+        for (r, v) in [(&mut self.ring_x, o.ring_x), (&mut self.fx, o.fx)] {
+            if v[0] <= v[1] || v[0].is_nan() {
+                widen(r, v[0]);
+                widen(r, v[1]);
+            }
+        }
     }
 }
 
@@ -199,6 +231,12 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     );
     scene.name = "envelope".into();
     scene.fidelity = level;
+    if p.located {
+        scene.mounting = Mounting {
+            axial: AxialMount::Located,
+            axial_offset: None,
+        };
+    }
     if p.spall {
         scene.defect = Some(DefectSpec {
             ring: Race::Outer,
@@ -211,27 +249,94 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     Ok(scene)
 }
 
-/// L1 at the point and the race-control cage ratios of its loaded balls.
-fn l1_reference(b: &Bearing, p: &PointSpec) -> Result<L1Ref, String> {
+/// Outer- and inner-race-control cage ratios ω_c/Ω of a ball rolling at contact angles
+/// `alpha_i`, `alpha_o` \[rad\]: (smaller, larger).
+fn race_control(b: &Bearing, alpha_i: f64, alpha_o: f64) -> (f64, f64) {
+    let orc = outer_race_control(b, alpha_i, alpha_o).cage_ratio;
+    let irc = inner_race_control_cage_ratio(b, alpha_i, alpha_o);
+    (orc.min(irc), orc.max(irc))
+}
+
+/// Race-control cage ratios of a loaded ball whose rolling points lie anywhere across its
+/// finite contacts: (smallest, largest). A contact ellipse's semi-major axis a lies across the
+/// track in the plane of the contact angle, so a rolling point s from its centre rolls at the
+/// contact angle shifted by s/R (R the ball radius); each angle goes over
+/// [α − a/R, α + a/R], sampled at `n` ≥ 2 evenly spaced points (ends included), with both race
+/// controls. The grid takes 3 (ends and middle) and checks them against 9 ([`L1Ref::ell_check`]).
+pub fn ellipse_range(b: &Bearing, e: &BallEquilibrium, n: usize) -> (f64, f64) {
+    let r = 0.5 * b.d;
+    let shift_i = b.hertz(Race::Inner).semi_axes(e.q_inner).0 / r;
+    let shift_o = b.hertz(Race::Outer).semi_axes(e.q_outer).0 / r;
+    let at = |k: usize| 2.0 * k as f64 / (n - 1) as f64 - 1.0;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for ki in 0..n {
+        for ko in 0..n {
+            let (l, h) = race_control(
+                b,
+                e.alpha_inner + at(ki) * shift_i,
+                e.alpha_outer + at(ko) * shift_o,
+            );
+            lo = lo.min(l);
+            hi = hi.max(h);
+        }
+    }
+    (lo, hi)
+}
+
+/// L1 at the point (of the scene's mounting) and the race-control cage ratios of its loaded
+/// balls.
+fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, String> {
     let case = LoadCase::from_fa_fr_rpm(p.fa, p.fr, p.speed_rpm);
-    let q = quasi_static::solve(b, &case).map_err(|e| e.to_string())?;
+    let held = raceway::models::held_axial(scene, b, &Inputs::from_scene(scene))
+        .map_err(|e| e.to_string())?;
+    let q = match held {
+        None => quasi_static::solve(b, &case),
+        Some(d) => quasi_static::solve_located(b, &case, d),
+    }
+    .map_err(|e| e.to_string())?;
     let (mut lo, mut hi, mut n) = (f64::INFINITY, f64::NEG_INFINITY, 0);
+    let (mut ell_lo, mut ell_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut ell_check: f64 = 0.0;
     for e in q.loaded_balls() {
-        let orc = outer_race_control(b, e.alpha_inner, e.alpha_outer).cage_ratio;
-        let irc = inner_race_control_cage_ratio(b, e.alpha_inner, e.alpha_outer);
-        lo = lo.min(orc.min(irc));
-        hi = hi.max(orc.max(irc));
+        let (l, h) = race_control(b, e.alpha_inner, e.alpha_outer);
+        lo = lo.min(l);
+        hi = hi.max(h);
+        let (l, h) = ellipse_range(b, e, 3);
+        ell_lo = ell_lo.min(l);
+        ell_hi = ell_hi.max(h);
+        let (fl, fh) = ellipse_range(b, e, 9);
+        ell_check = ell_check
+            .max(((l - fl) / fl).abs())
+            .max(((h - fh) / fh).abs());
         n += 1;
     }
+    // The location's reaction; at the lumped level L1's at rest, since that level has no
+    // centrifugal ball forces (they change the reaction: 204 N at rest, 1796 N at 14286 rpm
+    // under Fr 293 N on the Table-1 bearing held at 0).
+    let reaction = match held {
+        None => p.fa,
+        Some(d) if scene.fidelity == Fidelity::Lumped => {
+            let rest = LoadCase { speed: 0.0, ..case };
+            quasi_static::solve_located(b, &rest, d)
+                .map_err(|e| e.to_string())?
+                .ring_force()[0]
+        }
+        Some(_) => q.ring_force()[0],
+    };
     Ok(L1Ref {
         rc_lo: lo,
         rc_hi: hi,
+        ell_lo,
+        ell_hi,
+        ell_check,
         orc_ratio: if case.speed > 0.0 {
             q.cage_speed / case.speed
         } else {
             f64::NAN
         },
         loaded: n,
+        held,
+        reaction,
     })
 }
 
@@ -261,12 +366,14 @@ pub fn run(p: &PointSpec) -> Measured {
             return m;
         }
     };
-    match l1_reference(&bearing, p) {
+    match l1_reference(&bearing, &scene, p) {
         Ok(r) => m.l1 = Some(r),
         Err(e) => m.l1_error = Some(e),
     }
     let z = bearing.z;
-    let applied = [p.fa, 0.0, -p.fr];
+    // The axial force on the ring: Fa, or a located ring's reaction from L1.
+    let fa = m.l1.as_ref().map_or(p.fa, |l| l.reaction);
+    let applied = [fa, 0.0, -p.fr];
     let half = 0.5 * p.duration;
     m.stage = "build".into();
     let started = Instant::now();
