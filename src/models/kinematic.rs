@@ -773,4 +773,8 @@ impl Model for KinematicModel {
     fn cage_speed(&self) -> f64 {
         self.table.cage_speed_at(self.inputs.shaft_speed)
     }
+
+    fn contacts_follow_inputs(&self) -> bool {
+        true
+    }
 }

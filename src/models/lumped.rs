@@ -185,7 +185,17 @@ impl LumpedModel {
             modes_set: false,
             fired: vec![false; bearing.z],
             prescribed: false,
-            held_axial: super::held_axial(scene, bearing, inputs)?,
+            // A located ring held where the start's axial load alone puts it: at rest, as this
+            // model has no centrifugal ball forces (at speed they can move L1's ring out of
+            // this model's contacts).
+            held_axial: super::held_axial(
+                scene,
+                bearing,
+                &Inputs {
+                    shaft_speed: 0.0,
+                    ..*inputs
+                },
+            )?,
             ring_force: [0.0; 3],
             q_ball: vec![0.0; bearing.z],
         };
@@ -194,14 +204,18 @@ impl LumpedModel {
         // The start: L1's ring at rest, which is this model's own equilibrium (no centrifugal
         // ball forces here). At speed they move L1's ring by tens of µm (−56 µm axially at
         // 14286 rpm under 345 N on the Table-1 bearing), far enough that no ball of this model
-        // touched and the Newton refinement had nothing to work with. Should L1 at rest fail
-        // where L1 at speed solved, the refinement starts from the latter as before.
+        // touched and the Newton refinement had nothing to work with.
         let rest = Inputs {
             shaft_speed: 0.0,
             ..*inputs
         };
         let start = if inputs.shaft_speed > 0.0 {
-            super::solve_l1_held(bearing, &rest, m.held_axial, "L1 at rest").unwrap_or(qs)
+            super::solve_l1_held(
+                bearing,
+                &rest,
+                m.held_axial,
+                "the quasi-static (L1) start at rest of the lumped level",
+            )?
         } else {
             qs
         };

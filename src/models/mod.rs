@@ -272,6 +272,13 @@ pub trait Model: Send {
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
 
+    /// True when the contact forces change only with the inputs (the kinematic and
+    /// quasi-static levels: L1's load distribution, less a spall's dip): the simulation then
+    /// checks them at the start and when the inputs change, not after every advance.
+    fn contacts_follow_inputs(&self) -> bool {
+        false
+    }
+
     /// The inner ring's translation states, if the ring is a dynamic body of this level.
     fn ring_states(&self) -> Option<RingStates> {
         None

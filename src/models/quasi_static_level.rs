@@ -368,6 +368,10 @@ impl Model for QuasiStaticModel {
     fn cage_speed(&self) -> f64 {
         self.table.cage_speed_at(self.inputs.shaft_speed)
     }
+
+    fn contacts_follow_inputs(&self) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]
