@@ -697,8 +697,10 @@ pub fn steady_rotation(
     };
     let caged = orbit == Orbit::Caged;
     let mut evaluations = 0;
+    // Each pass solves the spins at the roots' current rates; the pass after the last update
+    // puts them at the roots' final estimates.
+    let mut finished = false;
     loop {
-        evaluations += 1;
         let target = targets(&roots);
         move_to(
             m,
@@ -711,6 +713,10 @@ pub fn steady_rotation(
             caged,
         )
         .map_err(|j| spin_error(&w, y, j))?;
+        if finished {
+            break;
+        }
+        evaluations += 1;
         match orbit {
             Orbit::Free => {
                 for j in (0..z).filter(|&j| active[j]) {
@@ -729,30 +735,14 @@ pub fn steady_rotation(
                 accel: g,
             });
         }
-        let searching = roots
+        finished = !roots
             .iter()
             .enumerate()
             .any(|(k, r)| r.state == RootState::Searching && (orbit == Orbit::Caged || active[k]));
-        if !searching {
-            break;
-        }
-        if evaluations >= ORBIT_ITER {
+        if !finished && evaluations >= ORBIT_ITER {
             return Err(SteadyError::NotConverged { evaluations });
         }
     }
-    // Final rates: the roots' last estimates, with the spins solved there.
-    let target = targets(&roots);
-    move_to(
-        m,
-        y,
-        &active,
-        &mut w,
-        &mut accel,
-        &mut solved,
-        &target,
-        caged,
-    )
-    .map_err(|j| spin_error(&w, y, j))?;
     let spin_residual = (0..z)
         .filter(|&j| active[j])
         .map(|j| norm3(&w.r[j]) / w.scale[j])
