@@ -565,6 +565,9 @@ impl Simulation {
             },
             limits,
         };
+        if let Some(note) = sim.model.start_note() {
+            sim.limits.warnings.push(note);
+        }
         if scene.coupling == CouplingMode::Force {
             sim.check_contacts(|| {
                 format!("the start's {}", crate::models::operating_point(&inputs))
@@ -597,8 +600,9 @@ impl Simulation {
     }
 
     /// The warnings since the last call (loads beyond the static load rating, contacts beyond
-    /// its pressure: each given once per simulation), for the caller to show: the FMU logs
-    /// them with status fmi2Warning, the CLI prints them.
+    /// its pressure: each given once per simulation; a start other than the level's usual one,
+    /// [`Model::start_note`]), for the caller to show: the FMU logs them with status
+    /// fmi2Warning, the CLI prints them.
     pub fn take_warnings(&mut self) -> Vec<String> {
         std::mem::take(&mut self.limits.warnings)
     }

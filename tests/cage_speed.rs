@@ -222,3 +222,19 @@ fn kinematic_cage_follows_the_speed_between_re_solves() {
         assert!((w1 / w0 - 1.01).abs() < 1e-12, "{level:?}: {w0} -> {w1}");
     }
 }
+
+#[test]
+fn a_full_model_start_at_the_caged_rate_is_said() {
+    // Table-1 bearing, 11429 rpm, Fa 1727 N, Fr 3454 N on a 5e6 N/m pedestal: a ball has no
+    // steady rotation of its own, so the cage-less full model starts all balls at the caged
+    // rate; the simulation says so with its warnings (not silently).
+    let mut s = scene(Fidelity::Full, 11429.0, 1727.0, 3454.0);
+    s.bearing.pedestal.k_y = 5e6;
+    s.bearing.pedestal.k_z = 5e6;
+    let mut sim = Simulation::new(&s).unwrap();
+    let w = sim.take_warnings();
+    assert!(w.iter().any(|m| m.contains("caged rate")), "{w:?}");
+    // The usual case says nothing.
+    let mut sim = Simulation::new(&scene(Fidelity::Full, 9900.0, 4000.0, 1000.0)).unwrap();
+    assert!(sim.take_warnings().is_empty());
+}

@@ -243,12 +243,18 @@ impl FmuModel for BallBearing {
                 super::bindings::Fmi2Status::Ok,
                 LOG_EVENTS,
                 &format!(
-                    "initialized: fidelity {} ({}), method {}, rtol {:e}, defect {:?}",
+                    "initialized: fidelity {} ({}), method {}, rtol {:e}, defect {:?}, cage speed \
+                     of the kinematic-ball levels {}, inner ring axially {:?}",
                     live.scene.fidelity.code(),
                     live.scene.fidelity.name(),
                     live.scene.solver.method.name(),
                     live.scene.solver.rtol,
-                    live.scene.defect
+                    live.scene.defect,
+                    match live.scene.lumped.cage_speed {
+                        crate::scene::CageSpeed::Traction => "the traction's caged balance",
+                        crate::scene::CageSpeed::OuterRaceControl => "L1's outer-race control",
+                    },
+                    live.scene.mounting
                 ),
             );
         }

@@ -272,6 +272,13 @@ pub trait Model: Send {
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
 
+    /// A note on the start when it is not the one the level normally takes (the full and
+    /// reduced levels' balls at the caged rate where some ball has no steady rotation of its
+    /// own); the simulation passes it on with its warnings.
+    fn start_note(&self) -> Option<String> {
+        None
+    }
+
     /// True when the contact forces change only with the inputs (the kinematic and
     /// quasi-static levels: L1's load distribution, less a spall's dip): the simulation then
     /// checks them at the start and when the inputs change, not after every advance.

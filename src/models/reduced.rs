@@ -175,6 +175,8 @@ pub struct ReducedModel {
     /// The Newton solve of the balls' steady rotation behind the attitude (None without
     /// traction or at zero speed).
     settle: Option<full_model::steady::SteadyReport>,
+    /// The full model's note on the start this one is reduced from ([`Model::start_note`]).
+    start_note: Option<String>,
     /// Frozen spall halves, blend sides and contact modes, and their switches (as in the
     /// full model).
     sw: Switches,
@@ -267,6 +269,7 @@ impl ReducedModel {
             cage_ratio,
             attitude: (1.0, 0.0),
             settle: None,
+            start_note: None,
             sw: Switches::new(z),
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
@@ -293,6 +296,7 @@ impl ReducedModel {
         // With traction the full model starts in the balls' steady rotation: the attitude the
         // traction sets, not L1's outer-race control (see the module notes).
         self.settle = full.settle_report();
+        self.start_note = full.start_note().map(str::to_owned);
         let lay = self.lay;
         let y = &mut self.y0;
         y.iter_mut().for_each(|v| *v = 0.0);
@@ -515,6 +519,10 @@ super::full::switches::impl_switched_model!(ReducedModel);
 impl Model for ReducedModel {
     fn dim(&self) -> usize {
         self.lay.dim()
+    }
+
+    fn start_note(&self) -> Option<String> {
+        self.start_note.clone()
     }
 
     fn state_name(&self, i: usize) -> String {

@@ -81,6 +81,8 @@ pub struct FullModel {
     cage_ratio: f64,
     /// The steady-rotation solve of the start ([`FullModel::settle_report`]).
     settle: Option<steady::SteadyReport>,
+    /// Why the start is not the one this model normally takes ([`Model::start_note`]).
+    start_note: Option<String>,
     /// Each ball's orbital rate under L1's outer-race control [rad/s] (where the
     /// steady-rotation solve starts).
     l1_orbit: Vec<f64>,
@@ -235,6 +237,7 @@ impl FullModel {
             inputs: *inputs,
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             settle: None,
+            start_note: None,
             l1_orbit: vec![0.0; z],
             theta_start: 0.0,
             sw: Switches::new(z),
@@ -260,7 +263,11 @@ impl FullModel {
             m.update_mode(0.0, &y);
             let r = match steady::steady_rotation(&mut m, &mut y, steady::Orbit::Free, None) {
                 Ok(r) => r,
-                Err(_) => {
+                Err(why) => {
+                    m.start_note = Some(format!(
+                        "the balls start at the caged rate of their steady rotation, not each at \
+                         its own: {why}"
+                    ));
                     y.copy_from_slice(&m.y0);
                     steady::steady_rotation(&mut m, &mut y, steady::Orbit::Caged, None).map_err(
                         |e| {
@@ -288,6 +295,11 @@ impl FullModel {
     /// The axial displacement a located inner ring is held at (None: the axial load acts).
     pub fn held_axial(&self) -> Option<f64> {
         self.held_axial
+    }
+
+    /// Why the start is not the one this model normally takes, if it is not.
+    pub fn start_note(&self) -> Option<&str> {
+        self.start_note.as_deref()
     }
 
     /// The state layout.
@@ -506,6 +518,10 @@ switches::impl_switched_model!(FullModel);
 impl Model for FullModel {
     fn dim(&self) -> usize {
         self.lay.dim()
+    }
+
+    fn start_note(&self) -> Option<String> {
+        self.start_note.clone()
     }
 
     fn state_name(&self, i: usize) -> String {
