@@ -199,7 +199,12 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
         if feedthrough:
             # the bearing's reaction depends algebraically on the journal motion: read it for
             # the current x_k, v_k (no lag; needs an FMU whose outputs follow its inputs)
-            bearing.set(JX + JV, xv)
+            try:
+                bearing.set(JX + JV, xv)
+            except Exception as e:  # an FMU refusing the journal's motion counts as a failure
+                ok = False
+                error = f"t = {t}: {e}"
+                break
             xhat = xv.copy()
         F = bearing.get(BF)
         if scheme == "constant":
@@ -215,9 +220,9 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
             F = Fc
         fs.append(F)
         F_prev = F
-        if not feedthrough:
-            bearing.set(JX + JV, xv)
         try:
+            if not feedthrough:
+                bearing.set(JX + JV, xv)
             if scheme == "implicit":
                 F = implicit_step(rotor, bearing, t, H, xv, F)
                 fs[-1] = F
