@@ -517,7 +517,8 @@ def main():
             w(f"| {r['scene']} | {r['level']} | {fmt(r['E2_df'], '.0f')} | {fmt(r['E2'], '.0%')} | "
               f"{fmt(r['E1'], '.2f')} | {fmt(r['E3'], '.1f')} |")
         w("")
-        w("The lower levels move the balls at the L1 cage speed; the full model's balls slip, so its "
+        w("The lower levels move the balls at the traction cage speed of a caged bearing; the full "
+          "model has no cage and its balls slip, so its "
           "fault frequency is slightly different (`docs/validation.md`) and a peak shift grows with "
           "the harmonic number: E2_df is the largest shift over × 1…5. E1 and E3 near or above 1 "
           "(and tens of dB) say that the waveforms differ: only the fault lines are shared.\n")

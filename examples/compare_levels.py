@@ -177,8 +177,9 @@ def main():
              "solved at the start; no gyroscopic pivoting after that) and no inner-ring tilt. It "
              "takes the full model's steps (same contact stiffness, same rattling after each "
              "impact) at a cheaper right-hand side.")
-    L.append("- lumped (L2): massless kinematic balls at the traction cage speed (the speed the "
-             "full model settles to): no flight, no impact dynamics, no slip.\n")
+    L.append("- lumped (L2): massless kinematic balls at the traction cage speed (the ball-race "
+             "traction balance with the balls held in a cage, solved on the bearing alone): no "
+             "flight, no impact dynamics, no slip.\n")
     with open(out_md, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
