@@ -248,7 +248,7 @@ fn scene_full_table_reaches_the_model() {
 /// acceleration peak ω_n/√(1−2ζ²) of the whole mass on the pedestal spring,
 /// m = m_p + m_ir + z m_b, and the paper's 593.7 Hz ± 2 %. Sampled at 200 kHz, where the
 /// pulse's corners fall on samples (at 51.2 kHz they do not, and the sampled pulse moves the
-/// broad peak by up to 4 Hz: `examples/fel_sampling.rs`).
+/// broad peak by up to 4 Hz: `studies/fel_sampling.rs`).
 #[test]
 fn impact_test_fel_is_the_pedestal_mode() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

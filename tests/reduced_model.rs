@@ -98,12 +98,12 @@ fn axial_push_left_after_2ms(options: ReducedOptions, push: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Why L3 takes its traction over strips (examples/divergence.rs): with the rolling traction
+/// Why L3 takes its traction over strips (studies/divergence.rs): with the rolling traction
 /// of spec §6 L3 alone (`strips = 0`), nothing but the normal contacts acts on a ball's motion
 /// across the groove (along c1 in its axial–radial plane), so that motion rings on: about 40 %
 /// of an axial push is left after 2 ms, and long runs over a spall separate at about 180/s
 /// whatever the tolerance. L4's strip traction damps it (0.9 % left at 1.5…2 ms,
-/// examples/divergence.rs level=full), and so does L3's default strip traction.
+/// studies/divergence.rs level=full), and so does L3's default strip traction.
 #[test]
 fn motion_across_the_groove_is_damped_by_the_strip_traction() {
     let push = 1e-5; // 1e-3 of the velocity nominal
