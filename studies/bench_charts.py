@@ -461,7 +461,7 @@ def main():
               f"with the fewest RHS evaluations). "
               + (f"Its wall-time speed-up over RKF45 at equal E1 ranges {min(rk):.2f}× … "
                  f"{max(rk):.2f}×"
-                 f"{' — the 4× of solvers.md is met' if max(rk) >= 4 else ' — below the 4× that solvers.md measured on its 36-state test model; the RHS-count ratio (machine-independent) is in the table above.' + follows}."
+                 f"{' — the 4× of the 36-state test model ([model: methods](model.md#methods)) is met' if max(rk) >= 4 else ' — below the 4× measured on the 36-state test model of [model: methods](model.md#methods); the RHS-count ratio (machine-independent) is in the table above.' + follows}."
                  if rk else "")
               + "\n")
             agree[level] = code in (None, winner)
@@ -624,7 +624,8 @@ def main():
         else:
             w(f"| {q} | {level} (not in this run: add it with `--levels`) | – | – |")
     w(f"| coupling to a rotor (co-simulation) | lumped, {lvl_default.upper()} rtol 1e-6, "
-      f"communication step ≤ 10 µs with a stiff cut (solvers.md) | see the lumped rows | "
+      f"communication step ≤ 10 µs with a stiff cut ([model: co-simulation stability]"
+      f"(model.md#coupling-stability)) | see the lumped rows | "
       f"{fmt(thr_of.get('lumped'), '.4f')} wall s per simulated s |")
     # Loose tolerances: the five-trajectory controller study (controller_study --strays).
     strays_csv = Path(__file__).resolve().parent.parent / "docs" / "research" / "step-control-strays.csv"
@@ -650,7 +651,8 @@ def main():
     root = Path(__file__).resolve().parent.parent
     tests = stability_tests(root)
     w("## Where methods fail: tests T1–T9\n")
-    w("Each is a named Rust test with assertions (`solvers.md`, \"Where methods fail\"); every test "
+    w("Each is a named Rust test with assertions ([model: where methods fail]"
+      "(model.md#where-methods-fail)); every test "
       "in `tests/*.rs` runs in CI (`cargo nextest --cargo-profile ci` in `scripts/test.sh`) unless "
       "marked ignored. The criterion is the test's own documentation, copied here by the script.\n")
     w("| T | test | file | in CI | pass criterion |")

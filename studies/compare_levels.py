@@ -109,7 +109,7 @@ def main():
              f"`{ref['name']}`. Runs: " + ", ".join(f"`{r['name']}`" for r in rows) + ". "
              "`full_lock_tilt` is L4 with the inner-ring tilt held (`[full] lock_tilt = true`, "
              "the comparison that matches L3, which has no tilt); `full` is L4 with the tilt free "
-             "(spec C4).\n")
+             "(the original [C4](../model.md#c4)).\n")
     L.append("## Summary\n")
     L.append("| level | BPFO from impacts [Hz] (intervals) | mean cage speed [Hz] | friction torque [N m] "
              "| RMS a.z [m/s²] | mean impact force [N] | wall s per simulated s | RHS evals per "
@@ -120,7 +120,7 @@ def main():
                  f"{r['arms']:.0f} | {r['impact']:.0f} | {r['wall']:.1f} | {r['rhs']:.3g} | "
                  f"{r['steps']:.3g} ({r['rejected']:.3g}) |")
     L.append("")
-    L.append("Targets (spec §8.3): BPFO 980.4 Hz ± 0.3 %, inside (973.5, 985.9); cage 70.03–70.07 Hz. "
+    L.append("Targets ([the paper's dynamic results](../model.md#ref-dynamic)): BPFO 980.4 Hz ± 0.3 %, inside (973.5, 985.9); cage 70.03–70.07 Hz. "
              "Wall times are from a busy shared 2-core machine: compare RHS evaluations.\n")
     L.append(f"## Envelope peaks at BPFO × 1…{HARMONICS}\n")
     L.append(f"Envelope spectrum (band 1–20 kHz) resolution {ref['res']:.3f} Hz per bin; peaks "
@@ -170,7 +170,7 @@ def main():
         for row in lines[1:]:
             L.append("| " + " | ".join(row) + " |")
         L.append("")
-    L.append("## What the levels leave out (spec §6)\n")
+    L.append("## What the levels leave out ([fidelity levels](../model.md#levels))\n")
     L.append("- reduced (L3): the full model's normal contacts, spall and edge events, ball flight and "
              "impacts, per-ball orbital speeds, centrifugal and Coriolis forces, and its strip "
              "traction (4 strips); but a fixed spin-axis attitude (the one the traction sets, "

@@ -10,7 +10,7 @@ FMU2Slave); the three coupling schemes are described there.
 Parts (results are cached in docs/coupling/<part>.json; a part not selected is read back from
 its cache so the document is always complete):
   A  linear bearing stand-in (F = -k x - c v): stability boundary of each scheme against
-     omega H < 4 zeta and the extrapolation limits of solvers.md, with and without the one-step
+     omega H < 4 zeta and the extrapolation limits of docs/model.md#coupling-stability, with and without the one-step
      lag of plain Jacobi
   B  BallBearing in motion mode, rigid 2 kg rotor: the bearing's stiffness and damping from
      fmi2GetDirectionalDerivative, the predicted explicit limit, the observed boundary of each
@@ -43,7 +43,7 @@ DOCS = REPO / "docs"
 CACHE = DOCS / "coupling"
 IMG = DOCS / "img"
 ZETAS = (0.01, 0.02, 0.05, 0.1)
-SPEC_EXTRAP = {0.01: 0.40, 0.02: 0.50, 0.05: 0.69, 0.1: 0.90}  # solvers.md
+SPEC_EXTRAP = {0.01: 0.40, 0.02: 0.50, 0.05: 0.69, 0.1: 0.90}  # docs/model.md#coupling-stability
 
 
 def rotor_fmu():
@@ -127,7 +127,7 @@ def fig_a(res):
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     zz = np.linspace(0.005, 0.11, 100)
     ax.plot(zz, 4 * zz, "k-", lw=0.8, label="ωH = 4ζ (constant input)")
-    ax.plot(z, [SPEC_EXTRAP[v] for v in z], "k--", lw=0.8, marker="x", label="solvers.md, extrapolation")
+    ax.plot(z, [SPEC_EXTRAP[v] for v in z], "k--", lw=0.8, marker="x", label="linear extrapolation limit")
     for key, m, lab in [("constant_gs", "o", "constant, feedthrough"),
                         ("constant_jacobi", "s", "constant, lagged Jacobi"),
                         ("extrapolate_gs", "^", "extrapolated, feedthrough"),
@@ -200,7 +200,7 @@ B_OFFSET = (0.2e-6, 1e-6, 0.5e-6)
 # Speed 0 and a healthy bearing: no ball-passage excitation, so a perturbation decays cleanly.
 # A grounded outer ring (pedestal 1000 kg on 1e12 N/m) keeps the bearing free of internal modes
 # that move against the journal: the journal on the bearing is then the single-mass model of
-# solvers.md.
+# docs/model.md#integrator.
 GROUNDED = {"pedestal.mass": 1000.0, "pedestal.k_y": 1e12, "pedestal.k_z": 1e12}
 B_BEARING = {"defect.ring": 0, **GROUNDED}
 
@@ -793,7 +793,7 @@ def document(results):
               f"Rigid rotor M = {a['mass']} kg on F = −k x − c v, k = {a['k']:.3g} N/m "
               f"(ω = {a['omega']:.0f} rad/s), damping ratio ζ = c/(2Mω). Boundary ωH* by bisection "
               "(1 %) on the growth rate of the free vibration (80 periods).", "",
-              "| ζ | 4ζ | constant, feedthrough | constant, lagged | solvers.md extrapolation | extrapolated, feedthrough | extrapolated, lagged | Jacobian stable at ωH = 8 / 40 |",
+              "| ζ | 4ζ | constant, feedthrough | constant, lagged | [model: co-simulation stability](model.md#coupling-stability) extrapolation | extrapolated, feedthrough | extrapolated, lagged | Jacobian stable at ωH = 8 / 40 |",
               "|---|---|---|---|---|---|---|---|"]
         for r in a["rows"]:
             L.append(f"| {r['zeta']} | {r['predicted_constant']:.3f} | {r['constant_gs']:.4f} "
@@ -803,7 +803,7 @@ def document(results):
         L += ["", "![linear boundary](img/coupling_linear_boundary.png)", "",
               "The constant-input boundary is ωH = 4ζ for small ζ (it is the leading term: the "
               "zero-order hold delays the force by H/2, a negative damping kH/2). Linear extrapolation "
-              "reaches the solvers.md limits when the reaction is read for the current journal motion "
+              "reaches the [model: co-simulation stability](model.md#coupling-stability) limits when the reaction is read for the current journal motion "
               "(feedthrough) and loses ~25 % of them with the extra lag of plain Jacobi. The interface "
               "Jacobian is unconditionally stable here.", ""]
     if "B" in results:
@@ -812,7 +812,7 @@ def document(results):
         L += ["## B. BallBearing in motion mode: observed boundaries", "",
               "Rigid 2 kg rotor (disk.mass = 0), shaft at rest (no ball-passage excitation), healthy "
               "bearing, outer ring grounded (pedestal 1000 kg on 1e12 N/m), so the model is the single "
-              "mass of solvers.md. Stiffness and damping of the reaction from the FMU's directional "
+              "mass of [model: co-simulation stability](model.md#coupling-stability). Stiffness and damping of the reaction from the FMU's directional "
               "derivatives at the start equilibrium:", "",
               f"- diag(−∂F/∂x) = {', '.join(f'{v:.3e}' for v in np.diag(K))} N/m; "
               f"diag(−∂F/∂v) = {', '.join(f'{v:.3g}' for v in np.diag(np.array(b['C'])))} N·s/m",

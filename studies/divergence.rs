@@ -8,7 +8,7 @@
 //! keys: level (reduced|full), duration, window, fs (state sample rate), rtol_a, rtol_b,
 //! method_a, method_b (dop853|dopri5|rkf45), eps (relative perturbation of run b's initial
 //! state), eps_state (index of the perturbed state; default: ball 0's radial velocity),
-//! traction (on|off), strips (N: reduced only, [`ReducedOptions::strips`]; 0 = the spec's single rolling point),
+//! traction (on|off), strips (N: reduced only, [`ReducedOptions::strips`]; 0 = the original single rolling point, docs/model.md#l3),
 //! defect (on|off), ball (report only this ball's states in the ball
 //! columns).
 

@@ -15,7 +15,7 @@
 //! Then a pure harmonic oscillator integrated by the same DOP853 integrator sets the step count
 //! a vibration of frequency f needs by itself: accepted steps per period against the tolerance
 //! relative to the vibration's amplitude (the ball modes ring near 29 kHz, the inner ring on the
-//! bearing near 5.4 kHz, spec §9.1).
+//! bearing near 5.4 kHz, docs/model.md#stiffness).
 //!
 //! Usage: `cargo run --release -p raceway-studies --bin speed_floor -- [--out docs/research/speed-floor.md] [lumped_s]
 //! [dynamic_s]` (simulated seconds measured after a 20 ms transient: default 0.5 at the lumped
@@ -37,7 +37,7 @@ const STAGES: f64 = 12.0;
 /// Timed batches of bare RHS calls (about 10 ms each); the fastest counts (the host is shared).
 const BATCHES: usize = 25;
 
-/// The fastest mode that rings between spall passes (spec §9.1 and the Table-2 impact test):
+/// The fastest mode that rings between spall passes (docs/model.md#stiffness and the Table-2 impact test):
 /// the ball between the races at the levels with ball states, the inner ring on the bearing
 /// (feh) at the lumped level, whose balls have no states.
 fn mode_of(level: Fidelity) -> (&'static str, f64) {
@@ -46,7 +46,10 @@ fn mode_of(level: Fidelity) -> (&'static str, f64) {
             "inner ring on the bearing (feh, Table-2 impact test at Fa 4000 N)",
             5578.0,
         ),
-        _ => ("ball between the races (spec §9.1, Q ≈ 700 N)", 29.1e3),
+        _ => (
+            "ball between the races ([stiffness](../model.md#stiffness), Q ≈ 700 N)",
+            29.1e3,
+        ),
     }
 }
 

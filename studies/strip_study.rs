@@ -1,4 +1,4 @@
-//! Convergence of the strip quadrature of the traction (spec §3.1, C7) on contact states of a
+//! Convergence of the strip quadrature of the traction (docs/model.md#strips, #c7) on contact states of a
 //! running L4 simulation (not part of CI).
 //!
 //! Runs the default scene at L4 (S2: outer spall; `S1` drops it) with DOP853 at rtol 1e-6,

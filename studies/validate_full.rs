@@ -2,12 +2,12 @@
 //!
 //! `cargo run --release -p raceway-studies --bin validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [lock_tilt]`
 //! (`FS_STRIPS=equal:10` or `gauss:6` overrides `contact.strip_rule` and `contact.n_strips`;
-//! `RW_MASSES=0.29,0.77` the inner-ring and pedestal masses, as used for the C12 calibration in
+//! `RW_MASSES=0.29,0.77` the inner-ring and pedestal masses, as used for the C12 (docs/model.md#c12) calibration in
 //! docs/research/spec-departures.md)
 //!
 //! Runs `examples/scenes/sec3.5-outer.toml` at `fidelity = full`, detects one impact per ball
 //! pass (the outer-force maximum after the ball's outer contact opened at the spall entry),
-//! computes BPFO from the mean interval between impacts (spec §8.3: 980.4 Hz ± 0.3 %, inside
+//! computes BPFO from the mean interval between impacts (docs/model.md#ref-dynamic: 980.4 Hz ± 0.3 %, inside
 //! (973.5, 985.9)), the dominant component of the raw pedestal-acceleration spectrum
 //! (5885 Hz ± 10 %) and the speed (wall s per simulated s), and writes a Markdown table.
 
@@ -53,7 +53,7 @@ fn main() {
         };
         scene.bearing.contact.n_strips = n.parse().expect("n_strips");
     }
-    // RW_MASSES=m_ir,m_p overrides the inner-ring and pedestal masses [kg] (C12 calibration;
+    // RW_MASSES=m_ir,m_p overrides the inner-ring and pedestal masses [kg] (C12 (docs/model.md#c12) calibration;
     // the ring's inertias scale with its mass).
     if let Ok(v) = std::env::var("RW_MASSES") {
         let (mi, mp) = v.split_once(',').expect("RW_MASSES=m_ir,m_p");
@@ -71,7 +71,7 @@ fn main() {
     }
     let z = 14;
     let fs = 200_000.0;
-    // Paper values (spec §8.3): BPFO 980.4 Hz / BPFI 1329 Hz from the impact spacing.
+    // Paper values (docs/model.md#ref-dynamic): BPFO 980.4 Hz / BPFI 1329 Hz from the impact spacing.
     let (target, fname, window) = if inner {
         (1329.0, "BPFI", "1329 Hz ± 0.3 %, inside (1324.1, 1336.5)")
     } else {
@@ -152,7 +152,7 @@ fn main() {
     let dom_f = dominant.as_ref().map_or(f64::NAN, |p| p.freq);
     let ok_dom = (dom_f / 5885.0 - 1.0).abs() < 0.10;
     if impact.is_some() {
-        // Impact test (C14): the pulse response of pedestal.a.z from the pulse (20 ms) on, i.e.
+        // Impact test (docs/model.md#c14): the pulse response of pedestal.a.z from the pulse (20 ms) on, i.e.
         // this run minus the same run without the pulse (removes the running ball-pass
         // vibration), zero-padded to 1 s (1 Hz bins) with a rectangular window: the response
         // has decayed long before the record ends (fel mode ζ ≈ 0.21, e-folding ≈ 1.3 ms), so
