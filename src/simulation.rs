@@ -11,58 +11,13 @@ use crate::geometry::Bearing;
 use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
+use crate::operating::OperatingPoint;
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
     grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
     Method, Options, StepView, System,
 };
 use std::fmt;
-
-/// The continuous inputs (the FMU's `shaft.speed`, `load.Fx/Fy/Fz`).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Inputs {
-    /// Shaft (inner-ring) speed about +x [rad/s].
-    pub shaft_speed: f64,
-    /// External force on the inner ring \[N\] (Fx = Fa along +x, Fz = −Fr).
-    pub fx: f64,
-    pub fy: f64,
-    pub fz: f64,
-}
-
-impl Inputs {
-    /// The scene's operating point as inputs.
-    pub fn from_scene(scene: &Scene) -> Self {
-        Self {
-            shaft_speed: scene.speed_rad_s(),
-            fx: scene.operating.fa,
-            fy: scene.operating.fy,
-            fz: -scene.operating.fr,
-        }
-    }
-
-    /// Rejects non-finite or impossible values, naming the input.
-    pub fn check(&self) -> Result<(), SimError> {
-        for (name, v) in [
-            ("shaft.speed", self.shaft_speed),
-            ("load.Fx", self.fx),
-            ("load.Fy", self.fy),
-            ("load.Fz", self.fz),
-        ] {
-            if !v.is_finite() {
-                return Err(SimError::Input(format!(
-                    "{name} = {v} is not a finite number"
-                )));
-            }
-        }
-        if self.shaft_speed < 0.0 {
-            return Err(SimError::Input(format!(
-                "shaft.speed = {} rad/s: the model supports speeds ≥ 0",
-                self.shaft_speed
-            )));
-        }
-        Ok(())
-    }
-}
 
 /// The journal's (inner-ring centre's) motion in coupling mode "motion": displacement `x` \[m\]
 /// and velocity `v` [m/s] along x, y, z at the time it was set, in the frame and from the origin
@@ -316,7 +271,7 @@ pub struct Simulation {
     bearing: Bearing,
     model: Box<dyn Model>,
     integrator: Integrator,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// Scratch for interpolated states between stops (CLI sampling).
     samples: Vec<f64>,
     sample_times: Vec<f64>,
@@ -359,7 +314,7 @@ impl Limits {
     /// at which ISO 76's load distribution puts the most loaded contact at the pressure limit
     /// (Hertz pressure grows as the cube root of the load), an error naming the loads. A
     /// located ring's axial reaction is not known here: only its radial load counts.
-    fn loads(&mut self, inputs: &Inputs, located: bool) -> Result<(), SimError> {
+    fn loads(&mut self, inputs: &OperatingPoint, located: bool) -> Result<(), SimError> {
         let fa = if located { 0.0 } else { inputs.fx };
         let p0 = self.rating.equivalent_load(fa, inputs.fy.hypot(inputs.fz));
         let limit = (MAX_CONTACT_PRESSURE / RATING_PRESSURE).powi(3) * self.rating.c0;
@@ -490,7 +445,7 @@ struct Snapshot {
     version: u32,
     fidelity: String,
     dim: usize,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     model: Vec<f64>,
     integrator: IntegratorState,
     #[serde(default)]
@@ -528,8 +483,8 @@ impl Simulation {
             warned_pressure: false,
             warnings: Vec::new(),
         };
-        let inputs = Inputs::from_scene(scene);
-        inputs.check()?;
+        let inputs = scene.operating;
+        inputs.check().map_err(SimError::Input)?;
         if scene.coupling == CouplingMode::Force {
             let located = scene.mounting.axial == crate::scene::AxialMount::Located;
             limits.loads(&inputs, located)?;
@@ -656,7 +611,7 @@ impl Simulation {
             let qo: Vec<f64> = r.solution.balls.iter().map(|b| b.q_outer).collect();
             self.limits.contacts(&self.bearing, &qi, &qo, t, cause)?;
             let load = r.load;
-            let eff = Inputs {
+            let eff = OperatingPoint {
                 fx: load[0],
                 fy: load[1],
                 fz: load[2],
@@ -773,7 +728,7 @@ impl Simulation {
         self.integrator.t()
     }
 
-    pub fn inputs(&self) -> Inputs {
+    pub fn inputs(&self) -> OperatingPoint {
         self.inputs
     }
 
@@ -784,8 +739,8 @@ impl Simulation {
     /// reported by [`Simulation::inputs`]) but the model runs on the start's loads (L2, L4) or
     /// on the load the displaced ring needs (L0, L1). With an axially located inner ring
     /// ([`crate::scene::Mounting`]) the axial load cannot change (an error names it).
-    pub fn set_inputs(&mut self, inputs: Inputs) -> Result<(), SimError> {
-        inputs.check()?;
+    pub fn set_inputs(&mut self, inputs: OperatingPoint) -> Result<(), SimError> {
+        inputs.check().map_err(SimError::Input)?;
         if inputs == self.inputs {
             return Ok(());
         }
@@ -823,9 +778,9 @@ impl Simulation {
     /// the model runs on once the model has taken the inputs).
     fn effective_inputs(
         &mut self,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         t: f64,
-    ) -> Result<(Inputs, Option<[f64; 3]>), SimError> {
+    ) -> Result<(OperatingPoint, Option<[f64; 3]>), SimError> {
         let mut eff = *inputs;
         let mut applied = None;
         if self.scene.coupling == CouplingMode::Motion {
@@ -872,7 +827,7 @@ impl Simulation {
         } else {
             self.start_loads
         };
-        let point = Inputs {
+        let point = OperatingPoint {
             fx,
             fy,
             fz,
@@ -1302,7 +1257,7 @@ impl Simulation {
                 self.model.dim()
             )));
         }
-        snap.inputs.check()?;
+        snap.inputs.check().map_err(SimError::Input)?;
         self.start.undoable = false;
         self.integrator
             .restore(&snap.integrator)

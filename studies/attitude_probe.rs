@@ -8,7 +8,6 @@ use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::reduced::ReducedModel;
 use raceway::models::Model;
 use raceway::scene::Scene;
-use raceway::simulation::Inputs;
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
 use std::f64::consts::TAU;
 
@@ -20,7 +19,7 @@ fn main() {
     let duration: f64 = a.get(1).and_then(|v| v.parse().ok()).unwrap_or(0.05);
     let lock = a.get(2).is_some_and(|v| v == "lock");
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let l3 = ReducedModel::new(&scene, &bearing, &inputs).unwrap();
     println!(
         "L3 attitude β = {:.4}° (steady-rotation solve: {:?})",

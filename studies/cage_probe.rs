@@ -3,7 +3,6 @@
 use raceway::geometry::Bearing;
 use raceway::models;
 use raceway::scene::Scene;
-use raceway::simulation::Inputs;
 use std::time::Instant;
 
 fn main() {
@@ -12,7 +11,7 @@ fn main() {
         .unwrap_or("examples/scenes/sec3.5-outer.toml".into());
     let scene = Scene::load(std::path::Path::new(&path)).unwrap();
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let l1 = models::solve_l1(&bearing, &inputs, "probe").unwrap();
     let t0 = Instant::now();
     let reps: usize = std::env::var("REPS")

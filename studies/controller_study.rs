@@ -641,7 +641,7 @@ fn strays(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
         for &rpm in &speeds {
             let mut sc = s2.clone();
             sc.fidelity = fid;
-            sc.operating.speed_rpm = rpm;
+            sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
             let reference = run(&sc, MethodName::Dop853, 1e-11, &all[0], dur, skip)?;
             eprintln!(
                 "{label} {rpm} rpm: reference {} RHS",
@@ -766,7 +766,7 @@ fn slopes(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
         for &rpm in &speeds {
             let mut sc = s2.clone();
             sc.fidelity = fid;
-            sc.operating.speed_rpm = rpm;
+            sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
             let reference = run(&sc, MethodName::Dop853, 1e-11, base, dur, skip)?;
             for (k, &m) in methods.iter().enumerate() {
                 let mut sweep = Vec::new();

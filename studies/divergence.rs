@@ -17,7 +17,6 @@ use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::reduced::{ReducedModel, ReducedOptions};
 use raceway::models::Model;
 use raceway::scene::Scene;
-use raceway::simulation::Inputs;
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options, StepView};
 
 use raceway::simulation::ModelSystem as Driver;
@@ -42,7 +41,7 @@ fn run(
     perturb: Option<(usize, f64)>,
 ) -> (Run, usize) {
     let bearing = Bearing::new(&scene.bearing).expect("bearing");
-    let inputs = Inputs::from_scene(scene);
+    let inputs = scene.operating;
     let mut model: Box<dyn Model> = if level == "full" {
         Box::new(
             FullModel::with_options(
@@ -171,7 +170,7 @@ fn main() {
     let mut nominal = vec![0.0; n];
     {
         let bearing = Bearing::new(&scene.bearing).expect("bearing");
-        let inputs = Inputs::from_scene(&scene);
+        let inputs = scene.operating;
         if level == "full" {
             FullModel::new(&scene, &bearing, &inputs)
                 .expect("model")

@@ -30,8 +30,8 @@ fn main() {
     ))
     .unwrap();
     s.fidelity = Fidelity::Full;
-    s.operating.speed_rpm = rpm;
-    s.operating.fa = fa;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.fx = fa;
     s.full.traction = traction;
     s.full.lock_tilt = held;
     if let Some(cb) = a.get(4).and_then(|v| v.parse::<f64>().ok()) {

@@ -11,7 +11,7 @@ use raceway::geometry::{Bearing, Race};
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
 use raceway::scene::Scene;
-use raceway::simulation::{out, Inputs};
+use raceway::simulation::out;
 use raceway::solver::{EventAction, EventSystem, Integrator, Method, Options, StepView, System};
 
 struct Driver<'a>(&'a mut FullModel);
@@ -92,9 +92,9 @@ fn main() {
             "theta0" => scene.defect.as_mut().expect("spall").theta0 = x(),
             "width" => scene.defect.as_mut().expect("spall").width = x(),
             "depth" => scene.defect.as_mut().expect("spall").depth = x(),
-            "rpm" => scene.operating.speed_rpm = x(),
-            "fa" => scene.operating.fa = x(),
-            "fr" => scene.operating.fr = x(),
+            "rpm" => scene.operating.shaft_speed = raceway::operating::rpm_to_rad_s(x()),
+            "fa" => scene.operating.fx = x(),
+            "fr" => scene.operating.fz = -(x()),
             "cbr" => scene.bearing.contact.c_br = x(),
             "mode" => {
                 scene.bearing.defect.mode = match v {
@@ -126,7 +126,7 @@ fn main() {
         }
     }
     let bearing = Bearing::new(&scene.bearing).expect("bearing");
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut m = FullModel::with_options(&scene, &bearing, &inputs, opts).expect("model");
     let z = bearing.z;
     let inner_spall = m.defect().is_some_and(|d| d.ring() == Race::Inner);

@@ -9,7 +9,6 @@
 use raceway::geometry::Bearing;
 use raceway::models::{self, Model};
 use raceway::scene::Scene;
-use raceway::simulation::Inputs;
 use raceway::solver::{
     AdvanceOutcome, EventAction, EventSystem, Integrator, Method, Options, System,
 };
@@ -39,7 +38,7 @@ impl EventSystem for Sys {
 fn run(rtol: f64, beta: f64, fac_max: f64, t_end: f64) -> (u64, u64, u64, Vec<f64>) {
     let scene = Scene::default_scene();
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut model = models::build(&scene, &bearing, &inputs).unwrap();
     let n = model.dim();
     let mut y0 = vec![0.0; n];

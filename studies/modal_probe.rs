@@ -12,7 +12,7 @@ use raceway::models::full::layout::{BR, BX, PZ, RX};
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
 use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{Inputs, ModelSystem};
+use raceway::simulation::ModelSystem;
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
 use std::f64::consts::TAU;
 
@@ -27,10 +27,10 @@ fn main() {
     .unwrap();
     s.fidelity = Fidelity::Full;
     s.pulse = None;
-    s.operating.speed_rpm = rpm;
-    s.operating.fa = fa;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.fx = fa;
     let bearing = Bearing::new(&s.bearing).unwrap();
-    let inputs = Inputs::from_scene(&s);
+    let inputs = s.operating;
     let opts = FullOptions {
         traction,
         lock_tilt: true,

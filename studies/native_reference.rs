@@ -21,10 +21,10 @@ fn main() {
     scene.defect = None;
     let probe = Bearing::new(&scene.bearing).expect("bearing");
     scene.bearing.inner_ring.mass = m - 0.5 * probe.z as f64 * probe.ball_mass;
-    scene.operating.speed_rpm = rpm;
-    scene.operating.fa = 4000.0;
+    scene.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    scene.operating.fx = 4000.0;
     scene.operating.fy = 0.0;
-    scene.operating.fr = 1000.0 + m * g;
+    scene.operating.fz = -(1000.0 + m * g);
     let mut sim = Simulation::new(&scene).expect("simulation");
     let w = rpm * std::f64::consts::PI / 30.0;
     let mut o = vec![0.0; sim.output_table().len()];

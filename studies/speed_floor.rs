@@ -25,7 +25,7 @@
 use raceway::models;
 use raceway::scene::{Fidelity, Scene};
 use raceway::signal::median;
-use raceway::simulation::{out, Inputs, Simulation};
+use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -147,7 +147,7 @@ fn main() {
         // Bare RHS at the quasi-static start (modes set as the simulation sets them at t = 0).
         let sim = Simulation::new(&scene).expect("scene");
         let bearing = sim.bearing().clone();
-        let inputs = Inputs::from_scene(&scene);
+        let inputs = scene.operating;
         let mut model = models::build(&scene, &bearing, &inputs).expect("model");
         let n = model.dim();
         let mut y = vec![0.0; n];

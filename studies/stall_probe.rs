@@ -12,7 +12,6 @@ use raceway::models::full::switches::SwitchedModel;
 use raceway::models::reduced::{ReducedModel, PER_BALL};
 use raceway::models::Model;
 use raceway::scene::Scene;
-use raceway::simulation::Inputs;
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
 
 use raceway::simulation::ModelSystem as Driver;
@@ -27,7 +26,7 @@ fn main() {
     };
     let scene = Scene::default_scene();
     let bearing = Bearing::new(&scene.bearing).expect("bearing");
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut m = ReducedModel::new(&scene, &bearing, &inputs).expect("model");
     let n = m.dim();
     let z = bearing.z;

@@ -9,11 +9,12 @@ use raceway::config::BearingFile;
 use raceway::geometry::Bearing;
 use raceway::models::full::{self, steady, FullModel, FullOptions};
 use raceway::models::{self, Model};
-use raceway::scene::{AxialMount, Fidelity, Mounting, Operating, Scene};
-use raceway::simulation::{Inputs, Simulation};
+use raceway::operating::OperatingPoint;
+use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
+use raceway::simulation::Simulation;
 use std::time::Instant;
 
-fn scene(op: Operating, k: f64, located: bool, level: Fidelity) -> Scene {
+fn scene(op: OperatingPoint, k: f64, located: bool, level: Fidelity) -> Scene {
     let mut file = BearingFile::load("niu2014-table1").expect("preset");
     file.pedestal.k_y = k;
     file.pedestal.k_z = k;
@@ -39,22 +40,17 @@ fn main() {
             .and_then(|a| a.parse().ok())
             .unwrap_or_else(|| panic!("usage: start_cost RPM FA FR K [located]"))
     };
-    let op = Operating {
-        speed_rpm: num(0),
-        fa: num(1),
-        fr: num(2),
-        fy: 0.0,
-    };
+    let op = OperatingPoint::from_rpm(num(0), num(1), num(2));
     let k = num(3);
     let located = args.get(4).is_some_and(|a| a == "located");
-    let sc = scene(op.clone(), k, located, Fidelity::Full);
+    let sc = scene(op, k, located, Fidelity::Full);
     let b = Bearing::new(&sc.bearing).expect("bearing");
-    let inputs = Inputs::from_scene(&sc);
+    let inputs = sc.operating;
     println!(
         "{} rpm, Fa {} N, Fr {} N, pedestal {k:e} N/m{}",
-        op.speed_rpm,
-        op.fa,
-        op.fr,
+        op.speed_rpm(),
+        op.fx,
+        -op.fz,
         if located { ", ring located" } else { "" }
     );
     let held = models::held_axial(&sc, &b, &inputs).expect("held");
@@ -117,7 +113,7 @@ fn main() {
         Fidelity::Full,
     ] {
         let t = Instant::now();
-        let Ok(mut sim) = Simulation::new(&scene(op.clone(), k, located, level)) else {
+        let Ok(mut sim) = Simulation::new(&scene(op, k, located, level)) else {
             println!("{level:?}: Simulation::new failed after {:.1} ms", ms(t));
             continue;
         };

@@ -11,9 +11,9 @@ fn mean_offset(rpm: f64, fa: f64, fr: f64) -> (f64, f64) {
     s.fidelity = Fidelity::Full;
     s.defect = None;
     s.full.lock_tilt = true;
-    s.operating.speed_rpm = rpm;
-    s.operating.fa = fa;
-    s.operating.fr = fr;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.fx = fa;
+    s.operating.fz = -fr;
     let mut sim = Simulation::new(&s).unwrap();
     let (mut sum, mut sum_x, mut n) = (0.0, 0.0, 0.0);
     sim.advance_sampled(0.06, 1.0 / 51_200.0, &mut |t, o| {

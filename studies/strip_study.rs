@@ -26,7 +26,6 @@ use raceway::models::full::contact::{strip_sums, SlipField, Strips};
 use raceway::models::full::FullModel;
 use raceway::models::Model;
 use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::Inputs;
 use raceway::solver::{EventAction, EventSystem, Integrator, Method, Options, StepView, System};
 
 struct Driver<'a>(&'a mut FullModel);
@@ -172,7 +171,7 @@ fn main() {
         }
     }
     let bearing = raceway::geometry::Bearing::new(&scene.bearing).expect("bearing");
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut m = FullModel::new(&scene, &bearing, &inputs).expect("model");
     let curve = m.traction().expect("traction on").0;
     let ball_radius = 0.5 * bearing.d;

@@ -276,7 +276,7 @@ fn inner_checks(
     t: &[f64],
     impacts: &[f64],
 ) -> String {
-    let f_s = scene.operating.speed_rpm / 60.0;
+    let f_s = scene.operating.speed_rpm() / 60.0;
     let mut md = String::new();
     for (name, f) in [
         ("f_s", f_s),

@@ -82,7 +82,7 @@ base = "../scenes/default.toml"
     assert_eq!(ids.len(), runs.len());
     // The scene of a run carries its values.
     let (scene, noise) = sw.scene_for(&runs[17]).unwrap();
-    assert_eq!(scene.operating.speed_rpm, 9000.0);
+    assert_eq!(scene.operating.speed_rpm(), 9000.0);
     let d = scene.defect.unwrap();
     assert_eq!(d.width, 2e-3);
     assert_eq!(d.ring, raceway::geometry::Race::Inner);

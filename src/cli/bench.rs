@@ -23,9 +23,10 @@
 //! one thread). A run that fails (step-size underflow, step budget, wall-time limit) is a row
 //! with its status, never a hang.
 
+use raceway::operating::OperatingPoint;
 use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::signal::{envelope_spectrum, peak_near, welch_psd, Spectrum, WelchConfig, Window};
-use raceway::simulation::{out, Inputs, SimError, Simulation, WorkStats};
+use raceway::simulation::{out, SimError, Simulation, WorkStats};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -108,7 +109,7 @@ fn scene_of(name: &str, level: Fidelity) -> Result<Scene, String> {
         other => return Err(format!("unknown scene {other}: expected S1, S2, S3 or S4")),
     }
     if name == "S4" {
-        s.operating.speed_rpm = RUNUP.0;
+        s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(RUNUP.0);
     }
     Ok(s)
 }
@@ -145,12 +146,12 @@ fn run(
     let runup = sc.name == "S4";
     let chunk = if runup { RUNUP_DT } else { 0.01 };
     let mut t = 0.0;
-    let base = Inputs::from_scene(&sc);
+    let base = sc.operating;
     while t < duration - 1e-12 {
         let t_next = (t + chunk).min(duration);
         if runup {
             let rpm = RUNUP.0 + (RUNUP.1 - RUNUP.0) * (t / duration);
-            sim.set_inputs(Inputs {
+            sim.set_inputs(OperatingPoint {
                 shaft_speed: rpm * std::f64::consts::TAU / 60.0,
                 ..base
             })?;

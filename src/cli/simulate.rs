@@ -164,7 +164,7 @@ pub fn run(args: Args) -> Result<(), String> {
 
     // Metadata for `raceway spectrum`: kinematic and model fault frequencies.
     let bearing = sim.bearing();
-    let fs = scene.operating.speed_rpm / 60.0;
+    let fs = scene.operating.speed_rpm() / 60.0;
     let kin = kinematics::fault_frequencies(bearing, fs, bearing.alpha0);
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
     let z = bearing.z as f64;

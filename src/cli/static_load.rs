@@ -4,7 +4,8 @@
 use raceway::config::DEFAULT_PRESET;
 use raceway::geometry::Bearing;
 use raceway::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE};
-use raceway::quasi_static::{is_loaded, solve, LoadCase};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static::{is_loaded, solve};
 use serde_json::json;
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -48,15 +49,9 @@ pub fn run(args: Args) -> Result<(), String> {
         }
     }
     let b = Bearing::load(&args.bearing).map_err(|e| e.to_string())?;
-    let case = LoadCase::from_fa_fr_rpm(args.fa, args.fr, args.speed_rpm);
-    let inputs = raceway::simulation::Inputs {
-        shaft_speed: case.speed,
-        fx: case.fa,
-        fy: case.fy,
-        fz: case.fz,
-    };
+    let case = OperatingPoint::from_rpm(args.speed_rpm, args.fa, args.fr);
     // The same input rules as the simulation and the FMU.
-    inputs.check().map_err(|e| e.to_string())?;
+    case.check().map_err(|m| format!("invalid input: {m}"))?;
     if args.axial_offset.is_some() && args.fa != 0.0 {
         return Err(
             "--fa acts on a ring free to move axially; with --axial-offset the ring is located \
@@ -104,8 +99,8 @@ pub fn run(args: Args) -> Result<(), String> {
     let freq = q.frequencies(&b);
     // The cage speed under the traction (the default of the kinematic levels); None at rest.
     // Where the traction has no equilibrium the reason is printed instead.
-    let traction = (case.speed > 0.0)
-        .then(|| raceway::models::traction_cage_speed(&b, &inputs, Some(&q), None));
+    let traction = (case.shaft_speed > 0.0)
+        .then(|| raceway::models::traction_cage_speed(&b, &case, Some(&q), None));
     let traction_cage = traction.as_ref().and_then(|r| r.as_ref().ok().copied());
     let traction_error = traction
         .as_ref()

@@ -14,14 +14,15 @@ pub mod quasi_static_level;
 pub mod reduced;
 
 use crate::geometry::Bearing;
+use crate::operating::OperatingPoint;
 use crate::scene::{AxialMount, Fidelity, Scene};
-use crate::simulation::{Inputs, SimError};
+use crate::simulation::SimError;
 
 /// L1 (quasi-static) solution at the given inputs; every level starts from it (spec §7). A failure
 /// names the operating point and says why, prefixed by what needed the solution.
 pub fn solve_l1(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     purpose: &str,
 ) -> Result<crate::quasi_static::QuasiStatic, SimError> {
     solve_l1_held(bearing, inputs, None, purpose)
@@ -31,19 +32,13 @@ pub fn solve_l1(
 /// `inputs.fx` does not act, see [`crate::quasi_static::solve_located`]).
 pub fn solve_l1_held(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     held: Option<f64>,
     purpose: &str,
 ) -> Result<crate::quasi_static::QuasiStatic, SimError> {
-    let case = crate::quasi_static::LoadCase {
-        speed: inputs.shaft_speed,
-        fa: inputs.fx,
-        fy: inputs.fy,
-        fz: inputs.fz,
-    };
     match held {
-        None => crate::quasi_static::solve(bearing, &case),
-        Some(d) => crate::quasi_static::solve_located(bearing, &case, d),
+        None => crate::quasi_static::solve(bearing, inputs),
+        Some(d) => crate::quasi_static::solve_located(bearing, inputs, d),
     }
     .map_err(|e| {
         let held = held.map_or(String::new(), |d| {
@@ -62,14 +57,14 @@ pub fn solve_l1_held(
 pub fn held_axial(
     scene: &Scene,
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
 ) -> Result<Option<f64>, SimError> {
     match (scene.mounting.axial, scene.mounting.axial_offset) {
         (AxialMount::Load, _) => Ok(None),
         (AxialMount::Located, Some(d)) => Ok(Some(d)),
         (AxialMount::Located, None) if inputs.fx == 0.0 => Ok(Some(0.0)),
         (AxialMount::Located, None) => {
-            let preload = Inputs {
+            let preload = OperatingPoint {
                 fy: 0.0,
                 fz: 0.0,
                 ..*inputs
@@ -85,7 +80,7 @@ pub fn held_axial(
 }
 
 /// The operating point for messages: "shaft.speed = … rad/s (… rpm), load = (…, …, …) N".
-pub fn operating_point(inputs: &Inputs) -> String {
+pub fn operating_point(inputs: &OperatingPoint) -> String {
     format!(
         "shaft.speed = {:.3} rad/s ({:.1} rpm), load = ({}, {}, {}) N",
         inputs.shaft_speed,
@@ -100,7 +95,7 @@ pub fn operating_point(inputs: &Inputs) -> String {
 pub fn build(
     scene: &Scene,
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
 ) -> Result<Box<dyn Model>, SimError> {
     match scene.fidelity {
         Fidelity::Kinematic => Ok(Box::new(kinematic::KinematicModel::new(
@@ -180,7 +175,7 @@ pub trait Model: Send {
 
     /// New inputs, constant from time `t` on (state `y` at that time). On an error (no
     /// equilibrium at the new inputs, named in the message) the model is unchanged.
-    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) -> Result<(), SimError>;
+    fn set_inputs(&mut self, inputs: &OperatingPoint, t: f64, y: &[f64]) -> Result<(), SimError>;
 
     /// Right-hand side; must not allocate.
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
@@ -301,7 +296,7 @@ pub trait Model: Send {
     /// [`crate::simulation::L1_SPEED_STEP`] since the last call; levels without an L1 cage speed
     /// ignore it. (In force mode the level follows its own inputs.) On an error the level
     /// keeps its operating point.
-    fn update_operating_point(&mut self, _inputs: &Inputs) -> Result<(), SimError> {
+    fn update_operating_point(&mut self, _inputs: &OperatingPoint) -> Result<(), SimError> {
         Ok(())
     }
 
@@ -327,7 +322,7 @@ pub trait Model: Send {
 /// equilibrium is an error naming it (never a silent switch to outer-race control).
 pub fn kinematic_levels_cage_speed(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     qs: &crate::quasi_static::QuasiStatic,
     cage: crate::scene::CageSpeed,
     previous: Option<f64>,
@@ -349,7 +344,7 @@ pub fn kinematic_levels_cage_speed(
 /// names the operating point and the reason when there is no equilibrium.
 pub fn traction_cage_speed(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     l1: Option<&crate::quasi_static::QuasiStatic>,
     ratio: Option<f64>,
 ) -> Result<f64, SimError> {

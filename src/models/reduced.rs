@@ -55,8 +55,9 @@ use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
+use crate::operating::OperatingPoint;
 use crate::scene::{Pulse, Scene};
-use crate::simulation::{Inputs, SimError};
+use crate::simulation::SimError;
 use std::f64::consts::TAU;
 
 /// States per ball.
@@ -165,7 +166,7 @@ pub struct ReducedModel {
     defect: Option<Defect>,
     /// Semi-major-axis factor of the spall-edge contact.
     defect_a_star: f64,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// Reference cage speed ratio ψ̇/Ω.
     cage_ratio: f64,
     /// Azimuth of ball 0 at ψ = 0 [rad].
@@ -201,7 +202,11 @@ pub struct ReducedModel {
 
 impl ReducedModel {
     /// Builds the model for a scene with the default options.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         Self::with_options(scene, bearing, inputs, ReducedOptions::default())
     }
 
@@ -209,7 +214,7 @@ impl ReducedModel {
     pub fn with_options(
         scene: &Scene,
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: ReducedOptions,
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
@@ -569,7 +574,7 @@ impl Model for ReducedModel {
         y.copy_from_slice(&self.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.inputs = *inputs;
         Ok(())
     }

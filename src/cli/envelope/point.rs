@@ -6,9 +6,10 @@ use raceway::config::BearingFile;
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::kinematics::{inner_race_control_cage_ratio, outer_race_control};
-use raceway::quasi_static::{self, BallEquilibrium, LoadCase};
-use raceway::scene::{AxialMount, Fidelity, Mounting, Operating, Scene};
-use raceway::simulation::{out, Inputs, Simulation};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static::{self, BallEquilibrium};
+use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
+use raceway::simulation::{out, Simulation};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -220,15 +221,7 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     }
     let level = Fidelity::from_name(&p.level).ok_or_else(|| format!("level {}", p.level))?;
     let d = file.bearing.ball_diameter;
-    let mut scene = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: p.speed_rpm,
-            fa: p.fa,
-            fr: p.fr,
-            fy: 0.0,
-        },
-    );
+    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(p.speed_rpm, p.fa, p.fr));
     scene.name = "envelope".into();
     scene.fidelity = level;
     if p.located {
@@ -286,9 +279,9 @@ pub fn ellipse_range(b: &Bearing, e: &BallEquilibrium, n: usize) -> (f64, f64) {
 /// L1 at the point (of the scene's mounting) and the race-control cage ratios of its loaded
 /// balls.
 fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, String> {
-    let case = LoadCase::from_fa_fr_rpm(p.fa, p.fr, p.speed_rpm);
-    let held = raceway::models::held_axial(scene, b, &Inputs::from_scene(scene))
-        .map_err(|e| e.to_string())?;
+    let case = OperatingPoint::from_rpm(p.speed_rpm, p.fa, p.fr);
+    let held =
+        raceway::models::held_axial(scene, b, &scene.operating).map_err(|e| e.to_string())?;
     let q = match held {
         None => quasi_static::solve(b, &case),
         Some(d) => quasi_static::solve_located(b, &case, d),
@@ -316,7 +309,10 @@ fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, Stri
     let reaction = match held {
         None => p.fa,
         Some(d) if scene.fidelity == Fidelity::Lumped => {
-            let rest = LoadCase { speed: 0.0, ..case };
+            let rest = OperatingPoint {
+                shaft_speed: 0.0,
+                ..case
+            };
             quasi_static::solve_located(b, &rest, d)
                 .map_err(|e| e.to_string())?
                 .ring_force()[0]
@@ -329,8 +325,8 @@ fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, Stri
         ell_lo,
         ell_hi,
         ell_check,
-        orc_ratio: if case.speed > 0.0 {
-            q.cage_speed / case.speed
+        orc_ratio: if case.shaft_speed > 0.0 {
+            q.cage_speed / case.shaft_speed
         } else {
             f64::NAN
         },

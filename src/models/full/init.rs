@@ -5,12 +5,13 @@ use super::FullModel;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
 
-use crate::simulation::{Inputs, SimError};
+use crate::operating::OperatingPoint;
+use crate::simulation::SimError;
 use std::f64::consts::TAU;
 
 /// A representative ball load for the spall's blend length "b": the mean load of a ball carrying
 /// the axial load or the peak load of the radial load zone (Stribeck), at least 10 N.
-pub fn reference_ball_load(bearing: &Bearing, inputs: &Inputs) -> f64 {
+pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
     let z = bearing.z as f64;
     let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
     let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;

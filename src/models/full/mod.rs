@@ -28,9 +28,10 @@ use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 use crate::defect::DefectSpec;
 use crate::geometry::{Bearing, Race};
+use crate::operating::OperatingPoint;
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
-use crate::simulation::{Inputs, SimError};
+use crate::simulation::SimError;
 use std::f64::consts::TAU;
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).
@@ -76,7 +77,7 @@ pub struct FullModel {
     defect: Option<Defect>,
     /// Semi-major-axis factor of the spall-edge contact.
     defect_a_star: f64,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// Reference cage speed ratio ψ̇/Ω.
     cage_ratio: f64,
     /// The steady-rotation solve of the start ([`FullModel::settle_report`]).
@@ -139,7 +140,11 @@ pub(crate) fn race_const(b: &Bearing, race: Race) -> RaceConst {
 
 impl FullModel {
     /// Builds the model for a scene with the default options.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         Self::with_options(scene, bearing, inputs, FullOptions::default())
     }
 
@@ -147,7 +152,7 @@ impl FullModel {
     pub fn with_options(
         scene: &Scene,
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
     ) -> Result<Self, SimError> {
         let held = super::held_axial(scene, bearing, inputs)?;
@@ -168,7 +173,7 @@ impl FullModel {
     /// [`steady::steady_rotation`] for the kinematic levels' cage speed.
     pub fn healthy(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
         l1: Option<&QuasiStatic>,
     ) -> Result<Self, SimError> {
@@ -178,7 +183,7 @@ impl FullModel {
     #[allow(clippy::too_many_arguments)]
     fn build(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
         defect: Option<&DefectSpec>,
         pulse: Option<Pulse>,
@@ -573,7 +578,7 @@ impl Model for FullModel {
         y.copy_from_slice(&self.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.inputs = *inputs;
         Ok(())
     }
