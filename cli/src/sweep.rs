@@ -1,6 +1,7 @@
 //! `raceway sweep`: run a parameter grid on N threads, appending to `DIR/results.csv`.
 
-use raceway::sweep::{self, ExecOptions, Sweep};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use raceway::sweep::{self, ExecOptions, Progress, Sweep};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -43,9 +44,12 @@ pub fn run(args: Args) -> Result<(), String> {
     let opts = ExecOptions {
         jobs: args.jobs,
         only: args.runs,
-        progress: !args.quiet,
     };
-    let s = sweep::execute(&sw, &out, &opts).map_err(|e| e.to_string())?;
+    let bar = Bar {
+        show: !args.quiet,
+        bar: ProgressBar::hidden(),
+    };
+    let s = sweep::execute_with_progress(&sw, &out, &opts, &bar).map_err(|e| e.to_string())?;
     let results = out.join("results.csv");
     sweep::results::write_sorted(&results, &out.join("results.sorted.csv"))
         .map_err(|e| e.to_string())?;
@@ -67,4 +71,37 @@ pub fn run(args: Args) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal, and with
+/// `--quiet`).
+struct Bar {
+    show: bool,
+    bar: ProgressBar,
+}
+
+impl Progress for Bar {
+    fn start(&self, runs: usize) {
+        if !self.show {
+            return;
+        }
+        self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
+        ) {
+            self.bar.set_style(style);
+        }
+        self.bar.set_length(runs as u64);
+        self.bar.reset();
+    }
+
+    fn run_done(&self, index: usize, wall_s: f64) {
+        self.bar.inc(1);
+        self.bar
+            .set_message(format!("last: run {index} {wall_s:.2} s"));
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
 }
