@@ -3,6 +3,7 @@
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use raceway::sweep::{self, ExecOptions, Progress, Sweep};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -47,7 +48,7 @@ pub fn run(args: Args) -> Result<(), String> {
     };
     let bar = Bar {
         show: !args.quiet,
-        bar: ProgressBar::hidden(),
+        bar: OnceLock::new(),
     };
     let s = sweep::execute_with_progress(&sw, &out, &opts, &bar).map_err(|e| e.to_string())?;
     let results = out.join("results.csv");
@@ -73,11 +74,11 @@ pub fn run(args: Args) -> Result<(), String> {
     Ok(())
 }
 
-/// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal, and with
-/// `--quiet`).
+/// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal), made when
+/// the sweep knows how many runs it executes; none with `--quiet`.
 struct Bar {
     show: bool,
-    bar: ProgressBar,
+    bar: OnceLock<ProgressBar>,
 }
 
 impl Progress for Bar {
@@ -85,23 +86,26 @@ impl Progress for Bar {
         if !self.show {
             return;
         }
-        self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        let b = ProgressBar::new(runs as u64);
+        b.set_draw_target(ProgressDrawTarget::stderr());
         if let Ok(style) = ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
         ) {
-            self.bar.set_style(style);
+            b.set_style(style);
         }
-        self.bar.set_length(runs as u64);
-        self.bar.reset();
+        let _ = self.bar.set(b);
     }
 
     fn run_done(&self, index: usize, wall_s: f64) {
-        self.bar.inc(1);
-        self.bar
-            .set_message(format!("last: run {index} {wall_s:.2} s"));
+        if let Some(b) = self.bar.get() {
+            b.inc(1);
+            b.set_message(format!("last: run {index} {wall_s:.2} s"));
+        }
     }
 
     fn finish(&self) {
-        self.bar.finish_and_clear();
+        if let Some(b) = self.bar.get() {
+            b.finish_and_clear();
+        }
     }
 }
