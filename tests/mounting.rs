@@ -1,7 +1,8 @@
 //! The axially located inner ring (issue 17 item 5): a single angular-contact bearing carries a
 //! pure radial load when its inner ring is held axially, as it is when mounted. Checked against
 //! the force-controlled solve (an independent problem with the same equilibrium), at every
-//! level, through the scene file, the FMU's parameters and the CLI.
+//! level, through the scene file and the FMU's parameters (the CLI's `static --axial-offset` in
+//! cli/tests/cli_static.rs).
 
 use raceway::fmi::variables::{Config, Param};
 use raceway::geometry::Bearing;
@@ -182,30 +183,4 @@ fn scene_files_and_fmu_parameters_set_the_mounting() {
     c.set(Param::RingAxial, 0.0).unwrap();
     assert_eq!(c.scene.mounting, Mounting::default());
     assert!(c.set(Param::RingAxial, 3.0).is_err());
-}
-
-#[test]
-fn cli_static_locates_the_ring_with_axial_offset() {
-    let exe = env!("CARGO_BIN_EXE_raceway");
-    let run = |args: &[&str]| std::process::Command::new(exe).args(args).output().unwrap();
-    let o = run(&["static", "--fr", "2000", "--axial-offset", "0", "--json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["axially_located"], true);
-    let r = v["axial_reaction"].as_f64().unwrap();
-    let expect = solve_located(&table1(), &OperatingPoint::from_rpm(0.0, 0.0, 2000.0), 0.0)
-        .unwrap()
-        .ring_force()[0];
-    assert!((r - expect).abs() < 1e-9 * expect);
-    let o = run(&[
-        "static",
-        "--fr",
-        "2000",
-        "--fa",
-        "10",
-        "--axial-offset",
-        "0",
-    ]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--axial-offset"));
 }

@@ -33,11 +33,7 @@ harmonics = 2
 "#;
 
 fn run(sw: &Sweep, dir: &Path, jobs: usize) -> Summary {
-    let opts = ExecOptions {
-        jobs,
-        only: None,
-        progress: false,
-    };
+    let opts = ExecOptions { jobs, only: None };
     sweep::execute(sw, dir, &opts).expect("sweep runs")
 }
 
@@ -295,7 +291,6 @@ fn a_results_file_of_another_sweep_is_refused() {
         &ExecOptions {
             jobs: 1,
             only: Some(vec![8]),
-            progress: false,
         },
     )
     .unwrap_err();

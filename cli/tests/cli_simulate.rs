@@ -13,7 +13,7 @@ fn raceway(args: &[&str]) -> Output {
 
 fn scene() -> String {
     format!(
-        "{}/examples/scenes/default.toml",
+        "{}/../examples/scenes/default.toml",
         env!("CARGO_MANIFEST_DIR")
     )
 }

@@ -1,5 +1,9 @@
-//! The `raceway static` and `raceway frequencies` commands, run as a user would.
+//! The `raceway static` and `raceway frequencies` commands, run as a user would; `static` on an
+//! axially located ring against the library's solve.
 
+use raceway::geometry::Bearing;
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static::solve_located;
 use serde_json::Value;
 use std::process::{Command, Output};
 
@@ -208,4 +212,34 @@ fn frequencies_table_and_errors() {
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--contact-angle-deg"));
+}
+
+/// The axially located inner ring (issue 17 item 5) through the CLI: the reaction it prints is
+/// the library's, and `--axial-offset` with an axial load is refused.
+#[test]
+fn cli_static_locates_the_ring_with_axial_offset() {
+    let o = raceway(&["static", "--fr", "2000", "--axial-offset", "0", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["axially_located"], true);
+    let r = v["axial_reaction"].as_f64().unwrap();
+    let expect = solve_located(
+        &Bearing::load("niu2014-table1").unwrap(),
+        &OperatingPoint::from_rpm(0.0, 0.0, 2000.0),
+        0.0,
+    )
+    .unwrap()
+    .ring_force()[0];
+    assert!((r - expect).abs() < 1e-9 * expect);
+    let o = raceway(&[
+        "static",
+        "--fr",
+        "2000",
+        "--fa",
+        "10",
+        "--axial-offset",
+        "0",
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--axial-offset"));
 }

@@ -1,4 +1,4 @@
-//! Command-line interface: one file per subcommand.
+//! The `raceway` command-line program: one file per subcommand, over the `raceway` library.
 
 use clap::{Parser, Subcommand};
 
@@ -52,8 +52,12 @@ enum Command {
     Envelope(envelope::Args),
 }
 
+fn main() {
+    std::process::exit(run());
+}
+
 /// Runs the program; returns the process exit code.
-pub fn run() -> i32 {
+fn run() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Frequencies(a) => frequencies::run(a),

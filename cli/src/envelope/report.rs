@@ -1515,7 +1515,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::envelope::point::{Extremes, L1Ref};
+    use crate::envelope::point::{Extremes, L1Ref};
     use raceway::geometry::Bearing;
 
     fn setup(level: Fidelity) -> (GridPoint, Scales) {

@@ -1,7 +1,9 @@
 //! `raceway sweep`: run a parameter grid on N threads, appending to `DIR/results.csv`.
 
-use raceway::sweep::{self, ExecOptions, Sweep};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use raceway::sweep::{self, ExecOptions, Progress, Sweep};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -43,9 +45,12 @@ pub fn run(args: Args) -> Result<(), String> {
     let opts = ExecOptions {
         jobs: args.jobs,
         only: args.runs,
-        progress: !args.quiet,
     };
-    let s = sweep::execute(&sw, &out, &opts).map_err(|e| e.to_string())?;
+    let bar = Bar {
+        show: !args.quiet,
+        bar: OnceLock::new(),
+    };
+    let s = sweep::execute_with_progress(&sw, &out, &opts, &bar).map_err(|e| e.to_string())?;
     let results = out.join("results.csv");
     sweep::results::write_sorted(&results, &out.join("results.sorted.csv"))
         .map_err(|e| e.to_string())?;
@@ -67,4 +72,40 @@ pub fn run(args: Args) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal), made when
+/// the sweep knows how many runs it executes; none with `--quiet`.
+struct Bar {
+    show: bool,
+    bar: OnceLock<ProgressBar>,
+}
+
+impl Progress for Bar {
+    fn start(&self, runs: usize) {
+        if !self.show {
+            return;
+        }
+        let b = ProgressBar::new(runs as u64);
+        b.set_draw_target(ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
+        ) {
+            b.set_style(style);
+        }
+        let _ = self.bar.set(b);
+    }
+
+    fn run_done(&self, index: usize, wall_s: f64) {
+        if let Some(b) = self.bar.get() {
+            b.inc(1);
+            b.set_message(format!("last: run {index} {wall_s:.2} s"));
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(b) = self.bar.get() {
+            b.finish_and_clear();
+        }
+    }
 }
