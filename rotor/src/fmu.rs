@@ -3,14 +3,14 @@
 //! model description and the documentation).
 
 use crate::jeffcott::{InterfaceForce, Rotor, RotorParams};
-use raceway::fmi::bindings::Fmi2Status;
-use raceway::fmi::codec::{ByteReader, ByteWriter};
-use raceway::fmi::shell::{
+use fmi2::bindings::Fmi2Status;
+use fmi2::codec::{ByteReader, ByteWriter};
+use fmi2::xml;
+use fmi2::{
     Causality, FmuModel, Initial, InstantiateArgs, Logger, Start, StepResult, VarType, Variability,
     Variable, LOG_EVENTS, LOG_SOLVER,
 };
-use raceway::fmi::xml;
-use raceway::solver::IntegratorState;
+use raceway_solver::IntegratorState;
 
 pub const MODEL_IDENTIFIER: &str = "JeffcottRotor";
 pub const DEFAULT_START_TIME: f64 = 0.0;
@@ -550,6 +550,25 @@ impl FmuModel for JeffcottRotor {
             }
         }
     }
+    /// The parameters and the interface inputs before a multi-value set call.
+    type Undo = (RotorParams, InterfaceForce);
+
+    fn begin_set(&self, _indices: &[usize]) -> Self::Undo {
+        (self.params.clone(), self.iface)
+    }
+
+    fn rollback_set(&mut self, (params, iface): Self::Undo) -> Result<(), String> {
+        if params != self.params {
+            self.params = params;
+            self.live = None;
+        }
+        self.iface = iface;
+        if let Some(r) = self.live.as_mut() {
+            r.set_interface(iface);
+        }
+        Ok(())
+    }
+
     fn save_state(&self) -> Vec<u8> {
         let mut w = ByteWriter::new();
         w.u32(MODEL_STATE_VERSION).u32(P::ALL.len() as u32);
