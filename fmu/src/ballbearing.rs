@@ -2,7 +2,7 @@
 //! `fmi2ExitInitializationMode`, then a [`Simulation`] stepped by `fmi2DoStep`.
 //! No physics here: everything is delegated to [`Simulation`].
 
-use crate::variables::{table, Config, Input, JournalInput, Param, Role, Stat};
+use crate::variables::{journal_get, journal_set, params, table, Access, Config, ROWS};
 use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::{FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER};
 use raceway::config::BearingFile;
@@ -60,7 +60,7 @@ pub struct SetUndo {
 pub struct BallBearing {
     guid: String,
     vars: Vec<Variable>,
-    roles: Vec<Role>,
+    roles: Vec<Access>,
     /// The configuration as instantiated (for fmi2Reset).
     initial: Config,
     cfg: Config,
@@ -95,7 +95,7 @@ impl BallBearing {
         let inputs = Inputs::from_scene(&cfg.scene);
         let n_out = entries
             .iter()
-            .filter(|e| matches!(e.role, Role::Output(_)))
+            .filter(|e| matches!(e.role, Access::Output(_)))
             .count();
         Self {
             guid,
@@ -323,7 +323,7 @@ impl FmuModel for BallBearing {
                         .roles
                         .iter()
                         .zip(&self.vars)
-                        .find(|(r, _)| **r == Role::Output(i))
+                        .find(|(r, _)| matches!(r, Access::Output(o) if *o == i))
                         .map_or("?", |(_, v)| v.name.as_str());
                     StepResult::Discard {
                         message: format!(
@@ -371,8 +371,8 @@ impl FmuModel for BallBearing {
 
     fn get_real(&mut self, index: usize) -> Result<f64, String> {
         match self.roles[index] {
-            Role::Input(i) => Ok(i.get(&self.inputs)),
-            Role::Journal(j) => {
+            Access::Input { get, .. } => Ok(get(&self.inputs)),
+            Access::Journal(k) => {
                 // Motion mode, none set yet: the start's equilibrium (builds the provisional
                 // simulation in initialization mode, like an output query).
                 if !self.journal_set
@@ -381,22 +381,22 @@ impl FmuModel for BallBearing {
                 {
                     self.ensure_live()?;
                 }
-                Ok(j.get(&self.journal_now()))
+                Ok(journal_get(&self.journal_now(), k))
             }
-            Role::Param(p) => Ok(self.cfg.get(p)),
-            Role::Output(i) => {
+            Access::Param { get, .. } => Ok(get(&self.cfg)),
+            Access::Output(i) => {
                 self.refresh_outputs()?;
                 Ok(self.outputs[i])
             }
-            Role::Stat(_) => Err("not a Real".into()),
+            Access::Stat(_) => Err("not a Real".into()),
         }
     }
 
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
         match self.roles[index] {
-            Role::Input(i) => {
+            Access::Input { set, .. } => {
                 let mut next = self.inputs;
-                i.set(&mut next, value);
+                set(&mut next, value);
                 if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
                     live.sim.set_inputs(next).map_err(sim_err)?;
                 } else {
@@ -406,9 +406,9 @@ impl FmuModel for BallBearing {
                 self.invalidate();
                 Ok(())
             }
-            Role::Journal(j) => {
+            Access::Journal(k) => {
                 let mut next = self.journal_now();
-                j.set(&mut next, value);
+                journal_set(&mut next, k, value);
                 match self.live.as_mut().filter(|_| self.initialized) {
                     Some(live) if live.scene.coupling == CouplingMode::Motion => {
                         live.sim.set_journal(next).map_err(sim_err)?;
@@ -420,8 +420,8 @@ impl FmuModel for BallBearing {
                 self.invalidate();
                 Ok(())
             }
-            Role::Param(p) => {
-                self.cfg.set(p, value)?;
+            Access::Param { set, .. } => {
+                set(&mut self.cfg, value)?;
                 self.invalidate();
                 Ok(())
             }
@@ -456,19 +456,19 @@ impl FmuModel for BallBearing {
             let mut acc = 0.0;
             for (&ik, &dk) in knowns.iter().zip(dv_known) {
                 let row = match roles[iu] {
-                    Role::Output(o) if (out::BEARING_F_X..=out::BEARING_F_Z).contains(&o) => {
+                    Access::Output(o) if (out::BEARING_F_X..=out::BEARING_F_Z).contains(&o) => {
                         Some((o - out::BEARING_F_X, false))
                     }
-                    Role::Output(o) if (out::RING_X..=out::RING_Z).contains(&o) => {
+                    Access::Output(o) if (out::RING_X..=out::RING_Z).contains(&o) => {
                         Some((o - out::RING_X, true))
                     }
                     _ => None,
                 };
                 let d = match (row, roles[ik]) {
-                    (_, Role::Input(Input::Fx | Input::Fy | Input::Fz)) => 0.0,
-                    (Some((r, false)), Role::Journal(JournalInput(k))) if k < 3 => jac.dfdx[r][k],
-                    (Some((r, false)), Role::Journal(JournalInput(k))) => jac.dfdv[r][k - 3],
-                    (Some((r, true)), Role::Journal(JournalInput(k))) => {
+                    (_, Access::Input { load: true, .. }) => 0.0,
+                    (Some((r, false)), Access::Journal(k)) if k < 3 => jac.dfdx[r][k],
+                    (Some((r, false)), Access::Journal(k)) => jac.dfdv[r][k - 3],
+                    (Some((r, true)), Access::Journal(k)) => {
                         if k == r {
                             1.0
                         } else {
@@ -491,14 +491,10 @@ impl FmuModel for BallBearing {
 
     fn get_integer(&mut self, index: usize) -> Result<i32, String> {
         match self.roles[index] {
-            Role::Param(p) => Ok(self.cfg.get(p) as i32),
-            Role::Stat(s) => {
+            Access::Param { get, .. } => Ok(get(&self.cfg) as i32),
+            Access::Stat(get) => {
                 let st = self.ensure_live()?.sim.stats();
-                let v = match s {
-                    Stat::Steps => st.steps,
-                    Stat::Rejected => st.rejected,
-                    Stat::RhsEvals => st.rhs_evals,
-                };
+                let v = get(&st);
                 Ok(v.min(i32::MAX as u64) as i32)
             }
             _ => Err(format!("'{}' is not an Integer", self.vars[index].name)),
@@ -507,8 +503,8 @@ impl FmuModel for BallBearing {
 
     fn set_integer(&mut self, index: usize, value: i32) -> Result<(), String> {
         match self.roles[index] {
-            Role::Param(p) => {
-                self.cfg.set(p, value as f64)?;
+            Access::Param { set, .. } => {
+                set(&mut self.cfg, value as f64)?;
                 self.invalidate();
                 Ok(())
             }
@@ -521,10 +517,10 @@ impl FmuModel for BallBearing {
     fn begin_set(&self, indices: &[usize]) -> SetUndo {
         let sets_param = indices
             .iter()
-            .any(|&i| matches!(self.roles[i], Role::Param(_)));
+            .any(|&i| matches!(self.roles[i], Access::Param { .. }));
         let reaching_sim = indices
             .iter()
-            .filter(|&&i| matches!(self.roles[i], Role::Input(_) | Role::Journal(_)))
+            .filter(|&&i| matches!(self.roles[i], Access::Input { .. } | Access::Journal(_)))
             .count();
         let sim = match &self.live {
             Some(live) if self.initialized && reaching_sim >= 2 => Some(live.sim.save_state()),
@@ -555,15 +551,19 @@ impl FmuModel for BallBearing {
 
     fn save_state(&self) -> Vec<u8> {
         let mut w = ByteWriter::new();
-        w.u32(MODEL_STATE_VERSION).u32(Param::ALL.len() as u32);
-        for p in Param::ALL {
-            w.f64(self.cfg.get(p));
+        w.u32(MODEL_STATE_VERSION).u32(params().count() as u32);
+        for r in params() {
+            if let Access::Param { get, .. } = r.access {
+                w.f64(get(&self.cfg));
+            }
         }
-        for i in Input::ALL {
-            w.f64(i.get(&self.inputs));
+        for r in ROWS {
+            if let Access::Input { get, .. } = r.access {
+                w.f64(get(&self.inputs));
+            }
         }
-        for j in JournalInput::ALL {
-            w.f64(j.get(&self.journal));
+        for k in 0..6 {
+            w.f64(journal_get(&self.journal, k));
         }
         w.bool(self.journal_set);
         w.f64(self.start_time)
@@ -596,24 +596,30 @@ impl FmuModel for BallBearing {
             ));
         }
         let n = r.u32("parameter count")? as usize;
-        if n != Param::ALL.len() {
+        if n != params().count() {
             return Err(format!(
                 "the state has {n} parameters, this FMU {}",
-                Param::ALL.len()
+                params().count()
             ));
         }
         let mut cfg = self.initial.clone();
-        for p in Param::ALL {
-            let x = r.f64(p.name())?;
-            cfg.set(p, x).map_err(|e| format!("corrupt state: {e}"))?;
+        for row in params() {
+            let x = r.f64(row.name)?;
+            if let Access::Param { set, .. } = row.access {
+                set(&mut cfg, x).map_err(|e| format!("corrupt state: {e}"))?;
+            }
         }
         let mut inputs = self.inputs;
-        for i in Input::ALL {
-            i.set(&mut inputs, r.f64("input")?);
+        for row in ROWS {
+            if let Access::Input { set, .. } = row.access {
+                set(&mut inputs, r.f64("input")?);
+            }
         }
         let mut journal = Journal::default();
-        for j in JournalInput::ALL {
-            j.set(&mut journal, r.f64(j.name())?);
+        for row in ROWS {
+            if let Access::Journal(k) = row.access {
+                journal_set(&mut journal, k, r.f64(row.name)?);
+            }
         }
         let journal_set = r.bool("journal flag")?;
         let start_time = r.f64("start time")?;

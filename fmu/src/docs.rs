@@ -1,6 +1,6 @@
 //! `documentation/index.html` of the FMU, generated from the variable table.
 
-use crate::variables::{table, Config, Role};
+use crate::variables::{table, Access, Config};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
 use raceway::config::BearingFile;
@@ -148,9 +148,9 @@ pub fn documentation_html(
             ),
         };
         let kind = match e.role {
-            Role::Input(_) | Role::Journal(_) => "input",
-            Role::Param(_) => "parameter (fixed)",
-            Role::Output(_) | Role::Stat(_) => "output",
+            Access::Input { .. } | Access::Journal(_) => "input",
+            Access::Param { .. } => "parameter (fixed)",
+            Access::Output(_) | Access::Stat(_) => "output",
         };
         h.push_str(&format!(
             "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",

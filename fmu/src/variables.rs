@@ -1,141 +1,648 @@
-//! The BallBearing FMU's variable table: the one source of truth for the runtime
-//! ([`super::ballbearing`]), the model description ([`super::xml`]) and the documentation
-//! ([`super::docs`]).
+//! The BallBearing FMU's variable table: one row per variable with its value reference written
+//! out, its metadata and its accessors, the one source of truth for the runtime
+//! ([`crate::ballbearing`]), the model description ([`fmi2::xml`]) and the documentation
+//! ([`crate::docs`]). A parameter is added with one row of [`ROWS`]; value references never
+//! move (a new variable takes a new one).
 //!
-//! Value references: inputs 1–4, journal inputs 5–10 (`journal.x/y/z`, `journal.v.x/y/z`),
-//! parameters 100 + k (in [`Param::ALL`] order), solver counters 900–902, real outputs 1000 + i
-//! (i = position in [`raceway::simulation::output_table`]).
+//! Value references: inputs 1–4, journal inputs 5–10, parameters 100–126, solver counters
+//! 900–902, written out in [`ROWS`]; the real outputs are 1000 + i, i being the position in
+//! [`raceway::simulation::output_table`] (their number depends on the bearing's ball count).
+//! Start values of inputs and parameters are the default scene's on the FMU's bearing.
 
+use fmi2::table::Row;
 use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
 use raceway::config::{BearingFile, DefectMode};
 use raceway::defect::DefectSpec;
 use raceway::geometry::Race;
 use raceway::scene::{AxialMount, CageSpeed, CouplingMode, Fidelity, MethodName, Mounting, Scene};
-use raceway::simulation::{output_table, Inputs, Journal};
+use raceway::simulation::{output_table, Inputs, Journal, WorkStats};
+use Causality::{Input as In, Output as Out, Parameter};
+use VarType::{Integer, Real};
 
-/// The continuous inputs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Input {
-    ShaftSpeed,
-    Fx,
-    Fy,
-    Fz,
-}
-
-impl Input {
-    pub const ALL: [Input; 4] = [Input::ShaftSpeed, Input::Fx, Input::Fy, Input::Fz];
-
-    pub fn get(self, i: &Inputs) -> f64 {
-        match self {
-            Input::ShaftSpeed => i.shaft_speed,
-            Input::Fx => i.fx,
-            Input::Fy => i.fy,
-            Input::Fz => i.fz,
-        }
-    }
-
-    pub fn set(self, i: &mut Inputs, v: f64) {
-        match self {
-            Input::ShaftSpeed => i.shaft_speed = v,
-            Input::Fx => i.fx = v,
-            Input::Fy => i.fy = v,
-            Input::Fz => i.fz = v,
-        }
-    }
-}
-
-/// The journal inputs of coupling mode "motion": displacement x, y, z then velocity x, y, z.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct JournalInput(pub usize);
-
-impl JournalInput {
-    pub const ALL: [JournalInput; 6] = [
-        JournalInput(0),
-        JournalInput(1),
-        JournalInput(2),
-        JournalInput(3),
-        JournalInput(4),
-        JournalInput(5),
-    ];
-
-    pub fn get(self, j: &Journal) -> f64 {
-        if self.0 < 3 {
-            j.x[self.0]
-        } else {
-            j.v[self.0 - 3]
-        }
-    }
-
-    pub fn set(self, j: &mut Journal, v: f64) {
-        if self.0 < 3 {
-            j.x[self.0] = v
-        } else {
-            j.v[self.0 - 3] = v
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        [
-            "journal.x",
-            "journal.y",
-            "journal.z",
-            "journal.v.x",
-            "journal.v.y",
-            "journal.v.z",
-        ][self.0]
-    }
-}
-
-/// The structural parameters (all `variability="fixed"`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Param {
-    Fidelity,
-    Coupling,
-    DefectRing,
-    DefectWidth,
-    DefectDepth,
-    DefectTheta0,
-    DefectMode,
-    PedestalMass,
-    PedestalKy,
-    PedestalKz,
-    PedestalCy,
-    PedestalCz,
-    InnerRingMass,
-    ContactCbr,
-    TractionKappa0,
-    TractionKappaMax,
-    TractionUMax,
-    TractionKappaInf,
-    LumpedSlipJitter,
-    LumpedSeed,
-    SolverMethod,
-    SolverRtol,
-    SolverMaxSteps,
-    /// Appended last so that the earlier value references stay as they were.
-    LumpedCageSpeed,
-    SolverPiBeta,
-    RingAxial,
-    RingAxialOffset,
-}
-
-/// The solver's work counters (Integer outputs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Stat {
-    Steps,
-    Rejected,
-    RhsEvals,
-}
-
-/// What a variable of the table is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Role {
-    Input(Input),
-    Journal(JournalInput),
-    Param(Param),
-    /// Position in the simulation's output vector.
+/// What a variable reads and writes.
+#[derive(Debug, Clone, Copy)]
+pub enum Access {
+    /// A field of the operating inputs; `load`: a component of the external load (in coupling
+    /// mode motion it only sets the quasi-static start, so the outputs do not depend on it
+    /// directly).
+    Input {
+        /// Reads the input.
+        get: fn(&Inputs) -> f64,
+        /// Writes the input (the value has passed the shell's checks).
+        set: fn(&mut Inputs, f64),
+        /// Whether it is a load component.
+        load: bool,
+    },
+    /// Journal input `k` of coupling mode motion: displacement x, y, z (k = 0..3), then
+    /// velocity (k = 3..6).
+    Journal(usize),
+    /// A structural parameter (Integers pass as exact `f64`).
+    Param {
+        /// Reads the parameter.
+        get: fn(&Config) -> f64,
+        /// Writes the parameter; `Err` for a value the model refuses.
+        set: fn(&mut Config, f64) -> Result<(), String>,
+    },
+    /// A solver work counter (Integer output).
+    Stat(fn(&WorkStats) -> u64),
+    /// Position in the simulation's output vector (Real output; generated rows only).
     Output(usize),
-    Stat(Stat),
+}
+
+/// One row of the table.
+pub type VarRow = Row<Access>;
+
+const IMAX: f64 = i32::MAX as f64;
+
+/// A Real continuous input row.
+#[allow(clippy::too_many_arguments)]
+const fn input(
+    vr: u32,
+    name: &'static str,
+    unit: &'static str,
+    min: Option<f64>,
+    description: &'static str,
+    get: fn(&Inputs) -> f64,
+    set: fn(&mut Inputs, f64),
+    load: bool,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: In,
+        variability: Variability::Continuous,
+        initial: None,
+        unit: Some(unit),
+        min,
+        max: None,
+        description,
+        access: Access::Input { get, set, load },
+    }
+}
+
+/// A journal input row (metres or metres per second).
+const fn journal(vr: u32, name: &'static str, k: usize, description: &'static str) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: In,
+        variability: Variability::Continuous,
+        initial: None,
+        unit: Some(if k < 3 { "m" } else { "m/s" }),
+        min: None,
+        max: None,
+        description,
+        access: Access::Journal(k),
+    }
+}
+
+/// A fixed parameter row (`initial="exact"`).
+#[allow(clippy::too_many_arguments)]
+const fn param(
+    vr: u32,
+    name: &'static str,
+    ty: VarType,
+    unit: Option<&'static str>,
+    (min, max): (Option<f64>, Option<f64>),
+    description: &'static str,
+    get: fn(&Config) -> f64,
+    set: fn(&mut Config, f64) -> Result<(), String>,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty,
+        causality: Parameter,
+        variability: Variability::Fixed,
+        initial: Some(Initial::Exact),
+        unit,
+        min,
+        max,
+        description,
+        access: Access::Param { get, set },
+    }
+}
+
+/// A solver-counter row (Integer output).
+const fn stat(
+    vr: u32,
+    name: &'static str,
+    description: &'static str,
+    get: fn(&WorkStats) -> u64,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Integer,
+        causality: Out,
+        variability: Variability::Discrete,
+        initial: Some(Initial::Calculated),
+        unit: None,
+        min: None,
+        max: None,
+        description,
+        access: Access::Stat(get),
+    }
+}
+
+/// Every variable but the real outputs, in the model description's order (the outputs, 1000
+/// + i, come between the parameters and the solver counters).
+pub const ROWS: &[VarRow] = &[
+    input(
+        1,
+        "shaft.speed",
+        "rad/s",
+        Some(0.0),
+        "Shaft (inner-ring) speed about +x (>= 0)",
+        |i| i.shaft_speed,
+        |i, v| i.shaft_speed = v,
+        false,
+    ),
+    input(
+        2,
+        "load.Fx",
+        "N",
+        None,
+        "External force on the inner ring along x (axial load Fa, +x)",
+        |i| i.fx,
+        |i, v| i.fx = v,
+        true,
+    ),
+    input(
+        3,
+        "load.Fy",
+        "N",
+        None,
+        "External force on the inner ring along y",
+        |i| i.fy,
+        |i, v| i.fy = v,
+        true,
+    ),
+    input(
+        4,
+        "load.Fz",
+        "N",
+        None,
+        "External force on the inner ring along z (the paper's radial load: Fz = -Fr)",
+        |i| i.fz,
+        |i, v| i.fz = v,
+        true,
+    ),
+    journal(
+        5,
+        "journal.x",
+        0,
+        "Journal (inner-ring centre) displacement along x in coupling mode motion, same frame and origin as ring.x; ignored in force mode",
+    ),
+    journal(
+        6,
+        "journal.y",
+        1,
+        "Journal (inner-ring centre) displacement along y in coupling mode motion, same frame and origin as ring.y; ignored in force mode",
+    ),
+    journal(
+        7,
+        "journal.z",
+        2,
+        "Journal (inner-ring centre) displacement along z in coupling mode motion, same frame and origin as ring.z; ignored in force mode",
+    ),
+    journal(
+        8,
+        "journal.v.x",
+        3,
+        "Journal (inner-ring centre) velocity along x in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    journal(
+        9,
+        "journal.v.y",
+        4,
+        "Journal (inner-ring centre) velocity along y in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    journal(
+        10,
+        "journal.v.z",
+        5,
+        "Journal (inner-ring centre) velocity along z in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    param(
+        100,
+        "fidelity",
+        Integer,
+        None,
+        (Some(0.0), Some(4.0)),
+        "Fidelity level: 0 kinematic (L0), 1 quasi-static (L1), 2 lumped (L2), 3 reduced (L3), 4 full (L4); see the documentation for which levels this build provides",
+        |c| c.scene.fidelity.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.fidelity = Fidelity::from_code(code)
+                .ok_or_else(|| format!("fidelity = {code}: valid codes are 0..4"))?;
+            Ok(())
+        },
+    ),
+    param(
+        101,
+        "coupling",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start)",
+        |c| c.scene.coupling.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.coupling = CouplingMode::from_code(code).ok_or_else(|| {
+                format!("coupling = {code}: valid codes are 0 (force) and 1 (motion)")
+            })?;
+            Ok(())
+        },
+    ),
+    param(
+        102,
+        "defect.ring",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race",
+        |c| c.defect.ring as f64,
+        |c, v| {
+            c.defect.ring = v as i32;
+            Ok(())
+        },
+    ),
+    param(
+        103,
+        "defect.width",
+        Real,
+        Some("m"),
+        (Some(0.0), Some(0.1)),
+        "Spall width along the track w_d (> 0, smaller than the ball diameter)",
+        |c| c.defect.width,
+        |c, v| {
+            c.defect.width = v;
+            Ok(())
+        },
+    ),
+    param(
+        104,
+        "defect.depth",
+        Real,
+        Some("m"),
+        (Some(0.0), Some(0.1)),
+        "Spall depth h_d (> 0)",
+        |c| c.defect.depth,
+        |c, v| {
+            c.defect.depth = v;
+            Ok(())
+        },
+    ),
+    param(
+        105,
+        "defect.theta0",
+        Real,
+        Some("rad"),
+        (None, None),
+        "Angular position of the spall centre (pi = load-zone centre of a load along -z; inner ring: at shaft angle 0)",
+        |c| c.defect.theta0,
+        |c, v| {
+            c.defect.theta0 = v;
+            Ok(())
+        },
+    ),
+    param(
+        106,
+        "defect.mode",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Spall model: 0 finite-size ball resting on the edges (default), 1 paper-literal point contact",
+        |c| match c.scene.bearing.defect.mode {
+            DefectMode::Finite => 0.0,
+            DefectMode::Point => 1.0,
+        },
+        |c, v| {
+            c.scene.bearing.defect.mode = if v as i32 == 0 {
+                DefectMode::Finite
+            } else {
+                DefectMode::Point
+            };
+            Ok(())
+        },
+    ),
+    param(
+        107,
+        "pedestal.mass",
+        Real,
+        Some("kg"),
+        (Some(0.0), None),
+        "Pedestal mass including the outer ring (> 0)",
+        |c| c.scene.bearing.pedestal.mass,
+        |c, v| {
+            c.scene.bearing.pedestal.mass = v;
+            Ok(())
+        },
+    ),
+    param(
+        108,
+        "pedestal.k_y",
+        Real,
+        Some("N/m"),
+        (Some(0.0), None),
+        "Pedestal support stiffness along y (> 0)",
+        |c| c.scene.bearing.pedestal.k_y,
+        |c, v| {
+            c.scene.bearing.pedestal.k_y = v;
+            Ok(())
+        },
+    ),
+    param(
+        109,
+        "pedestal.k_z",
+        Real,
+        Some("N/m"),
+        (Some(0.0), None),
+        "Pedestal support stiffness along z (> 0)",
+        |c| c.scene.bearing.pedestal.k_z,
+        |c, v| {
+            c.scene.bearing.pedestal.k_z = v;
+            Ok(())
+        },
+    ),
+    param(
+        110,
+        "pedestal.c_y",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Pedestal support damping along y",
+        |c| c.scene.bearing.pedestal.c_y,
+        |c, v| {
+            c.scene.bearing.pedestal.c_y = v;
+            Ok(())
+        },
+    ),
+    param(
+        111,
+        "pedestal.c_z",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Pedestal support damping along z",
+        |c| c.scene.bearing.pedestal.c_z,
+        |c, v| {
+            c.scene.bearing.pedestal.c_z = v;
+            Ok(())
+        },
+    ),
+    param(
+        112,
+        "inner_ring.mass",
+        Real,
+        Some("kg"),
+        (Some(0.0), None),
+        "Inner ring (and shaft share) mass (> 0)",
+        |c| c.scene.bearing.inner_ring.mass,
+        |c, v| {
+            c.scene.bearing.inner_ring.mass = v;
+            Ok(())
+        },
+    ),
+    param(
+        113,
+        "contact.c_br",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Ball-race normal contact damping",
+        |c| c.scene.bearing.contact.c_br,
+        |c, v| {
+            c.scene.bearing.contact.c_br = v;
+            Ok(())
+        },
+    ),
+    param(
+        114,
+        "traction.kappa_0",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Traction coefficient at zero slip",
+        |c| c.scene.bearing.traction.kappa_0,
+        |c, v| {
+            c.scene.bearing.traction.kappa_0 = v;
+            Ok(())
+        },
+    ),
+    param(
+        115,
+        "traction.kappa_max",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Maximum traction coefficient (>= kappa_0 and >= kappa_inf)",
+        |c| c.scene.bearing.traction.kappa_max,
+        |c, v| {
+            c.scene.bearing.traction.kappa_max = v;
+            Ok(())
+        },
+    ),
+    param(
+        116,
+        "traction.u_max",
+        Real,
+        Some("m/s"),
+        (Some(0.0), None),
+        "Slip speed at the traction maximum (> 0)",
+        |c| c.scene.bearing.traction.u_max,
+        |c, v| {
+            c.scene.bearing.traction.u_max = v;
+            Ok(())
+        },
+    ),
+    param(
+        117,
+        "traction.kappa_inf",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Traction coefficient at large slip",
+        |c| c.scene.bearing.traction.kappa_inf,
+        |c, v| {
+            c.scene.bearing.traction.kappa_inf = v;
+            Ok(())
+        },
+    ),
+    param(
+        118,
+        "lumped.slip_jitter",
+        Real,
+        None,
+        (Some(0.0), Some(0.5)),
+        "Random ball slip (lumped level): standard deviation as a fraction of the ball spacing, in [0, 0.5)",
+        |c| c.scene.lumped.slip_jitter,
+        |c, v| {
+            c.scene.lumped.slip_jitter = v;
+            Ok(())
+        },
+    ),
+    param(
+        119,
+        "lumped.seed",
+        Integer,
+        None,
+        (Some(0.0), Some(IMAX)),
+        "Seed of the random ball slip",
+        |c| c.scene.lumped.seed.min(i32::MAX as u64) as f64,
+        |c, v| {
+            c.scene.lumped.seed = (v as i32).max(0) as u64;
+            Ok(())
+        },
+    ),
+    param(
+        120,
+        "solver.method",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Integration method: 0 RKF45, 1 DOPRI5, 2 DOP853",
+        |c| c.scene.solver.method.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.solver.method = MethodName::from_code(code)
+                .ok_or_else(|| format!("solver.method = {code}: valid codes are 0, 1, 2"))?;
+            Ok(())
+        },
+    ),
+    param(
+        121,
+        "solver.rtol",
+        Real,
+        None,
+        (Some(raceway::scene::MIN_RTOL), Some(0.1)),
+        "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it",
+        |c| c.scene.solver.rtol,
+        |c, v| {
+            c.scene.solver.rtol = v;
+            Ok(())
+        },
+    ),
+    param(
+        122,
+        "solver.max_steps",
+        Integer,
+        None,
+        (Some(1.0), Some(IMAX)),
+        "Work budget per communication step: attempted integrator steps and, at the kinematic level, spall passes registered (one unit each); when exhausted the step returns fmi2Discard and the FMU stays at the step's start",
+        |c| c.scene.solver.max_steps.min(i32::MAX as u64) as f64,
+        |c, v| {
+            c.scene.solver.max_steps = (v as i32).max(1) as u64;
+            Ok(())
+        },
+    ),
+    param(
+        123,
+        "lumped.cage_speed",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control",
+        |c| c.scene.lumped.cage_speed.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.lumped.cage_speed = CageSpeed::from_code(code)
+                .ok_or_else(|| format!("lumped.cage_speed = {code}: valid codes are 0, 1"))?;
+            Ok(())
+        },
+    ),
+    param(
+        124,
+        "solver.pi_beta",
+        Real,
+        None,
+        (Some(0.0), Some(raceway::scene::MAX_PI_BETA)),
+        "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work",
+        |c| c.scene.solver.pi_beta,
+        |c, v| {
+            c.scene.solver.pi_beta = v;
+            Ok(())
+        },
+    ),
+    param(
+        125,
+        "ring.axial",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Axial mounting of the inner ring (force coupling): 0 the axial load load.Fx acts on it (default); 1 located where the start's load.Fx alone puts it (a preload; centred with the balls just touching at load.Fx = 0); 2 located at ring.axial_offset. Located, the ring carries a pure radial load, bearing.F.x is the axial reaction of its location, and load.Fx cannot change after the start",
+        |c| match (c.scene.mounting.axial, c.scene.mounting.axial_offset) {
+            (AxialMount::Load, _) => 0.0,
+            (AxialMount::Located, None) => 1.0,
+            (AxialMount::Located, Some(_)) => 2.0,
+        },
+        |c, v| {
+            c.scene.mounting = match v as i32 {
+                0 => Mounting::default(),
+                1 => Mounting {
+                    axial: AxialMount::Located,
+                    axial_offset: None,
+                },
+                2 => Mounting {
+                    axial: AxialMount::Located,
+                    axial_offset: Some(c.axial_offset),
+                },
+                code => return Err(format!("ring.axial = {code}: valid codes are 0, 1, 2")),
+            };
+            Ok(())
+        },
+    ),
+    param(
+        126,
+        "ring.axial_offset",
+        Real,
+        Some("m"),
+        (Some(-1e-3), Some(1e-3)),
+        "Axial displacement of a located inner ring (ring.axial = 2) from the unloaded, centred position, along +x (the way load.Fx > 0 pushes it)",
+        |c| c.axial_offset,
+        |c, v| {
+            c.axial_offset = v;
+            if c.scene.mounting.axial_offset.is_some() {
+                c.scene.mounting.axial_offset = Some(v);
+            }
+            Ok(())
+        },
+    ),
+    stat(900, "solver.steps", "Accepted integrator steps since the start", |s| s.steps),
+    stat(901, "solver.rejected", "Rejected integrator steps since the start", |s| s.rejected),
+    stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
+];
+
+/// The parameter rows, in value-reference order (the order of the FMU state's parameters).
+pub fn params() -> impl Iterator<Item = &'static VarRow> {
+    ROWS.iter()
+        .filter(|r| matches!(r.access, Access::Param { .. }))
+}
+
+/// The row of the variable called `name`.
+pub fn row(name: &str) -> Option<&'static VarRow> {
+    ROWS.iter().find(|r| r.name == name)
+}
+
+/// Journal input `k` of `j` (see [`Access::Journal`]).
+pub fn journal_get(j: &Journal, k: usize) -> f64 {
+    if k < 3 {
+        j.x[k]
+    } else {
+        j.v[k - 3]
+    }
+}
+
+/// Sets journal input `k` of `j`.
+pub fn journal_set(j: &mut Journal, k: usize, v: f64) {
+    if k < 3 {
+        j.x[k] = v
+    } else {
+        j.v[k - 3] = v
+    }
 }
 
 /// The defect as the FMU's parameters describe it (kept even while `defect.ring = 0`).
@@ -191,7 +698,9 @@ impl DefectParams {
 /// Everything the parameters edit: the scene (bearing, fidelity, solver, ...) and the defect.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Config {
+    /// The scene (its operating point is replaced by the inputs when the simulation is built).
     pub scene: Scene,
+    /// The defect parameters.
     pub defect: DefectParams,
     /// `ring.axial_offset` as set (it enters the scene's mounting with `ring.axial` = 2).
     pub axial_offset: f64,
@@ -211,256 +720,30 @@ impl Config {
         }
     }
 
-    /// The value of a parameter (Integers as exact f64).
-    pub fn get(&self, p: Param) -> f64 {
-        let s = &self.scene;
-        let b = &s.bearing;
-        match p {
-            Param::Fidelity => s.fidelity.code() as f64,
-            Param::Coupling => s.coupling.code() as f64,
-            Param::DefectRing => self.defect.ring as f64,
-            Param::DefectWidth => self.defect.width,
-            Param::DefectDepth => self.defect.depth,
-            Param::DefectTheta0 => self.defect.theta0,
-            Param::DefectMode => match b.defect.mode {
-                DefectMode::Finite => 0.0,
-                DefectMode::Point => 1.0,
-            },
-            Param::PedestalMass => b.pedestal.mass,
-            Param::PedestalKy => b.pedestal.k_y,
-            Param::PedestalKz => b.pedestal.k_z,
-            Param::PedestalCy => b.pedestal.c_y,
-            Param::PedestalCz => b.pedestal.c_z,
-            Param::InnerRingMass => b.inner_ring.mass,
-            Param::ContactCbr => b.contact.c_br,
-            Param::TractionKappa0 => b.traction.kappa_0,
-            Param::TractionKappaMax => b.traction.kappa_max,
-            Param::TractionUMax => b.traction.u_max,
-            Param::TractionKappaInf => b.traction.kappa_inf,
-            Param::LumpedSlipJitter => s.lumped.slip_jitter,
-            Param::LumpedSeed => s.lumped.seed.min(i32::MAX as u64) as f64,
-            Param::SolverMethod => s.solver.method.code() as f64,
-            Param::SolverRtol => s.solver.rtol,
-            Param::SolverMaxSteps => s.solver.max_steps.min(i32::MAX as u64) as f64,
-            Param::LumpedCageSpeed => s.lumped.cage_speed.code() as f64,
-            Param::SolverPiBeta => s.solver.pi_beta,
-            Param::RingAxial => match (s.mounting.axial, s.mounting.axial_offset) {
-                (AxialMount::Load, _) => 0.0,
-                (AxialMount::Located, None) => 1.0,
-                (AxialMount::Located, Some(_)) => 2.0,
-            },
-            Param::RingAxialOffset => self.axial_offset,
+    /// The value of the parameter `name` (Integers as exact f64); `None` if there is none.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        match row(name)?.access {
+            Access::Param { get, .. } => Some(get(self)),
+            _ => None,
         }
     }
 
-    /// Sets a parameter; `v` has passed the table's type and range checks.
-    pub fn set(&mut self, p: Param, v: f64) -> Result<(), String> {
-        let s = &mut self.scene;
-        let code = v as i32;
-        match p {
-            Param::Fidelity => {
-                s.fidelity = Fidelity::from_code(code)
-                    .ok_or_else(|| format!("fidelity = {code}: valid codes are 0..4"))?
-            }
-            Param::Coupling => {
-                s.coupling = CouplingMode::from_code(code).ok_or_else(|| {
-                    format!("coupling = {code}: valid codes are 0 (force) and 1 (motion)")
-                })?
-            }
-            Param::DefectRing => self.defect.ring = code,
-            Param::DefectWidth => self.defect.width = v,
-            Param::DefectDepth => self.defect.depth = v,
-            Param::DefectTheta0 => self.defect.theta0 = v,
-            Param::DefectMode => {
-                s.bearing.defect.mode = if code == 0 {
-                    DefectMode::Finite
-                } else {
-                    DefectMode::Point
-                }
-            }
-            Param::PedestalMass => s.bearing.pedestal.mass = v,
-            Param::PedestalKy => s.bearing.pedestal.k_y = v,
-            Param::PedestalKz => s.bearing.pedestal.k_z = v,
-            Param::PedestalCy => s.bearing.pedestal.c_y = v,
-            Param::PedestalCz => s.bearing.pedestal.c_z = v,
-            Param::InnerRingMass => s.bearing.inner_ring.mass = v,
-            Param::ContactCbr => s.bearing.contact.c_br = v,
-            Param::TractionKappa0 => s.bearing.traction.kappa_0 = v,
-            Param::TractionKappaMax => s.bearing.traction.kappa_max = v,
-            Param::TractionUMax => s.bearing.traction.u_max = v,
-            Param::TractionKappaInf => s.bearing.traction.kappa_inf = v,
-            Param::LumpedSlipJitter => s.lumped.slip_jitter = v,
-            Param::LumpedSeed => s.lumped.seed = code.max(0) as u64,
-            Param::SolverMethod => {
-                s.solver.method = MethodName::from_code(code)
-                    .ok_or_else(|| format!("solver.method = {code}: valid codes are 0, 1, 2"))?
-            }
-            Param::SolverRtol => s.solver.rtol = v,
-            Param::SolverMaxSteps => s.solver.max_steps = code.max(1) as u64,
-            Param::LumpedCageSpeed => {
-                s.lumped.cage_speed = CageSpeed::from_code(code)
-                    .ok_or_else(|| format!("lumped.cage_speed = {code}: valid codes are 0, 1"))?
-            }
-            Param::SolverPiBeta => s.solver.pi_beta = v,
-            Param::RingAxial => {
-                s.mounting = match code {
-                    0 => Mounting::default(),
-                    1 => Mounting {
-                        axial: AxialMount::Located,
-                        axial_offset: None,
-                    },
-                    2 => Mounting {
-                        axial: AxialMount::Located,
-                        axial_offset: Some(self.axial_offset),
-                    },
-                    _ => return Err(format!("ring.axial = {code}: valid codes are 0, 1, 2")),
-                }
-            }
-            Param::RingAxialOffset => {
-                self.axial_offset = v;
-                if s.mounting.axial_offset.is_some() {
-                    s.mounting.axial_offset = Some(v);
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-impl Param {
-    pub const ALL: [Param; 27] = [
-        Param::Fidelity,
-        Param::Coupling,
-        Param::DefectRing,
-        Param::DefectWidth,
-        Param::DefectDepth,
-        Param::DefectTheta0,
-        Param::DefectMode,
-        Param::PedestalMass,
-        Param::PedestalKy,
-        Param::PedestalKz,
-        Param::PedestalCy,
-        Param::PedestalCz,
-        Param::InnerRingMass,
-        Param::ContactCbr,
-        Param::TractionKappa0,
-        Param::TractionKappaMax,
-        Param::TractionUMax,
-        Param::TractionKappaInf,
-        Param::LumpedSlipJitter,
-        Param::LumpedSeed,
-        Param::SolverMethod,
-        Param::SolverRtol,
-        Param::SolverMaxSteps,
-        Param::LumpedCageSpeed,
-        Param::SolverPiBeta,
-        Param::RingAxial,
-        Param::RingAxialOffset,
-    ];
-
-    /// (name, type, unit, min, max, description)
-    pub fn info(
-        self,
-    ) -> (
-        &'static str,
-        VarType,
-        Option<&'static str>,
-        Option<f64>,
-        Option<f64>,
-        &'static str,
-    ) {
-        use VarType::{Integer as I, Real as R};
-        let imax = i32::MAX as f64;
-        match self {
-            Param::Fidelity => ("fidelity", I, None, Some(0.0), Some(4.0),
-                "Fidelity level: 0 kinematic (L0), 1 quasi-static (L1), 2 lumped (L2), 3 reduced (L3), 4 full (L4); see the documentation for which levels this build provides"),
-            Param::Coupling => ("coupling", I, None, Some(0.0), Some(1.0),
-                "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start)"),
-            Param::DefectRing => ("defect.ring", I, None, Some(0.0), Some(2.0),
-                "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race"),
-            Param::DefectWidth => ("defect.width", R, Some("m"), Some(0.0), Some(0.1),
-                "Spall width along the track w_d (> 0, smaller than the ball diameter)"),
-            Param::DefectDepth => ("defect.depth", R, Some("m"), Some(0.0), Some(0.1),
-                "Spall depth h_d (> 0)"),
-            Param::DefectTheta0 => ("defect.theta0", R, Some("rad"), None, None,
-                "Angular position of the spall centre (pi = load-zone centre of a load along -z; inner ring: at shaft angle 0)"),
-            Param::DefectMode => ("defect.mode", I, None, Some(0.0), Some(1.0),
-                "Spall model: 0 finite-size ball resting on the edges (default), 1 paper-literal point contact"),
-            Param::PedestalMass => ("pedestal.mass", R, Some("kg"), Some(0.0), None,
-                "Pedestal mass including the outer ring (> 0)"),
-            Param::PedestalKy => ("pedestal.k_y", R, Some("N/m"), Some(0.0), None,
-                "Pedestal support stiffness along y (> 0)"),
-            Param::PedestalKz => ("pedestal.k_z", R, Some("N/m"), Some(0.0), None,
-                "Pedestal support stiffness along z (> 0)"),
-            Param::PedestalCy => ("pedestal.c_y", R, Some("N.s/m"), Some(0.0), None,
-                "Pedestal support damping along y"),
-            Param::PedestalCz => ("pedestal.c_z", R, Some("N.s/m"), Some(0.0), None,
-                "Pedestal support damping along z"),
-            Param::InnerRingMass => ("inner_ring.mass", R, Some("kg"), Some(0.0), None,
-                "Inner ring (and shaft share) mass (> 0)"),
-            Param::ContactCbr => ("contact.c_br", R, Some("N.s/m"), Some(0.0), None,
-                "Ball-race normal contact damping"),
-            Param::TractionKappa0 => ("traction.kappa_0", R, None, Some(0.0), Some(1.0),
-                "Traction coefficient at zero slip"),
-            Param::TractionKappaMax => ("traction.kappa_max", R, None, Some(0.0), Some(1.0),
-                "Maximum traction coefficient (>= kappa_0 and >= kappa_inf)"),
-            Param::TractionUMax => ("traction.u_max", R, Some("m/s"), Some(0.0), None,
-                "Slip speed at the traction maximum (> 0)"),
-            Param::TractionKappaInf => ("traction.kappa_inf", R, None, Some(0.0), Some(1.0),
-                "Traction coefficient at large slip"),
-            Param::LumpedSlipJitter => ("lumped.slip_jitter", R, None, Some(0.0), Some(0.5),
-                "Random ball slip (lumped level): standard deviation as a fraction of the ball spacing, in [0, 0.5)"),
-            Param::LumpedSeed => ("lumped.seed", I, None, Some(0.0), Some(imax),
-                "Seed of the random ball slip"),
-            Param::SolverMethod => ("solver.method", I, None, Some(0.0), Some(2.0),
-                "Integration method: 0 RKF45, 1 DOPRI5, 2 DOP853"),
-            Param::SolverRtol => ("solver.rtol", R, None, Some(raceway::scene::MIN_RTOL), Some(0.1),
-                "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it"),
-            Param::SolverMaxSteps => ("solver.max_steps", I, None, Some(1.0), Some(imax),
-                "Work budget per communication step: attempted integrator steps and, at the kinematic level, spall passes registered (one unit each); when exhausted the step returns fmi2Discard and the FMU stays at the step's start"),
-            Param::LumpedCageSpeed => ("lumped.cage_speed", I, None, Some(0.0), Some(1.0),
-                "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control"),
-            Param::SolverPiBeta => ("solver.pi_beta", R, None, Some(0.0), Some(raceway::scene::MAX_PI_BETA),
-                "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work"),
-            Param::RingAxial => ("ring.axial", I, None, Some(0.0), Some(2.0),
-                "Axial mounting of the inner ring (force coupling): 0 the axial load load.Fx acts on it (default); 1 located where the start's load.Fx alone puts it (a preload; centred with the balls just touching at load.Fx = 0); 2 located at ring.axial_offset. Located, the ring carries a pure radial load, bearing.F.x is the axial reaction of its location, and load.Fx cannot change after the start"),
-            Param::RingAxialOffset => ("ring.axial_offset", R, Some("m"), Some(-1e-3), Some(1e-3),
-                "Axial displacement of a located inner ring (ring.axial = 2) from the unloaded, centred position, along +x (the way load.Fx > 0 pushes it)"),
+    /// Sets the parameter `name` (as `fmi2Set*` does after the shell's type and range checks).
+    pub fn set(&mut self, name: &str, v: f64) -> Result<(), String> {
+        match row(name).map(|r| r.access) {
+            Some(Access::Param { set, .. }) => set(self, v),
+            _ => Err(format!("'{name}' is not a parameter")),
         }
     }
-
-    pub fn name(self) -> &'static str {
-        self.info().0
-    }
 }
 
-impl Stat {
-    pub const ALL: [Stat; 3] = [Stat::Steps, Stat::Rejected, Stat::RhsEvals];
-}
-
-/// One row of the table.
-#[derive(Debug, Clone, PartialEq)]
+/// One variable of the FMU built for a bearing: its metadata and its access.
+#[derive(Debug, Clone)]
 pub struct Entry {
+    /// The variable as the shell and the XML see it.
     pub var: Variable,
-    pub role: Role,
-}
-
-fn base(vr: u32, name: &str, ty: VarType, c: Causality, v: Variability, desc: &str) -> Variable {
-    Variable {
-        vr,
-        name: name.to_string(),
-        ty,
-        causality: c,
-        variability: v,
-        initial: None,
-        description: desc.to_string(),
-        unit: None,
-        declared_type: None,
-        display_unit: None,
-        start: Start::None,
-        min: None,
-        max: None,
-    }
+    /// What it reads and writes.
+    pub role: Access,
 }
 
 /// The `SimpleType` name used for a unit.
@@ -480,10 +763,9 @@ pub fn quantity_of(unit: &str) -> Option<&'static str> {
     })
 }
 
-fn with_unit(mut v: Variable, unit: Option<&str>) -> Variable {
-    if let Some(u) = unit {
-        v.unit = Some(u.to_string());
-        v.declared_type = quantity_of(u).map(str::to_string);
+fn with_unit(mut v: Variable) -> Variable {
+    if let Some(u) = v.unit.clone() {
+        v.declared_type = quantity_of(&u).map(str::to_string);
         if u == "rad/s" {
             v.display_unit = Some("rpm".into());
         }
@@ -491,159 +773,57 @@ fn with_unit(mut v: Variable, unit: Option<&str>) -> Variable {
     v
 }
 
-/// The full table for an FMU built on `bearing`.
+/// The full table of the FMU built on `bearing`: [`ROWS`] with the default scene's start
+/// values, and the real outputs (1000 + i) before the solver counters.
 pub fn table(bearing: &BearingFile) -> Vec<Entry> {
     let cfg = Config::default_for(bearing);
     let inputs = Inputs::from_scene(&cfg.scene);
-    let mut t = Vec::new();
-    let input_info = [
-        (
-            Input::ShaftSpeed,
-            "shaft.speed",
-            "rad/s",
-            "Shaft (inner-ring) speed about +x (>= 0)",
-        ),
-        (
-            Input::Fx,
-            "load.Fx",
-            "N",
-            "External force on the inner ring along x (axial load Fa, +x)",
-        ),
-        (
-            Input::Fy,
-            "load.Fy",
-            "N",
-            "External force on the inner ring along y",
-        ),
-        (
-            Input::Fz,
-            "load.Fz",
-            "N",
-            "External force on the inner ring along z (the paper's radial load: Fz = -Fr)",
-        ),
-    ];
-    for (k, (inp, name, unit, desc)) in input_info.into_iter().enumerate() {
-        let mut v = with_unit(
-            base(
-                1 + k as u32,
-                name,
-                VarType::Real,
-                Causality::Input,
-                Variability::Continuous,
-                desc,
-            ),
-            Some(unit),
-        );
-        v.start = Start::Real(inp.get(&inputs));
-        if inp == Input::ShaftSpeed {
-            v.min = Some(0.0);
+    let journal = Journal::default();
+    let entry = |r: &VarRow| {
+        let start = match (r.access, r.ty) {
+            (Access::Input { get, .. }, _) => Start::Real(get(&inputs)),
+            (Access::Journal(k), _) => Start::Real(journal_get(&journal, k)),
+            (Access::Param { get, .. }, Integer) => Start::Integer(get(&cfg) as i32),
+            (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
+            (Access::Stat(_) | Access::Output(_), _) => Start::None,
+        };
+        Entry {
+            var: with_unit(r.variable(start)),
+            role: r.access,
         }
-        t.push(Entry {
-            var: v,
-            role: Role::Input(inp),
-        });
-    }
-    for j in JournalInput::ALL {
-        let (unit, desc) = if j.0 < 3 {
-            ("m", "Journal (inner-ring centre) displacement along {axis} in coupling mode motion, same frame and origin as ring.{axis}; ignored in force mode")
-        } else {
-            ("m/s", "Journal (inner-ring centre) velocity along {axis} in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode")
-        };
-        let axis = ["x", "y", "z"][j.0 % 3];
-        let mut v = with_unit(
-            base(
-                5 + j.0 as u32,
-                j.name(),
-                VarType::Real,
-                Causality::Input,
-                Variability::Continuous,
-                &desc.replace("{axis}", axis),
-            ),
-            Some(unit),
-        );
-        v.start = Start::Real(0.0);
-        t.push(Entry {
-            var: v,
-            role: Role::Journal(j),
-        });
-    }
-    for (k, p) in Param::ALL.into_iter().enumerate() {
-        let (name, ty, unit, min, max, desc) = p.info();
-        let mut v = with_unit(
-            base(
-                100 + k as u32,
-                name,
-                ty,
-                Causality::Parameter,
-                Variability::Fixed,
-                desc,
-            ),
-            unit,
-        );
-        v.initial = Some(Initial::Exact);
-        let value = cfg.get(p);
-        v.start = match ty {
-            VarType::Integer => Start::Integer(value as i32),
-            _ => Start::Real(value),
-        };
-        v.min = min;
-        v.max = max;
-        t.push(Entry {
-            var: v,
-            role: Role::Param(p),
-        });
-    }
+    };
+    let mut t: Vec<Entry> = ROWS
+        .iter()
+        .filter(|r| !matches!(r.access, Access::Stat(_)))
+        .map(entry)
+        .collect();
     let z = bearing.bearing.z as usize;
     for (i, o) in output_table(z).into_iter().enumerate() {
-        let mut v = with_unit(
-            base(
-                1000 + i as u32,
-                &o.name,
-                VarType::Real,
-                Causality::Output,
-                Variability::Continuous,
-                &o.description,
-            ),
-            Some(o.unit),
-        );
-        v.initial = Some(Initial::Calculated);
+        let var = Variable {
+            vr: 1000 + i as u32,
+            name: o.name.clone(),
+            ty: Real,
+            causality: Out,
+            variability: Variability::Continuous,
+            initial: Some(Initial::Calculated),
+            description: o.description.clone(),
+            unit: Some(o.unit.to_string()),
+            declared_type: None,
+            display_unit: None,
+            start: Start::None,
+            min: None,
+            max: None,
+        };
         t.push(Entry {
-            var: v,
-            role: Role::Output(i),
+            var: with_unit(var),
+            role: Access::Output(i),
         });
     }
-    let stats = [
-        (
-            Stat::Steps,
-            "solver.steps",
-            "Accepted integrator steps since the start",
-        ),
-        (
-            Stat::Rejected,
-            "solver.rejected",
-            "Rejected integrator steps since the start",
-        ),
-        (
-            Stat::RhsEvals,
-            "solver.rhs_evals",
-            "Right-hand-side evaluations since the start",
-        ),
-    ];
-    for (k, (s, name, desc)) in stats.into_iter().enumerate() {
-        let mut v = base(
-            900 + k as u32,
-            name,
-            VarType::Integer,
-            Causality::Output,
-            Variability::Discrete,
-            desc,
-        );
-        v.initial = Some(Initial::Calculated);
-        t.push(Entry {
-            var: v,
-            role: Role::Stat(s),
-        });
-    }
+    t.extend(
+        ROWS.iter()
+            .filter(|r| matches!(r.access, Access::Stat(_)))
+            .map(entry),
+    );
     t
 }
 
@@ -661,10 +841,8 @@ mod tests {
         let names: HashSet<&str> = t.iter().map(|e| e.var.name.as_str()).collect();
         assert_eq!(names.len(), t.len(), "unique names");
         let z = b.bearing.z as usize;
-        assert_eq!(
-            t.len(),
-            4 + 6 + Param::ALL.len() + output_table(z).len() + 3
-        );
+        assert_eq!(t.len(), ROWS.len() + output_table(z).len());
+        assert_eq!(params().count(), 27);
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);
@@ -687,10 +865,10 @@ mod tests {
     fn params_round_trip() {
         let b = BearingFile::default_preset();
         let mut cfg = Config::default_for(&b);
-        for p in Param::ALL {
-            let v = cfg.get(p);
-            cfg.set(p, v).unwrap();
-            assert_eq!(cfg.get(p), v, "{}", p.name());
+        for r in params() {
+            let v = cfg.get(r.name).unwrap();
+            cfg.set(r.name, v).unwrap();
+            assert_eq!(cfg.get(r.name), Some(v), "{}", r.name);
         }
         assert_eq!(cfg, Config::default_for(&b));
     }
