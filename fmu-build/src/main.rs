@@ -8,7 +8,7 @@
 //! cargo run --release -p fmu-build -- --only rotor         # only target/fmu/JeffcottRotor.fmu
 //! ```
 //!
-//! Steps: build the release cdylib (`cargo build --release --lib -p ballbearing-fmu`, honouring
+//! Steps: build the release cdylib (`cargo build --release -p ballbearing-fmu -p fmu-build`, honouring
 //! `CARGO_TARGET_DIR`), generate modelDescription.xml and documentation/index.html from the
 //! variable table for the chosen bearing, run the cross-check reference (inputs, outputs,
 //! options) in-process through the same FMI shell the shared library exports, and zip it all.
@@ -75,9 +75,18 @@ fn fail(msg: impl AsRef<str>) -> ! {
 
 fn build_cdylib() -> PathBuf {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!("fmu-build: cargo build --release --lib -p ballbearing-fmu");
+    // With `-p fmu-build` in the same invocation Cargo resolves the features of the shared
+    // dependencies as for `cargo run -p fmu-build`, so nothing is rebuilt with other features.
+    eprintln!("fmu-build: cargo build --release -p ballbearing-fmu -p fmu-build");
     let status = Command::new(cargo)
-        .args(["build", "--release", "--lib", "-p", "ballbearing-fmu"])
+        .args([
+            "build",
+            "--release",
+            "-p",
+            "ballbearing-fmu",
+            "-p",
+            "fmu-build",
+        ])
         .current_dir(workspace_root())
         .status()
         .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
@@ -457,9 +466,16 @@ fn stage_library(lib: &Path, name: &str) -> PathBuf {
 /// documentation.
 fn build_rotor_fmu() {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!("fmu-build: cargo build --release --lib -p raceway-rotor");
+    eprintln!("fmu-build: cargo build --release -p raceway-rotor -p fmu-build");
     let status = Command::new(cargo)
-        .args(["build", "--release", "--lib", "-p", "raceway-rotor"])
+        .args([
+            "build",
+            "--release",
+            "-p",
+            "raceway-rotor",
+            "-p",
+            "fmu-build",
+        ])
         .current_dir(workspace_root())
         .status()
         .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
