@@ -294,22 +294,18 @@ unsafe extern "C" fn test_logger(
     fmt: Fmi2String,
     msg: *const c_char,
 ) {
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
     let log = unsafe { &*(env as *const Log) };
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: the shell passes NUL-terminated strings valid during the call.
     let fmt = unsafe { CStr::from_ptr(fmt) }
         .to_string_lossy()
         .into_owned();
     assert_eq!(fmt, "%s");
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: as above.
     let cat = unsafe { CStr::from_ptr(category) }
         .to_string_lossy()
         .into_owned();
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: as above.
     let msg = unsafe { CStr::from_ptr(msg) }
         .to_string_lossy()
         .into_owned();
@@ -433,8 +429,7 @@ fn happy_path_and_exact_time() {
     for _ in 0..100 {
         t += 0.01;
     }
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: c is a live instance of Toy from instantiate, and no call is running on it.
     let inst = unsafe { &*(c as *const Instance<Toy>) };
     assert_eq!(inst.time(), t);
     assert!(r.iter().all(|v| v[0].is_finite()));
@@ -894,8 +889,7 @@ fn instances_on_threads() {
         .collect();
     // instantiate here, step on worker threads, free here
     struct SendPtr(Fmi2Component);
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: each thread uses its own instance; FMI only forbids concurrent calls on one.
     unsafe impl Send for SendPtr {}
     let h = Harness::new();
     let comps: Vec<SendPtr> = (0..4)

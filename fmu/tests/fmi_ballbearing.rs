@@ -21,11 +21,9 @@ unsafe extern "C" fn logger(
     _fmt: Fmi2String,
     msg: *const c_char,
 ) {
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
     let log = unsafe { &*(env as *const Log) };
-    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    // SAFETY: the shell passes the message as a NUL-terminated string valid during the call.
     let m = unsafe { CStr::from_ptr(msg) }
         .to_string_lossy()
         .into_owned();
@@ -40,8 +38,7 @@ struct H {
 impl H {
     fn new() -> Self {
         let log: Box<Log> = Box::default();
-        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
-        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        // SAFETY: the shell always calls the logger with "%s" and one string (fixed_args_logger's contract).
         let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
         let cb = Fmi2CallbackFunctions {
             logger: Some(l),
