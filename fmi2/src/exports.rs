@@ -27,6 +27,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 categories: *const Fmi2String,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_debug_logging::<M>(c, logging_on, n, categories) }
             }
             #[no_mangle]
@@ -39,6 +41,8 @@ macro_rules! export_fmi2 {
                 visible: Fmi2Boolean,
                 logging_on: Fmi2Boolean,
             ) -> Fmi2Component {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe {
                     sh::instantiate::<M>(
                         instance_name,
@@ -53,6 +57,8 @@ macro_rules! export_fmi2 {
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::free_instance::<M>(c) }
             }
             #[no_mangle]
@@ -64,6 +70,8 @@ macro_rules! export_fmi2 {
                 stop_time_defined: Fmi2Boolean,
                 stop_time: Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe {
                     sh::setup_experiment::<M>(
                         c,
@@ -77,18 +85,26 @@ macro_rules! export_fmi2 {
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::enter_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::exit_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::terminate::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::reset::<M>(c) }
             }
             #[no_mangle]
@@ -98,6 +114,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *mut Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_real::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -107,6 +125,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *mut Fmi2Integer,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_integer::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -116,6 +136,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *mut Fmi2Boolean,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_boolean::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -125,6 +147,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *mut Fmi2String,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_string::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -134,6 +158,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *const Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_real::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -143,6 +169,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *const Fmi2Integer,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_integer::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -152,6 +180,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *const Fmi2Boolean,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_boolean::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -161,6 +191,8 @@ macro_rules! export_fmi2 {
                 n: usize,
                 value: *const Fmi2String,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_string::<M>(c, vr, n, value) }
             }
             #[no_mangle]
@@ -168,6 +200,8 @@ macro_rules! export_fmi2 {
                 c: Fmi2Component,
                 state: *mut Fmi2FmuState,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_fmu_state::<M>(c, state) }
             }
             #[no_mangle]
@@ -175,6 +209,8 @@ macro_rules! export_fmi2 {
                 c: Fmi2Component,
                 state: Fmi2FmuState,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_fmu_state::<M>(c, state) }
             }
             #[no_mangle]
@@ -182,6 +218,8 @@ macro_rules! export_fmi2 {
                 c: Fmi2Component,
                 state: *mut Fmi2FmuState,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::free_fmu_state::<M>(c, state) }
             }
             #[no_mangle]
@@ -190,6 +228,8 @@ macro_rules! export_fmi2 {
                 state: Fmi2FmuState,
                 size: *mut usize,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::serialized_fmu_state_size::<M>(c, state, size) }
             }
             #[no_mangle]
@@ -199,6 +239,8 @@ macro_rules! export_fmi2 {
                 bytes: *mut Fmi2Byte,
                 size: usize,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::serialize_fmu_state::<M>(c, state, bytes, size) }
             }
             #[no_mangle]
@@ -208,6 +250,8 @@ macro_rules! export_fmi2 {
                 size: usize,
                 state: *mut Fmi2FmuState,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::deserialize_fmu_state::<M>(c, bytes, size, state) }
             }
             #[no_mangle]
@@ -220,6 +264,8 @@ macro_rules! export_fmi2 {
                 dv_known: *const Fmi2Real,
                 dv_unknown: *mut Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe {
                     sh::get_directional_derivative::<M>(
                         c, unknown, n_unknown, known, n_known, dv_known, dv_unknown,
@@ -234,6 +280,8 @@ macro_rules! export_fmi2 {
                 _order: *const Fmi2Integer,
                 _value: *const Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::set_real_input_derivatives::<M>(c) }
             }
             #[no_mangle]
@@ -244,6 +292,8 @@ macro_rules! export_fmi2 {
                 _order: *const Fmi2Integer,
                 _value: *mut Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_real_output_derivatives::<M>(c) }
             }
             #[no_mangle]
@@ -253,10 +303,14 @@ macro_rules! export_fmi2 {
                 h: Fmi2Real,
                 no_set_prior: Fmi2Boolean,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::do_step::<M>(c, t, h, no_set_prior) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::cancel_step::<M>(c) }
             }
             #[no_mangle]
@@ -265,6 +319,8 @@ macro_rules! export_fmi2 {
                 kind: Fmi2StatusKind,
                 value: *mut Fmi2Status,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_status::<M>(c, kind, value) }
             }
             #[no_mangle]
@@ -273,6 +329,8 @@ macro_rules! export_fmi2 {
                 kind: Fmi2StatusKind,
                 value: *mut Fmi2Real,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_real_status::<M>(c, kind, value) }
             }
             #[no_mangle]
@@ -281,6 +339,8 @@ macro_rules! export_fmi2 {
                 kind: Fmi2StatusKind,
                 value: *mut Fmi2Integer,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_integer_status::<M>(c, kind, value) }
             }
             #[no_mangle]
@@ -289,6 +349,8 @@ macro_rules! export_fmi2 {
                 kind: Fmi2StatusKind,
                 value: *mut Fmi2Boolean,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_boolean_status::<M>(c, kind, value) }
             }
             #[no_mangle]
@@ -297,6 +359,8 @@ macro_rules! export_fmi2 {
                 kind: Fmi2StatusKind,
                 value: *mut Fmi2String,
             ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
                 unsafe { sh::get_string_status::<M>(c, kind, value) }
             }
         };

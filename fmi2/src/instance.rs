@@ -55,6 +55,7 @@ const STEP_CANCELED: u8 = CallState::StepCanceled as u8;
 const TERMINATED: u8 = CallState::Terminated as u8;
 const ERROR: u8 = CallState::Error as u8;
 
+/// The call states in which each FMI function is allowed, as masks of [`CallState`] bits.
 pub(crate) mod mask {
     use super::*;
     pub const SET_DEBUG_LOGGING: u8 =
@@ -77,6 +78,7 @@ pub(crate) mod mask {
     pub const STATUS: u8 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED;
 }
 
+/// The states of `mask`, for messages.
 pub(crate) fn mask_names(mask: u8) -> String {
     let all = [
         CallState::Instantiated,
