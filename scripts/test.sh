@@ -9,11 +9,12 @@ step() { printf '\n== %s\n' "$*"; }
 step "cargo fmt --check"
 cargo fmt --all -- --check
 
-step "cargo clippy (all targets, warnings are errors)"
-cargo clippy --workspace --all-targets --quiet -- -D warnings
+step "cargo clippy (all targets, warnings are errors, every unsafe block with a SAFETY comment)"
+cargo clippy --workspace --all-targets --quiet -- -D warnings -D clippy::undocumented_unsafe_blocks
 
 step "cargo doc (the crate's documentation builds without warnings)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
+RUSTDOCFLAGS="-D warnings -D missing_docs" cargo doc -p fmi2 --no-deps --quiet
 
 step "Rust tests"
 if cargo nextest --version >/dev/null 2>&1; then

@@ -10,15 +10,17 @@
 //! - [`kinematics`]: L0 fault frequencies;
 //! - [`quasi_static`]: L1 Jones–Harris load distribution and stiffness;
 //! - [`models`]: the dynamic models (L2 lumped, ...) as [`solver::System`]s;
-//! - [`solver`]: the explicit Runge–Kutta engine (knows nothing about bearings);
+//! - [`solver`]: the explicit Runge–Kutta engine (the `raceway-solver` crate; knows nothing
+//!   about bearings);
 //! - [`scene`] and [`simulation`]: what to simulate and the stepping object shared by CLI and FMU;
-//! - [`signal`]: spectra, Welch PSD, envelope analysis;
-//! - [`fmi`]: the FMI 2.0 Co-Simulation shell around [`simulation::Simulation`].
+//! - [`signal`]: spectra, Welch PSD, envelope analysis.
+//!
+//! The FMI 2.0 Co-Simulation FMU around [`simulation::Simulation`] is the `ballbearing-fmu`
+//! crate (`fmu/`), built on the generic `fmi2` crate.
 
 pub mod config;
 pub mod contact;
 pub mod defect;
-pub mod fmi;
 pub mod geometry;
 pub mod kinematics;
 pub mod limits;
@@ -28,5 +30,7 @@ pub mod quasi_static;
 pub mod scene;
 pub mod signal;
 pub mod simulation;
-pub mod solver;
 pub mod sweep;
+
+/// The integration engine, re-exported so `raceway::solver::…` paths keep working.
+pub use raceway_solver as solver;

@@ -1,10 +1,9 @@
 //! The axially located inner ring (issue 17 item 5): a single angular-contact bearing carries a
 //! pure radial load when its inner ring is held axially, as it is when mounted. Checked against
 //! the force-controlled solve (an independent problem with the same equilibrium), at every
-//! level, through the scene file and the FMU's parameters (the CLI's `static --axial-offset` in
-//! cli/tests/cli_static.rs).
+//! level and through the scene file (the FMU's parameters: fmu/tests/mounting.rs; the CLI's
+//! `static --axial-offset`: cli/tests/cli_static.rs).
 
-use raceway::fmi::variables::{Config, Param};
 use raceway::geometry::Bearing;
 use raceway::operating::OperatingPoint;
 use raceway::quasi_static::{solve, solve_located};
@@ -170,17 +169,4 @@ fn scene_files_and_fmu_parameters_set_the_mounting() {
         .unwrap_err()
         .to_string()
         .contains("mounting.axial"));
-    // FMU: ring.axial 0/1/2 and ring.axial_offset, in either order.
-    let mut c = Config::default_for(&s.bearing);
-    assert_eq!(c.get(Param::RingAxial), 0.0);
-    c.set(Param::RingAxial, 2.0).unwrap();
-    c.set(Param::RingAxialOffset, 3e-6).unwrap();
-    assert_eq!(c.scene.mounting.axial_offset, Some(3e-6));
-    assert_eq!(c.get(Param::RingAxial), 2.0);
-    c.set(Param::RingAxial, 1.0).unwrap();
-    assert_eq!(c.scene.mounting.axial_offset, None);
-    assert_eq!(c.get(Param::RingAxialOffset), 3e-6);
-    c.set(Param::RingAxial, 0.0).unwrap();
-    assert_eq!(c.scene.mounting, Mounting::default());
-    assert!(c.set(Param::RingAxial, 3.0).is_err());
 }

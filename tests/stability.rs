@@ -1,7 +1,7 @@
 //! Where methods fail (spec `solvers.md`, T1–T9), at the lumped level (L2) and, where it applies,
 //! the kinematic level. Each test states its pass criterion. T7 (co-simulation step sweep against
 //! a rotor) lives in `tests/stability_cosim.rs`; the FMU stall (fmi2Discard) in
-//! `tests/fmi_ballbearing.rs`.
+//! `fmu/tests/fmi_ballbearing.rs`.
 
 use nalgebra::DMatrix;
 use raceway::geometry::{Bearing, Race};

@@ -1,4 +1,4 @@
-//! Packs the raceway cdylib into `target/fmu/BallBearing.fmu` and the rotor cdylib into
+//! Packs the BallBearing cdylib (`ballbearing-fmu`) into `target/fmu/BallBearing.fmu` and the rotor cdylib into
 //! `target/fmu/JeffcottRotor.fmu`.
 //!
 //! ```text
@@ -8,17 +8,16 @@
 //! cargo run --release -p fmu-build -- --only rotor         # only target/fmu/JeffcottRotor.fmu
 //! ```
 //!
-//! Steps: build the release cdylib (`cargo build --release --lib -p raceway`, honouring
+//! Steps: build the release cdylib (`cargo build --release -p ballbearing-fmu -p fmu-build`, honouring
 //! `CARGO_TARGET_DIR`), generate modelDescription.xml and documentation/index.html from the
 //! variable table for the chosen bearing, run the cross-check reference (inputs, outputs,
 //! options) in-process through the same FMI shell the shared library exports, and zip it all.
 
+use ballbearing_fmu::ballbearing::BEARING_RESOURCE;
 use clap::Parser;
+use fmi2::bindings::*;
+use fmi2::Variable;
 use raceway::config::{BearingFile, DEFAULT_PRESET, PRESETS};
-use raceway::fmi::ballbearing::BEARING_RESOURCE;
-use raceway::fmi::bindings::*;
-use raceway::fmi::shell as sh;
-use raceway::fmi::shell::Variable;
 use std::ffi::{CStr, CString};
 use std::io::Write;
 use std::os::raw::{c_char, c_int, c_void};
@@ -76,24 +75,25 @@ fn fail(msg: impl AsRef<str>) -> ! {
 
 fn build_cdylib() -> PathBuf {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!("fmu-build: cargo build --release --lib -p raceway --features ballbearing-fmu");
+    // With `-p fmu-build` in the same invocation Cargo resolves the features of the shared
+    // dependencies as for `cargo run -p fmu-build`, so nothing is rebuilt with other features.
+    eprintln!("fmu-build: cargo build --release -p ballbearing-fmu -p fmu-build");
     let status = Command::new(cargo)
         .args([
             "build",
             "--release",
-            "--lib",
             "-p",
-            "raceway",
-            "--features",
             "ballbearing-fmu",
+            "-p",
+            "fmu-build",
         ])
         .current_dir(workspace_root())
         .status()
         .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
     if !status.success() {
-        fail("cargo build of the raceway cdylib failed");
+        fail("cargo build of the BallBearing cdylib failed");
     }
-    let lib = target_dir().join("release").join("libraceway.so");
+    let lib = target_dir().join("release").join("libballbearing_fmu.so");
     if !lib.is_file() {
         fail(format!("{} was not produced", lib.display()));
     }
@@ -197,15 +197,16 @@ unsafe extern "C" fn print_logger(
     _fmt: Fmi2String,
     msg: *const c_char,
 ) {
+    // SAFETY: the FMU passes the message as a NUL-terminated string valid during the call.
     let m = unsafe { CStr::from_ptr(msg) }.to_string_lossy();
     eprintln!("fmu-build: reference run: [{}] {m}", status.name());
 }
 
 /// The reference experiment: StartTime, StopTime, StepSize, RelTol.
-const START: f64 = raceway::fmi::DEFAULT_START_TIME;
-const STOP: f64 = raceway::fmi::DEFAULT_STOP_TIME;
-const STEP: f64 = raceway::fmi::DEFAULT_STEP_SIZE;
-const RELTOL: f64 = raceway::fmi::DEFAULT_TOLERANCE;
+const START: f64 = ballbearing_fmu::DEFAULT_START_TIME;
+const STOP: f64 = ballbearing_fmu::DEFAULT_STOP_TIME;
+const STEP: f64 = ballbearing_fmu::DEFAULT_STEP_SIZE;
+const RELTOL: f64 = ballbearing_fmu::DEFAULT_TOLERANCE;
 
 /// Rows of the input table: (time, shaft.speed, load.Fx, load.Fy, load.Fz). Piecewise constant
 /// with a radial-load step at 30 ms and a speed step at 60 ms (duplicate time rows mark the
@@ -283,7 +284,7 @@ fn reference_run(
 ) -> Reference {
     let outputs: Vec<&Variable> = vars
         .iter()
-        .filter(|v| v.causality == sh::Causality::Output)
+        .filter(|v| v.causality == fmi2::Causality::Output)
         .collect();
     let mut header = vec!["time".to_string()];
     header.extend(outputs.iter().map(|v| v.name.clone()));
@@ -298,7 +299,7 @@ fn reference_run(
             }
         }
     };
-    let guid = CString::new(raceway::fmi::guid(bearing)).expect("no NUL");
+    let guid = CString::new(ballbearing_fmu::guid(bearing)).expect("no NUL");
     // Resources: a temporary folder with the bearing, like the unzipped FMU.
     let dir = std::env::temp_dir().join(format!("fmu-build-ref-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
@@ -317,14 +318,16 @@ fn reference_run(
     let input_vrs = [1u32, 2, 3, 4];
     let real_out: Vec<u32> = outputs
         .iter()
-        .filter(|v| v.ty == sh::VarType::Real)
+        .filter(|v| v.ty == fmi2::VarType::Real)
         .map(|v| v.vr)
         .collect();
     let int_out: Vec<u32> = outputs
         .iter()
-        .filter(|v| v.ty == sh::VarType::Integer)
+        .filter(|v| v.ty == fmi2::VarType::Integer)
         .map(|v| v.vr)
         .collect();
+    // SAFETY: the functions come from the loaded FMU library with their FMI 2.0 signatures; the
+    // component comes from its fmi2Instantiate and the arrays and strings outlive each call.
     let note = unsafe {
         let c = (api.instantiate)(
             c"reference".as_ptr(),
@@ -350,7 +353,7 @@ fn reference_run(
             let (mut ri, mut ii) = (r.iter(), i.iter());
             for v in &outputs {
                 row.push(match v.ty {
-                    sh::VarType::Integer => ii.next().expect("counted").to_string(),
+                    fmi2::VarType::Integer => ii.next().expect("counted").to_string(),
                     _ => format!("{}", ri.next().expect("counted")),
                 });
             }
@@ -459,14 +462,20 @@ fn stage_library(lib: &Path, name: &str) -> PathBuf {
     out
 }
 
-/// Builds `<target>/fmu/JeffcottRotor.fmu`: the rotor cdylib (raceway without the
-/// `ballbearing-fmu` feature, so it exports the rotor's fmi2* symbols only), its model
-/// description and documentation.
+/// Builds `<target>/fmu/JeffcottRotor.fmu`: the rotor cdylib, its model description and
+/// documentation.
 fn build_rotor_fmu() {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!("fmu-build: cargo build --release --lib -p raceway-rotor");
+    eprintln!("fmu-build: cargo build --release -p raceway-rotor -p fmu-build");
     let status = Command::new(cargo)
-        .args(["build", "--release", "--lib", "-p", "raceway-rotor"])
+        .args([
+            "build",
+            "--release",
+            "-p",
+            "raceway-rotor",
+            "-p",
+            "fmu-build",
+        ])
         .current_dir(workspace_root())
         .status()
         .unwrap_or_else(|e| fail(format!("cannot run cargo: {e}")));
@@ -531,7 +540,7 @@ fn main() {
             .join("modelDescription.xml");
         std::fs::create_dir_all(path.parent().expect("has a parent"))
             .unwrap_or_else(|e| fail(format!("{e}")));
-        std::fs::write(&path, raceway::fmi::model_description_xml(&b))
+        std::fs::write(&path, ballbearing_fmu::model_description_xml(&b))
             .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
         eprintln!("fmu-build: wrote {}", path.display());
         return;
@@ -563,20 +572,20 @@ fn main() {
     let staged = stage_library(&lib, "BallBearing.so");
     let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
 
-    let xml = raceway::fmi::model_description_xml(&bearing);
-    let vars: Vec<Variable> = raceway::fmi::variables::table(&bearing)
+    let xml = ballbearing_fmu::model_description_xml(&bearing);
+    let vars: Vec<Variable> = ballbearing_fmu::variables::table(&bearing)
         .into_iter()
         .map(|e| e.var)
         .collect();
     eprintln!("fmu-build: probing the fidelity levels");
-    let avail = raceway::fmi::docs::fidelity_availability(&bearing);
-    let html = raceway::fmi::docs::documentation_html(&bearing, &avail);
+    let avail = ballbearing_fmu::docs::fidelity_availability(&bearing);
+    let html = ballbearing_fmu::docs::documentation_html(&bearing, &avail);
 
     // Cross-check style reference.
     let start_inputs =
         [1u32, 2, 3, 4].map(
             |vr| match vars.iter().find(|v| v.vr == vr).map(|v| &v.start) {
-                Some(sh::Start::Real(x)) => *x,
+                Some(fmi2::Start::Real(x)) => *x,
                 _ => fail("input table changed: vr 1..4 must be the Real inputs"),
             },
         );
@@ -676,7 +685,7 @@ fn main() {
         out.display(),
         bearing.name,
         bearing.bearing.z,
-        raceway::fmi::guid(&bearing),
+        ballbearing_fmu::guid(&bearing),
         vars.len(),
         if reference.note.is_some() {
             ", no reference results"

@@ -3,14 +3,15 @@
 //! model description and the documentation).
 
 use crate::jeffcott::{InterfaceForce, Rotor, RotorParams};
-use raceway::fmi::bindings::Fmi2Status;
-use raceway::fmi::codec::{ByteReader, ByteWriter};
-use raceway::fmi::shell::{
+use fmi2::bindings::Fmi2Status;
+use fmi2::codec::{ByteReader, ByteWriter};
+use fmi2::table::Row;
+use fmi2::xml;
+use fmi2::{
     Causality, FmuModel, Initial, InstantiateArgs, Logger, Start, StepResult, VarType, Variability,
     Variable, LOG_EVENTS, LOG_SOLVER,
 };
-use raceway::fmi::xml;
-use raceway::solver::IntegratorState;
+use raceway_solver::IntegratorState;
 
 pub const MODEL_IDENTIFIER: &str = "JeffcottRotor";
 pub const DEFAULT_START_TIME: f64 = 0.0;
@@ -30,100 +31,193 @@ pub enum Role {
     K(usize, usize),
     /// ∂F_i/∂v_j.
     C(usize, usize),
-    Param(P),
+    /// Index in [`PARAMS`].
+    Param(usize),
     Out(O),
 }
 
-/// Parameters.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum P {
-    JournalMass,
-    DiskMass,
-    ShaftK,
-    ShaftC,
-    JournalC,
-    Unbalance,
-    Gravity,
-    Load(usize),
-    Journal0(usize),
-    SpeedInitial,
-    SpeedFinal,
-    SpeedRate,
+/// What a parameter row reads and writes in [`RotorParams`].
+#[derive(Debug, Clone, Copy)]
+pub struct ParamAccess {
+    /// Reads the parameter.
+    pub get: fn(&RotorParams) -> f64,
+    /// Writes the parameter (the value has passed the shell's checks).
+    pub set: fn(&mut RotorParams, f64),
 }
 
-impl P {
-    pub const ALL: [P; 16] = [
-        P::JournalMass,
-        P::DiskMass,
-        P::ShaftK,
-        P::ShaftC,
-        P::JournalC,
-        P::Unbalance,
-        P::Gravity,
-        P::Load(0),
-        P::Load(1),
-        P::Load(2),
-        P::Journal0(0),
-        P::Journal0(1),
-        P::Journal0(2),
-        P::SpeedInitial,
-        P::SpeedFinal,
-        P::SpeedRate,
-    ];
-
-    fn get(self, p: &RotorParams) -> f64 {
-        match self {
-            P::JournalMass => p.journal_mass,
-            P::DiskMass => p.disk_mass,
-            P::ShaftK => p.shaft_k,
-            P::ShaftC => p.shaft_c,
-            P::JournalC => p.journal_c,
-            P::Unbalance => p.unbalance,
-            P::Gravity => p.gravity,
-            P::Load(i) => p.load[i],
-            P::Journal0(i) => p.journal0[i],
-            P::SpeedInitial => p.speed_initial,
-            P::SpeedFinal => p.speed_final,
-            P::SpeedRate => p.speed_rate,
-        }
-    }
-
-    fn set(self, p: &mut RotorParams, v: f64) {
-        match self {
-            P::JournalMass => p.journal_mass = v,
-            P::DiskMass => p.disk_mass = v,
-            P::ShaftK => p.shaft_k = v,
-            P::ShaftC => p.shaft_c = v,
-            P::JournalC => p.journal_c = v,
-            P::Unbalance => p.unbalance = v,
-            P::Gravity => p.gravity = v,
-            P::Load(i) => p.load[i] = v,
-            P::Journal0(i) => p.journal0[i] = v,
-            P::SpeedInitial => p.speed_initial = v,
-            P::SpeedFinal => p.speed_final = v,
-            P::SpeedRate => p.speed_rate = v,
-        }
-    }
-
-    /// (name, unit, min, description)
-    fn info(self) -> (String, &'static str, Option<f64>, String) {
-        const XYZ: [&str; 3] = ["x", "y", "z"];
-        match self {
-            P::JournalMass => ("journal.mass".into(), "kg", Some(0.0), "Journal (bearing-station) mass, > 0; with disk.mass = 0 the whole rigid rotor".into()),
-            P::DiskMass => ("disk.mass".into(), "kg", Some(0.0), "Disk mass on the flexible shaft (0: rigid rotor, the unbalance then sits on the journal)".into()),
-            P::ShaftK => ("shaft.k".into(), "N/m", Some(0.0), "Lateral shaft stiffness between journal and disk".into()),
-            P::ShaftC => ("shaft.c".into(), "N.s/m", Some(0.0), "Lateral shaft damping between journal and disk".into()),
-            P::JournalC => ("journal.c".into(), "N.s/m", Some(0.0), "Damping of the journal to ground (x, y, z), e.g. a squeeze-film damper".into()),
-            P::Unbalance => ("unbalance".into(), "kg.m", Some(0.0), "Unbalance m_u*e on the disk (on the journal if rigid)".into()),
-            P::Gravity => ("gravity".into(), "m/s2", None, "Gravitational acceleration, acting along -z".into()),
-            P::Load(i) => (format!("load.F{}", XYZ[i]), "N", None, format!("Constant external force on the journal along {} (the default scene's Fa = 4000 N along +x and Fr = 1000 N along -z)", XYZ[i])),
-            P::Journal0(i) => (format!("journal.{}0", XYZ[i]), "m", None, format!("Initial journal displacement along {} (e.g. the bearing's static displacement); the disk starts at its static sag", XYZ[i])),
-            P::SpeedInitial => ("speed.initial".into(), "rad/s", Some(0.0), "Shaft speed at the start time".into()),
-            P::SpeedFinal => ("speed.final".into(), "rad/s", Some(0.0), "Shaft speed at the end of the ramp".into()),
-            P::SpeedRate => ("speed.rate".into(), "rad/s2", Some(0.0), "Magnitude of the speed ramp from speed.initial to speed.final (0: constant speed.initial)".into()),
-        }
+/// A fixed Real parameter row (`initial="exact"`).
+const fn param(
+    vr: u32,
+    name: &'static str,
+    unit: &'static str,
+    min: Option<f64>,
+    description: &'static str,
+    get: fn(&RotorParams) -> f64,
+    set: fn(&mut RotorParams, f64),
+) -> Row<ParamAccess> {
+    Row {
+        vr,
+        name,
+        ty: VarType::Real,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        initial: Some(Initial::Exact),
+        unit: Some(unit),
+        min,
+        max: None,
+        description,
+        access: ParamAccess { get, set },
     }
 }
+
+/// The parameters, one row each with its value reference written out (their order is also
+/// the FMU state's).
+pub const PARAMS: &[Row<ParamAccess>] = &[
+    param(
+        100,
+        "journal.mass",
+        "kg",
+        Some(0.0),
+        "Journal (bearing-station) mass, > 0; with disk.mass = 0 the whole rigid rotor",
+        |p| p.journal_mass,
+        |p, v| p.journal_mass = v,
+    ),
+    param(
+        101,
+        "disk.mass",
+        "kg",
+        Some(0.0),
+        "Disk mass on the flexible shaft (0: rigid rotor, the unbalance then sits on the journal)",
+        |p| p.disk_mass,
+        |p, v| p.disk_mass = v,
+    ),
+    param(
+        102,
+        "shaft.k",
+        "N/m",
+        Some(0.0),
+        "Lateral shaft stiffness between journal and disk",
+        |p| p.shaft_k,
+        |p, v| p.shaft_k = v,
+    ),
+    param(
+        103,
+        "shaft.c",
+        "N.s/m",
+        Some(0.0),
+        "Lateral shaft damping between journal and disk",
+        |p| p.shaft_c,
+        |p, v| p.shaft_c = v,
+    ),
+    param(
+        104,
+        "journal.c",
+        "N.s/m",
+        Some(0.0),
+        "Damping of the journal to ground (x, y, z), e.g. a squeeze-film damper",
+        |p| p.journal_c,
+        |p, v| p.journal_c = v,
+    ),
+    param(
+        105,
+        "unbalance",
+        "kg.m",
+        Some(0.0),
+        "Unbalance m_u*e on the disk (on the journal if rigid)",
+        |p| p.unbalance,
+        |p, v| p.unbalance = v,
+    ),
+    param(
+        106,
+        "gravity",
+        "m/s2",
+        None,
+        "Gravitational acceleration, acting along -z",
+        |p| p.gravity,
+        |p, v| p.gravity = v,
+    ),
+    param(
+        107,
+        "load.Fx",
+        "N",
+        None,
+        "Constant external force on the journal along x (the default scene's Fa = 4000 N along +x and Fr = 1000 N along -z)",
+        |p| p.load[0],
+        |p, v| p.load[0] = v,
+    ),
+    param(
+        108,
+        "load.Fy",
+        "N",
+        None,
+        "Constant external force on the journal along y (the default scene's Fa = 4000 N along +x and Fr = 1000 N along -z)",
+        |p| p.load[1],
+        |p, v| p.load[1] = v,
+    ),
+    param(
+        109,
+        "load.Fz",
+        "N",
+        None,
+        "Constant external force on the journal along z (the default scene's Fa = 4000 N along +x and Fr = 1000 N along -z)",
+        |p| p.load[2],
+        |p, v| p.load[2] = v,
+    ),
+    param(
+        110,
+        "journal.x0",
+        "m",
+        None,
+        "Initial journal displacement along x (e.g. the bearing's static displacement); the disk starts at its static sag",
+        |p| p.journal0[0],
+        |p, v| p.journal0[0] = v,
+    ),
+    param(
+        111,
+        "journal.y0",
+        "m",
+        None,
+        "Initial journal displacement along y (e.g. the bearing's static displacement); the disk starts at its static sag",
+        |p| p.journal0[1],
+        |p, v| p.journal0[1] = v,
+    ),
+    param(
+        112,
+        "journal.z0",
+        "m",
+        None,
+        "Initial journal displacement along z (e.g. the bearing's static displacement); the disk starts at its static sag",
+        |p| p.journal0[2],
+        |p, v| p.journal0[2] = v,
+    ),
+    param(
+        113,
+        "speed.initial",
+        "rad/s",
+        Some(0.0),
+        "Shaft speed at the start time",
+        |p| p.speed_initial,
+        |p, v| p.speed_initial = v,
+    ),
+    param(
+        114,
+        "speed.final",
+        "rad/s",
+        Some(0.0),
+        "Shaft speed at the end of the ramp",
+        |p| p.speed_final,
+        |p, v| p.speed_final = v,
+    ),
+    param(
+        115,
+        "speed.rate",
+        "rad/s2",
+        Some(0.0),
+        "Magnitude of the speed ramp from speed.initial to speed.final (0: constant speed.initial)",
+        |p| p.speed_rate,
+        |p, v| p.speed_rate = v,
+    ),
+];
 
 /// Outputs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -273,21 +367,8 @@ pub fn table() -> Vec<(Variable, Role)> {
         }
     }
     let d = RotorParams::default();
-    for (k, p) in P::ALL.into_iter().enumerate() {
-        let (name, unit, min, desc) = p.info();
-        let mut v = var(
-            100 + k as u32,
-            &name,
-            VarType::Real,
-            Parameter,
-            Fixed,
-            &desc,
-        );
-        v.unit = Some(unit.into());
-        v.initial = Some(Initial::Exact);
-        v.start = Start::Real(p.get(&d));
-        v.min = min;
-        t.push((v, Role::Param(p)));
+    for (k, p) in PARAMS.iter().enumerate() {
+        t.push((p.variable(Start::Real((p.access.get)(&d))), Role::Param(k)));
     }
     for (k, o) in O::ALL.into_iter().enumerate() {
         let (name, unit, desc) = o.info();
@@ -519,7 +600,7 @@ impl FmuModel for JeffcottRotor {
             return Ok(v);
         }
         match role {
-            Role::Param(p) => Ok(p.get(&self.params)),
+            Role::Param(k) => Ok((PARAMS[k].access.get)(&self.params)),
             Role::Out(o) => {
                 if self.live.is_none() {
                     self.live = Some(self.build()?);
@@ -533,9 +614,9 @@ impl FmuModel for JeffcottRotor {
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
         let role = self.roles[index];
         match role {
-            Role::Param(p) => {
+            Role::Param(k) => {
                 let mut next = self.params.clone();
-                p.set(&mut next, value);
+                (PARAMS[k].access.set)(&mut next, value);
                 self.params = next;
                 self.live = None;
                 Ok(())
@@ -550,11 +631,30 @@ impl FmuModel for JeffcottRotor {
             }
         }
     }
+    /// The parameters and the interface inputs before a multi-value set call.
+    type Undo = (RotorParams, InterfaceForce);
+
+    fn begin_set(&self, _indices: &[usize]) -> Self::Undo {
+        (self.params.clone(), self.iface)
+    }
+
+    fn rollback_set(&mut self, (params, iface): Self::Undo) -> Result<(), String> {
+        if params != self.params {
+            self.params = params;
+            self.live = None;
+        }
+        self.iface = iface;
+        if let Some(r) = self.live.as_mut() {
+            r.set_interface(iface);
+        }
+        Ok(())
+    }
+
     fn save_state(&self) -> Vec<u8> {
         let mut w = ByteWriter::new();
-        w.u32(MODEL_STATE_VERSION).u32(P::ALL.len() as u32);
-        for p in P::ALL {
-            w.f64(p.get(&self.params));
+        w.u32(MODEL_STATE_VERSION).u32(PARAMS.len() as u32);
+        for p in PARAMS {
+            w.f64((p.access.get)(&self.params));
         }
         write_iface(&mut w, &self.iface);
         w.f64(self.start_time).opt_f64(self.tolerance);
@@ -584,15 +684,15 @@ impl FmuModel for JeffcottRotor {
             ));
         }
         let n = r.u32("parameter count")? as usize;
-        if n != P::ALL.len() {
+        if n != PARAMS.len() {
             return Err(format!(
                 "the state has {n} parameters, this FMU {}",
-                P::ALL.len()
+                PARAMS.len()
             ));
         }
         let mut params = RotorParams::default();
-        for p in P::ALL {
-            p.set(&mut params, r.f64("parameter")?);
+        for p in PARAMS {
+            (p.access.set)(&mut params, r.f64("parameter")?);
         }
         let iface = read_iface(&mut r)?;
         let start_time = r.f64("start time")?;

@@ -28,7 +28,7 @@
 //! interface-Jacobian coupling, where the rotor integrates the linearised bearing reaction
 //! inside the step.
 
-use raceway::solver::{Integrator, IntegratorState, Method, Options, SolverError, System};
+use raceway_solver::{Integrator, IntegratorState, Method, Options, SolverError, System};
 
 /// Parameters of the rotor (SI units).
 #[derive(Debug, Clone, PartialEq)]

@@ -9,20 +9,26 @@ struct Counting;
 static COUNT: AtomicUsize = AtomicUsize::new(0);
 static ON: AtomicBool = AtomicBool::new(false);
 
+// SAFETY: every method forwards to the system allocator, which meets GlobalAlloc's contract;
+// counting does not allocate.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, l: Layout) -> *mut u8 {
         if ON.load(Ordering::SeqCst) {
             COUNT.fetch_add(1, Ordering::SeqCst);
         }
+        // SAFETY: the caller's layout meets GlobalAlloc::alloc's contract (passed on unchanged).
         unsafe { System.alloc(l) }
     }
     unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        // SAFETY: p was allocated by this allocator (hence by System) with layout l.
         unsafe { System.dealloc(p, l) }
     }
     unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
         if ON.load(Ordering::SeqCst) {
             COUNT.fetch_add(1, Ordering::SeqCst);
         }
+        // SAFETY: p was allocated by this allocator (hence by System) with layout l; n is the
+        // caller's valid new size.
         unsafe { System.realloc(p, l, n) }
     }
 }

@@ -1,0 +1,261 @@
+//! The instance and its FMI 2.0 Co-Simulation call-state machine: one call-state mask per
+//! function (as in the Modelica Reference-FMUs' `fmi2Functions.c`), and the argument checks
+//! every function shares.
+
+use crate::bindings::Fmi2Status;
+use crate::logging::{Logger, LOG_EVENTS, LOG_STATUS_ERROR};
+use crate::model::FmuModel;
+use crate::variable::{Causality, VarType, Variability};
+use std::collections::HashMap;
+use std::ffi::CString;
+
+/// FMI 2.0 Co-Simulation call states (bit flags so allowed sets are masks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
+pub enum CallState {
+    /// After `fmi2Instantiate` (and `fmi2Reset`).
+    Instantiated = 1,
+    /// Between `fmi2EnterInitializationMode` and `fmi2ExitInitializationMode`.
+    InitializationMode = 2,
+    /// Ready for `fmi2DoStep`.
+    StepComplete = 4,
+    /// A step returned `fmi2Discard`; the outputs are those of the last good time.
+    StepFailed = 8,
+    /// A step was canceled (never happens: steps are synchronous).
+    StepCanceled = 16,
+    /// After `fmi2Terminate`.
+    Terminated = 32,
+    /// A model failure; `fmi2Reset`, `fmi2SetFMUstate` or `fmi2FreeInstance` lead out.
+    Error = 64,
+    /// A panic was caught; only `fmi2FreeInstance` is possible.
+    Fatal = 128,
+}
+
+impl CallState {
+    pub(crate) fn from_u8(b: u8) -> Option<Self> {
+        Some(match b {
+            1 => CallState::Instantiated,
+            2 => CallState::InitializationMode,
+            4 => CallState::StepComplete,
+            8 => CallState::StepFailed,
+            16 => CallState::StepCanceled,
+            32 => CallState::Terminated,
+            64 => CallState::Error,
+            128 => CallState::Fatal,
+            _ => return None,
+        })
+    }
+}
+
+const INSTANTIATED: u8 = CallState::Instantiated as u8;
+const INIT_MODE: u8 = CallState::InitializationMode as u8;
+const STEP_COMPLETE: u8 = CallState::StepComplete as u8;
+const STEP_FAILED: u8 = CallState::StepFailed as u8;
+const STEP_CANCELED: u8 = CallState::StepCanceled as u8;
+const TERMINATED: u8 = CallState::Terminated as u8;
+const ERROR: u8 = CallState::Error as u8;
+
+/// The call states in which each FMI function is allowed, as masks of [`CallState`] bits.
+pub(crate) mod mask {
+    use super::*;
+    pub const SET_DEBUG_LOGGING: u8 =
+        INSTANTIATED | INIT_MODE | STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
+    pub const SETUP_EXPERIMENT: u8 = INSTANTIATED;
+    pub const ENTER_INIT: u8 = INSTANTIATED;
+    pub const EXIT_INIT: u8 = INIT_MODE;
+    pub const TERMINATE: u8 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED;
+    pub const RESET: u8 = SET_DEBUG_LOGGING;
+    pub const GET: u8 =
+        INIT_MODE | STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
+    pub const SET: u8 = INSTANTIATED | INIT_MODE | STEP_COMPLETE;
+    pub const FMU_STATE: u8 = SET_DEBUG_LOGGING;
+    pub const DIRECTIONAL: u8 = GET;
+    pub const SET_INPUT_DERIVATIVES: u8 = INSTANTIATED | INIT_MODE | STEP_COMPLETE;
+    pub const GET_OUTPUT_DERIVATIVES: u8 =
+        STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
+    pub const DO_STEP: u8 = STEP_COMPLETE;
+    pub const CANCEL_STEP: u8 = 0; // no step is ever in progress (synchronous FMU)
+    pub const STATUS: u8 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED;
+}
+
+/// The states of `mask`, for messages.
+pub(crate) fn mask_names(mask: u8) -> String {
+    let all = [
+        CallState::Instantiated,
+        CallState::InitializationMode,
+        CallState::StepComplete,
+        CallState::StepFailed,
+        CallState::StepCanceled,
+        CallState::Terminated,
+        CallState::Error,
+    ];
+    let v: Vec<String> = all
+        .iter()
+        .filter(|s| mask & (**s as u8) != 0)
+        .map(|s| format!("{s:?}"))
+        .collect();
+    if v.is_empty() {
+        "no state (the FMU never has a step in progress)".into()
+    } else {
+        v.join(", ")
+    }
+}
+
+pub(crate) const INSTANCE_MAGIC: u64 = 0x5241_4345_5741_5949; // "RACEWAYI"
+
+/// Relative tolerance on `currentCommunicationPoint` (× max(1, |t|)).
+pub const TIME_EPS: f64 = 1e-12;
+/// Relative tolerance on the stop time (× max(1, |stopTime|)).
+pub const STOP_EPS: f64 = 1e-9;
+
+/// One FMU instance (owned by the importer through an opaque pointer).
+pub struct Instance<M: FmuModel> {
+    pub(crate) magic: u64,
+    pub(crate) logger: Logger,
+    pub(crate) initial_logging: bool,
+    pub(crate) state: CallState,
+    pub(crate) model: M,
+    pub(crate) vr_index: HashMap<u32, usize>,
+    pub(crate) time: f64,
+    pub(crate) start_time: f64,
+    pub(crate) stop_time: Option<f64>,
+    pub(crate) tolerance: Option<f64>,
+    pub(crate) last_successful_time: f64,
+    pub(crate) terminated: bool,
+    /// Storage of the strings returned by `fmi2GetString` (valid until the next call).
+    pub(crate) strings: Vec<CString>,
+}
+
+impl<M: FmuModel> Instance<M> {
+    /// The model, for tests and tools.
+    pub fn model(&self) -> &M {
+        &self.model
+    }
+    /// The current call state.
+    pub fn call_state(&self) -> CallState {
+        self.state
+    }
+    /// The current communication point.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub(crate) fn error(&self, fname: &str, message: impl AsRef<str>) -> Fmi2Status {
+        self.logger.log(
+            Fmi2Status::Error,
+            LOG_STATUS_ERROR,
+            &format!("{fname}: {}", message.as_ref()),
+        );
+        Fmi2Status::Error
+    }
+
+    pub(crate) fn event(&self, message: impl FnOnce() -> String) {
+        if self.logger.enabled(LOG_EVENTS) {
+            self.logger.log(Fmi2Status::Ok, LOG_EVENTS, &message());
+        }
+    }
+
+    pub(crate) fn check_state(&self, fname: &str, allowed: u8) -> Result<(), Fmi2Status> {
+        if self.state as u8 & allowed != 0 {
+            Ok(())
+        } else {
+            Err(self.error(
+                fname,
+                format!(
+                    "illegal call sequence: the instance is in state {:?}; allowed in: {}",
+                    self.state,
+                    mask_names(allowed)
+                ),
+            ))
+        }
+    }
+
+    pub(crate) fn lookup(&self, fname: &str, vr: u32, ty: VarType) -> Result<usize, Fmi2Status> {
+        let Some(&i) = self.vr_index.get(&vr) else {
+            return Err(self.error(fname, format!("unknown value reference {vr}")));
+        };
+        let v = &self.model.variables()[i];
+        if v.ty != ty {
+            return Err(self.error(
+                fname,
+                format!(
+                    "value reference {vr} is '{}', a {} variable, not a {}",
+                    v.name,
+                    v.ty.name(),
+                    ty.name()
+                ),
+            ));
+        }
+        Ok(i)
+    }
+
+    pub(crate) fn check_settable(&self, fname: &str, i: usize) -> Result<(), Fmi2Status> {
+        let v = &self.model.variables()[i];
+        if !v.is_settable() {
+            let what = match v.causality {
+                Causality::Output => "a calculated output".to_string(),
+                c => format!("a {} variable ({})", c.name(), v.variability.name()),
+            };
+            return Err(self.error(
+                fname,
+                format!(
+                    "'{}' (value reference {}) is {what} and cannot be set",
+                    v.name, v.vr
+                ),
+            ));
+        }
+        if self.state == CallState::StepComplete
+            && v.causality == Causality::Parameter
+            && v.variability != Variability::Tunable
+        {
+            return Err(self.error(
+                fname,
+                format!(
+                    "'{}' is a {} parameter: it can only be set before fmi2ExitInitializationMode \
+                     (use fmi2Reset to change it)",
+                    v.name,
+                    v.variability.name()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn check_bounds(&self, fname: &str, i: usize, value: f64) -> Result<(), Fmi2Status> {
+        let v = &self.model.variables()[i];
+        if !value.is_finite() {
+            return Err(self.error(
+                fname,
+                format!(
+                    "'{}' = {value} is not a finite number; value rejected",
+                    v.name
+                ),
+            ));
+        }
+        let below = v.min.is_some_and(|m| value < m);
+        let above = v.max.is_some_and(|m| value > m);
+        if below || above {
+            let lo = v.min.map_or("-inf".to_string(), |m| m.to_string());
+            let hi = v.max.map_or("+inf".to_string(), |m| m.to_string());
+            return Err(self.error(
+                fname,
+                format!(
+                    "'{}' = {value} is outside its range [{lo}, {hi}]; value rejected",
+                    v.name
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn reset_shell(&mut self) {
+        self.state = CallState::Instantiated;
+        self.time = 0.0;
+        self.start_time = 0.0;
+        self.stop_time = None;
+        self.tolerance = None;
+        self.last_successful_time = 0.0;
+        self.terminated = false;
+        self.strings.clear();
+    }
+}

@@ -1,0 +1,661 @@
+//! The BallBearing model behind the generic shell: a [`Scene`] edited by the parameters until
+//! `fmi2ExitInitializationMode`, then a [`Simulation`] stepped by `fmi2DoStep`.
+//! No physics here: everything is delegated to [`Simulation`].
+
+use crate::variables::{journal_get, journal_set, params, table, Access, Config, ROWS};
+use fmi2::codec::{ByteReader, ByteWriter};
+use fmi2::{FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER};
+use raceway::config::BearingFile;
+use raceway::operating::OperatingPoint;
+use raceway::scene::{CouplingMode, Scene};
+use raceway::simulation::{out, Journal, SimError, Simulation};
+use std::path::Path;
+
+/// Name of the bearing description inside the FMU's `resources/`.
+pub const BEARING_RESOURCE: &str = "bearing.toml";
+
+/// Version of the model part of the serialized FMU state.
+// 3: the operating point in SI units (shaft speed in rad/s, force components).
+const MODEL_STATE_VERSION: u32 = 3;
+
+/// Reads `resources/bearing.toml`, or the default preset when there is none.
+pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
+    if let Some(dir) = resource_dir {
+        let p = dir.join(BEARING_RESOURCE);
+        if p.is_file() {
+            let text = std::fs::read_to_string(&p)
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+            let b = BearingFile::from_toml_str(&text, &p.display().to_string())
+                .map_err(|e| format!("invalid bearing file {}: {e}", p.display()))?;
+            return Ok((b, p.display().to_string()));
+        }
+    }
+    Ok((
+        BearingFile::default_preset(),
+        format!(
+            "built-in preset '{}' (no {BEARING_RESOURCE} in the resources)",
+            raceway::config::DEFAULT_PRESET
+        ),
+    ))
+}
+
+/// The live simulation and the exact scene it was built from.
+struct Live {
+    sim: Simulation,
+    scene: Scene,
+}
+
+/// What a multi-value `fmi2Set*` call may change, recorded before it (see
+/// [`FmuModel::begin_set`]).
+pub struct SetUndo {
+    /// The configuration, if the call sets a parameter.
+    cfg: Option<Config>,
+    inputs: OperatingPoint,
+    journal: Journal,
+    journal_set: bool,
+    /// The live simulation's state, if the call sets two or more values that reach it (each
+    /// input reaches it as it is set, as before this call-level undo existed).
+    sim: Option<Vec<u8>>,
+}
+
+/// The BallBearing FMU model.
+pub struct BallBearing {
+    guid: String,
+    vars: Vec<Variable>,
+    roles: Vec<Access>,
+    /// The configuration as instantiated (for fmi2Reset).
+    initial: Config,
+    cfg: Config,
+    inputs: OperatingPoint,
+    /// Journal inputs (coupling mode "motion") and whether the master has set any of them; if
+    /// not, the journal starts at the static equilibrium of the L1 start, at rest.
+    journal: Journal,
+    journal_set: bool,
+    start_time: f64,
+    tolerance: Option<f64>,
+    initialized: bool,
+    live: Option<Live>,
+    /// The outputs at the simulation's current time when `outputs_valid` (computed on demand,
+    /// and by every successful step). A failed step leaves them (and the simulation) at its
+    /// start, the last successful communication point.
+    outputs: Vec<f64>,
+    outputs_valid: bool,
+    /// Where a step computes the outputs at its end before it accepts them.
+    step_outputs: Vec<f64>,
+}
+
+fn sim_err(e: SimError) -> String {
+    e.to_string()
+}
+
+impl BallBearing {
+    /// A model for `bearing` (what fmi2Instantiate builds after reading the resources).
+    pub fn new(bearing: &BearingFile) -> Self {
+        let entries = table(bearing);
+        let guid = crate::guid(bearing);
+        let cfg = Config::default_for(bearing);
+        let inputs = cfg.scene.operating;
+        let n_out = entries
+            .iter()
+            .filter(|e| matches!(e.role, Access::Output(_)))
+            .count();
+        Self {
+            guid,
+            vars: entries.iter().map(|e| e.var.clone()).collect(),
+            roles: entries.iter().map(|e| e.role).collect(),
+            initial: cfg.clone(),
+            cfg,
+            inputs,
+            journal: Journal::default(),
+            journal_set: false,
+            start_time: 0.0,
+            tolerance: None,
+            initialized: false,
+            live: None,
+            outputs: vec![0.0; n_out],
+            outputs_valid: false,
+            step_outputs: vec![0.0; n_out],
+        }
+    }
+
+    /// The scene the simulation is built from: parameters, defect, tolerance override and the
+    /// current inputs as the operating point (so the initial state is the equilibrium at the
+    /// inputs). Validated, with errors naming the FMU variable.
+    fn scene_to_build(&self) -> Result<Scene, String> {
+        let mut s = self.cfg.scene.clone();
+        s.defect = self.cfg.defect.spec();
+        if let Some(t) = self.tolerance {
+            if !(raceway::scene::MIN_RTOL..0.1).contains(&t) {
+                return Err(format!(
+                    "the tolerance {t:e} of fmi2SetupExperiment is outside [{:e}, 0.1) (it overrides solver.rtol)",
+                    raceway::scene::MIN_RTOL
+                ));
+            }
+            s.solver.rtol = t;
+        }
+        s.operating = self.inputs;
+        self.inputs
+            .check()
+            .map_err(|m| sim_err(SimError::Input(m)))?;
+        s.bearing.validate().map_err(|e| e.to_string())?;
+        s.validate().map_err(|e| e.to_string())?;
+        Ok(s)
+    }
+
+    fn build(&self) -> Result<Live, String> {
+        let scene = self.scene_to_build()?;
+        let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+        sim.set_inputs(self.inputs).map_err(sim_err)?;
+        if scene.coupling == CouplingMode::Motion && self.journal_set {
+            sim.set_journal(self.journal).map_err(sim_err)?;
+        }
+        Ok(Live { sim, scene })
+    }
+
+    /// The journal the model uses: the one set, or (motion mode, none set) the start's.
+    fn journal_now(&self) -> Journal {
+        match &self.live {
+            Some(l) if !self.journal_set && l.scene.coupling == CouplingMode::Motion => {
+                l.sim.journal()
+            }
+            _ => self.journal,
+        }
+    }
+
+    fn ensure_live(&mut self) -> Result<&mut Live, String> {
+        if self.live.is_none() {
+            self.live = Some(self.build()?);
+            self.outputs_valid = false;
+        }
+        Ok(self.live.as_mut().expect("just built"))
+    }
+
+    fn refresh_outputs(&mut self) -> Result<(), String> {
+        if !self.outputs_valid {
+            let mut out = std::mem::take(&mut self.outputs);
+            let r = self
+                .ensure_live()
+                .and_then(|l| l.sim.try_outputs(&mut out).map_err(sim_err));
+            self.outputs = out;
+            r?;
+            self.outputs_valid = true;
+        }
+        Ok(())
+    }
+
+    /// Before initialization a change of a parameter or input invalidates the provisional
+    /// simulation (built only to answer output queries in initialization mode).
+    fn invalidate(&mut self) {
+        if !self.initialized {
+            self.live = None;
+        }
+        self.outputs_valid = false;
+    }
+}
+
+impl FmuModel for BallBearing {
+    const MODEL_IDENTIFIER: &'static str = "BallBearing";
+
+    fn instantiate(args: &InstantiateArgs, log: &Logger) -> Result<Self, String> {
+        let (bearing, origin) = load_bearing(args.resource_dir.as_deref())?;
+        if log.enabled(LOG_EVENTS) {
+            log.log(
+                fmi2::bindings::Fmi2Status::Ok,
+                LOG_EVENTS,
+                &format!(
+                    "bearing '{}' ({} balls) from {origin}",
+                    bearing.name, bearing.bearing.z
+                ),
+            );
+        }
+        Ok(Self::new(&bearing))
+    }
+
+    fn guid(&self) -> &str {
+        &self.guid
+    }
+
+    fn variables(&self) -> &[Variable] {
+        &self.vars
+    }
+
+    fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        _stop_time: Option<f64>,
+    ) -> Result<(), String> {
+        if let Some(t) = tolerance {
+            if !(raceway::scene::MIN_RTOL..0.1).contains(&t) {
+                return Err(format!(
+                    "tolerance = {t:e}: the integrator's relative tolerance must lie in [{:e}, 0.1): {}",
+                    raceway::scene::MIN_RTOL,
+                    raceway::scene::RTOL_FLOOR_WHY
+                ));
+            }
+        }
+        self.tolerance = tolerance;
+        self.start_time = start_time;
+        self.invalidate();
+        Ok(())
+    }
+
+    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        // Always rebuild: the provisional simulation may predate the last parameter change.
+        let mut live = self.build()?;
+        for w in live.sim.take_warnings() {
+            log.log(
+                fmi2::bindings::Fmi2Status::Warning,
+                fmi2::LOG_STATUS_WARNING,
+                &format!("fmi2ExitInitializationMode: {w}"),
+            );
+        }
+        if log.enabled(LOG_EVENTS) {
+            log.log(
+                fmi2::bindings::Fmi2Status::Ok,
+                LOG_EVENTS,
+                &format!(
+                    "initialized: fidelity {} ({}), method {}, rtol {:e}, defect {:?}, cage speed \
+                     of the kinematic-ball levels {}, inner ring axially {:?}",
+                    live.scene.fidelity.code(),
+                    live.scene.fidelity.name(),
+                    live.scene.solver.method.name(),
+                    live.scene.solver.rtol,
+                    live.scene.defect,
+                    match live.scene.lumped.cage_speed {
+                        raceway::scene::CageSpeed::Traction => "the traction's caged balance",
+                        raceway::scene::CageSpeed::OuterRaceControl => "L1's outer-race control",
+                    },
+                    live.scene.mounting
+                ),
+            );
+        }
+        self.live = Some(live);
+        self.journal = self.journal_now();
+        self.journal_set = true;
+        self.initialized = true;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    /// Advances the simulation to `t_end` and computes the outputs there; the step counts only
+    /// if both succeed and every output is finite. Otherwise the simulation is put back to `t`
+    /// (a failed advance does that itself) and the outputs stay those of `t`: the master reads
+    /// the last successful communication point, never a failed attempt.
+    fn do_step(&mut self, t: f64, t_end: f64, log: &Logger) -> StepResult {
+        let start = self.start_time;
+        let Some(live) = self.live.as_mut() else {
+            return StepResult::Error("no simulation (internal error)".into());
+        };
+        let before = live.sim.stats();
+        match live.sim.advance(t_end - start) {
+            Ok(()) => {}
+            Err(SimError::Solver { t: tg, message }) => {
+                return StepResult::Discard {
+                    message: format!("the advance stopped at t = {}: {message}", start + tg),
+                    last_good_time: t,
+                }
+            }
+            Err(e) => return StepResult::Error(e.to_string()),
+        }
+        if log.enabled(LOG_SOLVER) {
+            let s = live.sim.stats();
+            log.log(
+                fmi2::bindings::Fmi2Status::Ok,
+                LOG_SOLVER,
+                &format!(
+                    "t = {t} → {t_end}: {} steps, {} rejected, {} rhs evaluations",
+                    s.steps - before.steps,
+                    s.rejected - before.rejected,
+                    s.rhs_evals - before.rhs_evals
+                ),
+            );
+        }
+        let failure = match live.sim.try_outputs(&mut self.step_outputs) {
+            Err(e) => Some(StepResult::Error(format!(
+                "the outputs at t = {t_end} cannot be computed: {e}"
+            ))),
+            Ok(()) => self
+                .step_outputs
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|i| {
+                    let name = self
+                        .roles
+                        .iter()
+                        .zip(&self.vars)
+                        .find(|(r, _)| matches!(r, Access::Output(o) if *o == i))
+                        .map_or("?", |(_, v)| v.name.as_str());
+                    StepResult::Discard {
+                        message: format!(
+                            "output '{name}' became {} at t = {t_end}",
+                            self.step_outputs[i]
+                        ),
+                        last_good_time: t,
+                    }
+                }),
+        };
+        if let Some(f) = failure {
+            return match (live.sim.undo_advance(), f) {
+                (Ok(()), f) => f,
+                (Err(e), StepResult::Discard { message, .. } | StepResult::Error(message)) => {
+                    StepResult::Error(format!("{message}; then {e}"))
+                }
+                (Err(e), StepResult::Ok | StepResult::Warning(_)) => {
+                    StepResult::Error(e.to_string())
+                }
+            };
+        }
+        std::mem::swap(&mut self.outputs, &mut self.step_outputs);
+        self.outputs_valid = true;
+        // Plausibility warnings of this step and of the inputs set before it.
+        let warnings = live.sim.take_warnings();
+        if warnings.is_empty() {
+            StepResult::Ok
+        } else {
+            StepResult::Warning(warnings)
+        }
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.cfg = self.initial.clone();
+        self.inputs = self.cfg.scene.operating;
+        self.journal = Journal::default();
+        self.journal_set = false;
+        self.start_time = 0.0;
+        self.tolerance = None;
+        self.initialized = false;
+        self.live = None;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    fn get_real(&mut self, index: usize) -> Result<f64, String> {
+        match self.roles[index] {
+            Access::Input { get, .. } => Ok(get(&self.inputs)),
+            Access::Journal(k) => {
+                // Motion mode, none set yet: the start's equilibrium (builds the provisional
+                // simulation in initialization mode, like an output query).
+                if !self.journal_set
+                    && self.cfg.scene.coupling == CouplingMode::Motion
+                    && self.live.is_none()
+                {
+                    self.ensure_live()?;
+                }
+                Ok(journal_get(&self.journal_now(), k))
+            }
+            Access::Param { get, .. } => Ok(get(&self.cfg)),
+            Access::Output(i) => {
+                self.refresh_outputs()?;
+                Ok(self.outputs[i])
+            }
+            Access::Stat(_) => Err("not a Real".into()),
+        }
+    }
+
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        match self.roles[index] {
+            Access::Input { set, .. } => {
+                let mut next = self.inputs;
+                set(&mut next, value);
+                if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
+                    live.sim.set_inputs(next).map_err(sim_err)?;
+                } else {
+                    next.check().map_err(|m| sim_err(SimError::Input(m)))?;
+                }
+                self.inputs = next;
+                self.invalidate();
+                Ok(())
+            }
+            Access::Journal(k) => {
+                let mut next = self.journal_now();
+                journal_set(&mut next, k, value);
+                match self.live.as_mut().filter(|_| self.initialized) {
+                    Some(live) if live.scene.coupling == CouplingMode::Motion => {
+                        live.sim.set_journal(next).map_err(sim_err)?;
+                    }
+                    _ => next.check().map_err(sim_err)?,
+                }
+                self.journal = next;
+                self.journal_set = true;
+                self.invalidate();
+                Ok(())
+            }
+            Access::Param { set, .. } => {
+                set(&mut self.cfg, value)?;
+                self.invalidate();
+                Ok(())
+            }
+            _ => Err(format!("'{}' cannot be set", self.vars[index].name)),
+        }
+    }
+
+    /// ∂(bearing.F.*, ring.*)/∂(journal.*, load.F*) in coupling mode motion: bearing.F from the
+    /// level's reaction Jacobian, ring.* = journal displacement (identity), loads act only at
+    /// the start (zero). Other pairs are refused with a message (their direct dependence is not
+    /// linearized).
+    fn directional_derivative(
+        &mut self,
+        unknowns: &[usize],
+        knowns: &[usize],
+        dv_known: &[f64],
+        dv_unknown: &mut [f64],
+    ) -> Result<(), String> {
+        let roles = self.roles.clone();
+        let names: Vec<String> = self.vars.iter().map(|v| v.name.clone()).collect();
+        let live = self.ensure_live()?;
+        if live.scene.coupling != CouplingMode::Motion {
+            return Err(
+                "directional derivatives are provided in coupling mode motion (coupling = 1): \
+                 ∂bearing.F.*/∂journal.*; in force mode the outputs depend on the loads only \
+                 through the state"
+                    .into(),
+            );
+        }
+        let jac = live.sim.reaction_jacobian().map_err(sim_err)?;
+        for (u, &iu) in unknowns.iter().enumerate() {
+            let mut acc = 0.0;
+            for (&ik, &dk) in knowns.iter().zip(dv_known) {
+                let row = match roles[iu] {
+                    Access::Output(o) if (out::BEARING_F_X..=out::BEARING_F_Z).contains(&o) => {
+                        Some((o - out::BEARING_F_X, false))
+                    }
+                    Access::Output(o) if (out::RING_X..=out::RING_Z).contains(&o) => {
+                        Some((o - out::RING_X, true))
+                    }
+                    _ => None,
+                };
+                let d = match (row, roles[ik]) {
+                    (_, Access::Input { load: true, .. }) => 0.0,
+                    (Some((r, false)), Access::Journal(k)) if k < 3 => jac.dfdx[r][k],
+                    (Some((r, false)), Access::Journal(k)) => jac.dfdv[r][k - 3],
+                    (Some((r, true)), Access::Journal(k)) => {
+                        if k == r {
+                            1.0
+                        } else {
+                            0.0
+                        }
+                    }
+                    _ => {
+                        return Err(format!(
+                            "∂{}/∂{} is not provided: directional derivatives cover bearing.F.* and ring.* with respect to journal.* and load.F*",
+                            names[iu], names[ik]
+                        ))
+                    }
+                };
+                acc += d * dk;
+            }
+            dv_unknown[u] = acc;
+        }
+        Ok(())
+    }
+
+    fn get_integer(&mut self, index: usize) -> Result<i32, String> {
+        match self.roles[index] {
+            Access::Param { get, .. } => Ok(get(&self.cfg) as i32),
+            Access::Stat(get) => {
+                let st = self.ensure_live()?.sim.stats();
+                let v = get(&st);
+                Ok(v.min(i32::MAX as u64) as i32)
+            }
+            _ => Err(format!("'{}' is not an Integer", self.vars[index].name)),
+        }
+    }
+
+    fn set_integer(&mut self, index: usize, value: i32) -> Result<(), String> {
+        match self.roles[index] {
+            Access::Param { set, .. } => {
+                set(&mut self.cfg, value as f64)?;
+                self.invalidate();
+                Ok(())
+            }
+            _ => Err(format!("'{}' cannot be set", self.vars[index].name)),
+        }
+    }
+
+    type Undo = SetUndo;
+
+    fn begin_set(&self, indices: &[usize]) -> SetUndo {
+        let sets_param = indices
+            .iter()
+            .any(|&i| matches!(self.roles[i], Access::Param { .. }));
+        let reaching_sim = indices
+            .iter()
+            .filter(|&&i| matches!(self.roles[i], Access::Input { .. } | Access::Journal(_)))
+            .count();
+        let sim = match &self.live {
+            Some(live) if self.initialized && reaching_sim >= 2 => Some(live.sim.save_state()),
+            _ => None,
+        };
+        SetUndo {
+            cfg: sets_param.then(|| self.cfg.clone()),
+            inputs: self.inputs,
+            journal: self.journal,
+            journal_set: self.journal_set,
+            sim,
+        }
+    }
+
+    fn rollback_set(&mut self, undo: SetUndo) -> Result<(), String> {
+        if let Some(cfg) = undo.cfg {
+            self.cfg = cfg;
+        }
+        self.inputs = undo.inputs;
+        self.journal = undo.journal;
+        self.journal_set = undo.journal_set;
+        self.invalidate();
+        if let (Some(bytes), Some(live)) = (undo.sim, self.live.as_mut()) {
+            live.sim.restore_state(&bytes).map_err(sim_err)?;
+        }
+        Ok(())
+    }
+
+    fn save_state(&self) -> Vec<u8> {
+        let mut w = ByteWriter::new();
+        w.u32(MODEL_STATE_VERSION).u32(params().count() as u32);
+        for r in params() {
+            if let Access::Param { get, .. } = r.access {
+                w.f64(get(&self.cfg));
+            }
+        }
+        for r in ROWS {
+            if let Access::Input { get, .. } = r.access {
+                w.f64(get(&self.inputs));
+            }
+        }
+        for k in 0..6 {
+            w.f64(journal_get(&self.journal, k));
+        }
+        w.bool(self.journal_set);
+        w.f64(self.start_time)
+            .opt_f64(self.tolerance)
+            .bool(self.initialized);
+        match (&self.live, self.initialized) {
+            (Some(live), true) => {
+                let op = &live.scene.operating;
+                w.bool(true)
+                    .f64(op.shaft_speed)
+                    .f64(op.fx)
+                    .f64(op.fy)
+                    .f64(op.fz)
+                    .f64(live.scene.solver.rtol)
+                    .bytes(&live.sim.save_state());
+            }
+            _ => {
+                w.bool(false);
+            }
+        }
+        w.into_bytes()
+    }
+
+    fn restore_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let mut r = ByteReader::new(bytes);
+        let v = r.u32("model state version")?;
+        if v != MODEL_STATE_VERSION {
+            return Err(format!(
+                "BallBearing state version {v} is not supported (expected {MODEL_STATE_VERSION})"
+            ));
+        }
+        let n = r.u32("parameter count")? as usize;
+        if n != params().count() {
+            return Err(format!(
+                "the state has {n} parameters, this FMU {}",
+                params().count()
+            ));
+        }
+        let mut cfg = self.initial.clone();
+        for row in params() {
+            let x = r.f64(row.name)?;
+            if let Access::Param { set, .. } = row.access {
+                set(&mut cfg, x).map_err(|e| format!("corrupt state: {e}"))?;
+            }
+        }
+        let mut inputs = self.inputs;
+        for row in ROWS {
+            if let Access::Input { set, .. } = row.access {
+                set(&mut inputs, r.f64("input")?);
+            }
+        }
+        let mut journal = Journal::default();
+        for row in ROWS {
+            if let Access::Journal(k) = row.access {
+                journal_set(&mut journal, k, r.f64(row.name)?);
+            }
+        }
+        let journal_set = r.bool("journal flag")?;
+        let start_time = r.f64("start time")?;
+        let tolerance = r.opt_f64("tolerance")?;
+        let initialized = r.bool("initialized flag")?;
+        let live = if r.bool("simulation flag")? {
+            let operating = OperatingPoint {
+                shaft_speed: r.f64("operating shaft speed")?,
+                fx: r.f64("operating fx")?,
+                fy: r.f64("operating fy")?,
+                fz: r.f64("operating fz")?,
+            };
+            let rtol = r.f64("rtol")?;
+            let sim_bytes = r.bytes("simulation state")?;
+            r.finish("the BallBearing state")?;
+            let mut scene = cfg.scene.clone();
+            scene.defect = cfg.defect.spec();
+            scene.operating = operating;
+            scene.solver.rtol = rtol;
+            let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+            sim.restore_state(sim_bytes).map_err(sim_err)?;
+            Some(Live { sim, scene })
+        } else {
+            r.finish("the BallBearing state")?;
+            None
+        };
+        self.cfg = cfg;
+        self.inputs = inputs;
+        self.journal = journal;
+        self.journal_set = journal_set;
+        self.start_time = start_time;
+        self.tolerance = tolerance;
+        self.initialized = initialized;
+        self.live = live;
+        self.outputs_valid = false;
+        Ok(())
+    }
+}

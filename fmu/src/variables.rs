@@ -1,0 +1,876 @@
+//! The BallBearing FMU's variable table: one row per variable with its value reference written
+//! out, its metadata and its accessors, the one source of truth for the runtime
+//! ([`crate::ballbearing`]), the model description ([`fmi2::xml`]) and the documentation
+//! ([`crate::docs`]). A parameter is added with one row of [`ROWS`]; value references never
+//! move (a new variable takes a new one).
+//!
+//! Value references: inputs 1–4, journal inputs 5–10, parameters 100–126, solver counters
+//! 900–902, written out in [`ROWS`]; the real outputs are 1000 + i, i being the position in
+//! [`raceway::simulation::output_table`] (their number depends on the bearing's ball count).
+//! Start values of inputs and parameters are the default scene's on the FMU's bearing.
+
+use fmi2::table::Row;
+use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
+use raceway::config::{BearingFile, DefectMode};
+use raceway::defect::DefectSpec;
+use raceway::geometry::Race;
+use raceway::operating::OperatingPoint;
+use raceway::scene::{AxialMount, CageSpeed, CouplingMode, Fidelity, MethodName, Mounting, Scene};
+use raceway::simulation::{output_table, Journal, WorkStats};
+use Causality::{Input as In, Output as Out, Parameter};
+use VarType::{Integer, Real};
+
+/// What a variable reads and writes.
+#[derive(Debug, Clone, Copy)]
+pub enum Access {
+    /// A field of the operating inputs; `load`: a component of the external load (in coupling
+    /// mode motion it only sets the quasi-static start, so the outputs do not depend on it
+    /// directly).
+    Input {
+        /// Reads the input.
+        get: fn(&OperatingPoint) -> f64,
+        /// Writes the input (the value has passed the shell's checks).
+        set: fn(&mut OperatingPoint, f64),
+        /// Whether it is a load component.
+        load: bool,
+    },
+    /// Journal input `k` of coupling mode motion: displacement x, y, z (k = 0..3), then
+    /// velocity (k = 3..6).
+    Journal(usize),
+    /// A structural parameter (Integers pass as exact `f64`).
+    Param {
+        /// Reads the parameter.
+        get: fn(&Config) -> f64,
+        /// Writes the parameter; `Err` for a value the model refuses.
+        set: fn(&mut Config, f64) -> Result<(), String>,
+    },
+    /// A solver work counter (Integer output).
+    Stat(fn(&WorkStats) -> u64),
+    /// Position in the simulation's output vector (Real output; generated rows only).
+    Output(usize),
+}
+
+/// One row of the table.
+pub type VarRow = Row<Access>;
+
+const IMAX: f64 = i32::MAX as f64;
+
+/// A Real continuous input row.
+#[allow(clippy::too_many_arguments)]
+const fn input(
+    vr: u32,
+    name: &'static str,
+    unit: &'static str,
+    min: Option<f64>,
+    description: &'static str,
+    get: fn(&OperatingPoint) -> f64,
+    set: fn(&mut OperatingPoint, f64),
+    load: bool,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: In,
+        variability: Variability::Continuous,
+        initial: None,
+        unit: Some(unit),
+        min,
+        max: None,
+        description,
+        access: Access::Input { get, set, load },
+    }
+}
+
+/// A journal input row (metres or metres per second).
+const fn journal(vr: u32, name: &'static str, k: usize, description: &'static str) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: In,
+        variability: Variability::Continuous,
+        initial: None,
+        unit: Some(if k < 3 { "m" } else { "m/s" }),
+        min: None,
+        max: None,
+        description,
+        access: Access::Journal(k),
+    }
+}
+
+/// A fixed parameter row (`initial="exact"`).
+#[allow(clippy::too_many_arguments)]
+const fn param(
+    vr: u32,
+    name: &'static str,
+    ty: VarType,
+    unit: Option<&'static str>,
+    (min, max): (Option<f64>, Option<f64>),
+    description: &'static str,
+    get: fn(&Config) -> f64,
+    set: fn(&mut Config, f64) -> Result<(), String>,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty,
+        causality: Parameter,
+        variability: Variability::Fixed,
+        initial: Some(Initial::Exact),
+        unit,
+        min,
+        max,
+        description,
+        access: Access::Param { get, set },
+    }
+}
+
+/// A solver-counter row (Integer output).
+const fn stat(
+    vr: u32,
+    name: &'static str,
+    description: &'static str,
+    get: fn(&WorkStats) -> u64,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Integer,
+        causality: Out,
+        variability: Variability::Discrete,
+        initial: Some(Initial::Calculated),
+        unit: None,
+        min: None,
+        max: None,
+        description,
+        access: Access::Stat(get),
+    }
+}
+
+/// Every variable but the real outputs, in the model description's order (the outputs, 1000
+/// + i, come between the parameters and the solver counters).
+pub const ROWS: &[VarRow] = &[
+    input(
+        1,
+        "shaft.speed",
+        "rad/s",
+        Some(0.0),
+        "Shaft (inner-ring) speed about +x (>= 0)",
+        |i| i.shaft_speed,
+        |i, v| i.shaft_speed = v,
+        false,
+    ),
+    input(
+        2,
+        "load.Fx",
+        "N",
+        None,
+        "External force on the inner ring along x (axial load Fa, +x)",
+        |i| i.fx,
+        |i, v| i.fx = v,
+        true,
+    ),
+    input(
+        3,
+        "load.Fy",
+        "N",
+        None,
+        "External force on the inner ring along y",
+        |i| i.fy,
+        |i, v| i.fy = v,
+        true,
+    ),
+    input(
+        4,
+        "load.Fz",
+        "N",
+        None,
+        "External force on the inner ring along z (the paper's radial load: Fz = -Fr)",
+        |i| i.fz,
+        |i, v| i.fz = v,
+        true,
+    ),
+    journal(
+        5,
+        "journal.x",
+        0,
+        "Journal (inner-ring centre) displacement along x in coupling mode motion, same frame and origin as ring.x; ignored in force mode",
+    ),
+    journal(
+        6,
+        "journal.y",
+        1,
+        "Journal (inner-ring centre) displacement along y in coupling mode motion, same frame and origin as ring.y; ignored in force mode",
+    ),
+    journal(
+        7,
+        "journal.z",
+        2,
+        "Journal (inner-ring centre) displacement along z in coupling mode motion, same frame and origin as ring.z; ignored in force mode",
+    ),
+    journal(
+        8,
+        "journal.v.x",
+        3,
+        "Journal (inner-ring centre) velocity along x in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    journal(
+        9,
+        "journal.v.y",
+        4,
+        "Journal (inner-ring centre) velocity along y in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    journal(
+        10,
+        "journal.v.z",
+        5,
+        "Journal (inner-ring centre) velocity along z in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
+    ),
+    param(
+        100,
+        "fidelity",
+        Integer,
+        None,
+        (Some(0.0), Some(4.0)),
+        "Fidelity level: 0 kinematic (L0), 1 quasi-static (L1), 2 lumped (L2), 3 reduced (L3), 4 full (L4); see the documentation for which levels this build provides",
+        |c| c.scene.fidelity.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.fidelity = Fidelity::from_code(code)
+                .ok_or_else(|| format!("fidelity = {code}: valid codes are 0..4"))?;
+            Ok(())
+        },
+    ),
+    param(
+        101,
+        "coupling",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start)",
+        |c| c.scene.coupling.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.coupling = CouplingMode::from_code(code).ok_or_else(|| {
+                format!("coupling = {code}: valid codes are 0 (force) and 1 (motion)")
+            })?;
+            Ok(())
+        },
+    ),
+    param(
+        102,
+        "defect.ring",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race",
+        |c| c.defect.ring as f64,
+        |c, v| {
+            c.defect.ring = v as i32;
+            Ok(())
+        },
+    ),
+    param(
+        103,
+        "defect.width",
+        Real,
+        Some("m"),
+        (Some(0.0), Some(0.1)),
+        "Spall width along the track w_d (> 0, smaller than the ball diameter)",
+        |c| c.defect.width,
+        |c, v| {
+            c.defect.width = v;
+            Ok(())
+        },
+    ),
+    param(
+        104,
+        "defect.depth",
+        Real,
+        Some("m"),
+        (Some(0.0), Some(0.1)),
+        "Spall depth h_d (> 0)",
+        |c| c.defect.depth,
+        |c, v| {
+            c.defect.depth = v;
+            Ok(())
+        },
+    ),
+    param(
+        105,
+        "defect.theta0",
+        Real,
+        Some("rad"),
+        (None, None),
+        "Angular position of the spall centre (pi = load-zone centre of a load along -z; inner ring: at shaft angle 0)",
+        |c| c.defect.theta0,
+        |c, v| {
+            c.defect.theta0 = v;
+            Ok(())
+        },
+    ),
+    param(
+        106,
+        "defect.mode",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Spall model: 0 finite-size ball resting on the edges (default), 1 paper-literal point contact",
+        |c| match c.scene.bearing.defect.mode {
+            DefectMode::Finite => 0.0,
+            DefectMode::Point => 1.0,
+        },
+        |c, v| {
+            c.scene.bearing.defect.mode = if v as i32 == 0 {
+                DefectMode::Finite
+            } else {
+                DefectMode::Point
+            };
+            Ok(())
+        },
+    ),
+    param(
+        107,
+        "pedestal.mass",
+        Real,
+        Some("kg"),
+        (Some(0.0), None),
+        "Pedestal mass including the outer ring (> 0)",
+        |c| c.scene.bearing.pedestal.mass,
+        |c, v| {
+            c.scene.bearing.pedestal.mass = v;
+            Ok(())
+        },
+    ),
+    param(
+        108,
+        "pedestal.k_y",
+        Real,
+        Some("N/m"),
+        (Some(0.0), None),
+        "Pedestal support stiffness along y (> 0)",
+        |c| c.scene.bearing.pedestal.k_y,
+        |c, v| {
+            c.scene.bearing.pedestal.k_y = v;
+            Ok(())
+        },
+    ),
+    param(
+        109,
+        "pedestal.k_z",
+        Real,
+        Some("N/m"),
+        (Some(0.0), None),
+        "Pedestal support stiffness along z (> 0)",
+        |c| c.scene.bearing.pedestal.k_z,
+        |c, v| {
+            c.scene.bearing.pedestal.k_z = v;
+            Ok(())
+        },
+    ),
+    param(
+        110,
+        "pedestal.c_y",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Pedestal support damping along y",
+        |c| c.scene.bearing.pedestal.c_y,
+        |c, v| {
+            c.scene.bearing.pedestal.c_y = v;
+            Ok(())
+        },
+    ),
+    param(
+        111,
+        "pedestal.c_z",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Pedestal support damping along z",
+        |c| c.scene.bearing.pedestal.c_z,
+        |c, v| {
+            c.scene.bearing.pedestal.c_z = v;
+            Ok(())
+        },
+    ),
+    param(
+        112,
+        "inner_ring.mass",
+        Real,
+        Some("kg"),
+        (Some(0.0), None),
+        "Inner ring (and shaft share) mass (> 0)",
+        |c| c.scene.bearing.inner_ring.mass,
+        |c, v| {
+            c.scene.bearing.inner_ring.mass = v;
+            Ok(())
+        },
+    ),
+    param(
+        113,
+        "contact.c_br",
+        Real,
+        Some("N.s/m"),
+        (Some(0.0), None),
+        "Ball-race normal contact damping",
+        |c| c.scene.bearing.contact.c_br,
+        |c, v| {
+            c.scene.bearing.contact.c_br = v;
+            Ok(())
+        },
+    ),
+    param(
+        114,
+        "traction.kappa_0",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Traction coefficient at zero slip",
+        |c| c.scene.bearing.traction.kappa_0,
+        |c, v| {
+            c.scene.bearing.traction.kappa_0 = v;
+            Ok(())
+        },
+    ),
+    param(
+        115,
+        "traction.kappa_max",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Maximum traction coefficient (>= kappa_0 and >= kappa_inf)",
+        |c| c.scene.bearing.traction.kappa_max,
+        |c, v| {
+            c.scene.bearing.traction.kappa_max = v;
+            Ok(())
+        },
+    ),
+    param(
+        116,
+        "traction.u_max",
+        Real,
+        Some("m/s"),
+        (Some(0.0), None),
+        "Slip speed at the traction maximum (> 0)",
+        |c| c.scene.bearing.traction.u_max,
+        |c, v| {
+            c.scene.bearing.traction.u_max = v;
+            Ok(())
+        },
+    ),
+    param(
+        117,
+        "traction.kappa_inf",
+        Real,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Traction coefficient at large slip",
+        |c| c.scene.bearing.traction.kappa_inf,
+        |c, v| {
+            c.scene.bearing.traction.kappa_inf = v;
+            Ok(())
+        },
+    ),
+    param(
+        118,
+        "lumped.slip_jitter",
+        Real,
+        None,
+        (Some(0.0), Some(0.5)),
+        "Random ball slip (lumped level): standard deviation as a fraction of the ball spacing, in [0, 0.5)",
+        |c| c.scene.lumped.slip_jitter,
+        |c, v| {
+            c.scene.lumped.slip_jitter = v;
+            Ok(())
+        },
+    ),
+    param(
+        119,
+        "lumped.seed",
+        Integer,
+        None,
+        (Some(0.0), Some(IMAX)),
+        "Seed of the random ball slip",
+        |c| c.scene.lumped.seed.min(i32::MAX as u64) as f64,
+        |c, v| {
+            c.scene.lumped.seed = (v as i32).max(0) as u64;
+            Ok(())
+        },
+    ),
+    param(
+        120,
+        "solver.method",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Integration method: 0 RKF45, 1 DOPRI5, 2 DOP853",
+        |c| c.scene.solver.method.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.solver.method = MethodName::from_code(code)
+                .ok_or_else(|| format!("solver.method = {code}: valid codes are 0, 1, 2"))?;
+            Ok(())
+        },
+    ),
+    param(
+        121,
+        "solver.rtol",
+        Real,
+        None,
+        (Some(raceway::scene::MIN_RTOL), Some(0.1)),
+        "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it",
+        |c| c.scene.solver.rtol,
+        |c, v| {
+            c.scene.solver.rtol = v;
+            Ok(())
+        },
+    ),
+    param(
+        122,
+        "solver.max_steps",
+        Integer,
+        None,
+        (Some(1.0), Some(IMAX)),
+        "Work budget per communication step: attempted integrator steps and, at the kinematic level, spall passes registered (one unit each); when exhausted the step returns fmi2Discard and the FMU stays at the step's start",
+        |c| c.scene.solver.max_steps.min(i32::MAX as u64) as f64,
+        |c, v| {
+            c.scene.solver.max_steps = (v as i32).max(1) as u64;
+            Ok(())
+        },
+    ),
+    param(
+        123,
+        "lumped.cage_speed",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control",
+        |c| c.scene.lumped.cage_speed.code() as f64,
+        |c, v| {
+            let code = v as i32;
+            c.scene.lumped.cage_speed = CageSpeed::from_code(code)
+                .ok_or_else(|| format!("lumped.cage_speed = {code}: valid codes are 0, 1"))?;
+            Ok(())
+        },
+    ),
+    param(
+        124,
+        "solver.pi_beta",
+        Real,
+        None,
+        (Some(0.0), Some(raceway::scene::MAX_PI_BETA)),
+        "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work",
+        |c| c.scene.solver.pi_beta,
+        |c, v| {
+            c.scene.solver.pi_beta = v;
+            Ok(())
+        },
+    ),
+    param(
+        125,
+        "ring.axial",
+        Integer,
+        None,
+        (Some(0.0), Some(2.0)),
+        "Axial mounting of the inner ring (force coupling): 0 the axial load load.Fx acts on it (default); 1 located where the start's load.Fx alone puts it (a preload; centred with the balls just touching at load.Fx = 0); 2 located at ring.axial_offset. Located, the ring carries a pure radial load, bearing.F.x is the axial reaction of its location, and load.Fx cannot change after the start",
+        |c| match (c.scene.mounting.axial, c.scene.mounting.axial_offset) {
+            (AxialMount::Load, _) => 0.0,
+            (AxialMount::Located, None) => 1.0,
+            (AxialMount::Located, Some(_)) => 2.0,
+        },
+        |c, v| {
+            c.scene.mounting = match v as i32 {
+                0 => Mounting::default(),
+                1 => Mounting {
+                    axial: AxialMount::Located,
+                    axial_offset: None,
+                },
+                2 => Mounting {
+                    axial: AxialMount::Located,
+                    axial_offset: Some(c.axial_offset),
+                },
+                code => return Err(format!("ring.axial = {code}: valid codes are 0, 1, 2")),
+            };
+            Ok(())
+        },
+    ),
+    param(
+        126,
+        "ring.axial_offset",
+        Real,
+        Some("m"),
+        (Some(-1e-3), Some(1e-3)),
+        "Axial displacement of a located inner ring (ring.axial = 2) from the unloaded, centred position, along +x (the way load.Fx > 0 pushes it)",
+        |c| c.axial_offset,
+        |c, v| {
+            c.axial_offset = v;
+            if c.scene.mounting.axial_offset.is_some() {
+                c.scene.mounting.axial_offset = Some(v);
+            }
+            Ok(())
+        },
+    ),
+    stat(900, "solver.steps", "Accepted integrator steps since the start", |s| s.steps),
+    stat(901, "solver.rejected", "Rejected integrator steps since the start", |s| s.rejected),
+    stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
+];
+
+/// The parameter rows, in value-reference order (the order of the FMU state's parameters).
+pub fn params() -> impl Iterator<Item = &'static VarRow> {
+    ROWS.iter()
+        .filter(|r| matches!(r.access, Access::Param { .. }))
+}
+
+/// The row of the variable called `name`.
+pub fn row(name: &str) -> Option<&'static VarRow> {
+    ROWS.iter().find(|r| r.name == name)
+}
+
+/// Journal input `k` of `j` (see [`Access::Journal`]).
+pub fn journal_get(j: &Journal, k: usize) -> f64 {
+    if k < 3 {
+        j.x[k]
+    } else {
+        j.v[k - 3]
+    }
+}
+
+/// Sets journal input `k` of `j`.
+pub fn journal_set(j: &mut Journal, k: usize, v: f64) {
+    if k < 3 {
+        j.x[k] = v
+    } else {
+        j.v[k - 3] = v
+    }
+}
+
+/// The defect as the FMU's parameters describe it (kept even while `defect.ring = 0`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DefectParams {
+    /// 0 none, 1 outer, 2 inner.
+    pub ring: i32,
+    pub width: f64,
+    pub depth: f64,
+    pub theta0: f64,
+}
+
+impl DefectParams {
+    pub fn from_scene(scene: &Scene) -> Self {
+        let d = scene
+            .defect
+            .clone()
+            .or_else(|| Scene::default_scene().defect);
+        let (width, depth, theta0) = d
+            .as_ref()
+            .map_or((1e-3, 0.2e-3, std::f64::consts::PI), |d| {
+                (d.width, d.depth, d.theta0)
+            });
+        let ring = match scene.defect.as_ref().map(|d| d.ring) {
+            None => 0,
+            Some(Race::Outer) => 1,
+            Some(Race::Inner) => 2,
+        };
+        Self {
+            ring,
+            width,
+            depth,
+            theta0,
+        }
+    }
+
+    /// The scene's defect.
+    pub fn spec(&self) -> Option<DefectSpec> {
+        let ring = match self.ring {
+            1 => Race::Outer,
+            2 => Race::Inner,
+            _ => return None,
+        };
+        Some(DefectSpec {
+            ring,
+            width: self.width,
+            depth: self.depth,
+            theta0: self.theta0,
+        })
+    }
+}
+
+/// Everything the parameters edit: the scene (bearing, fidelity, solver, ...) and the defect.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    /// The scene (its operating point is replaced by the inputs when the simulation is built).
+    pub scene: Scene,
+    /// The defect parameters.
+    pub defect: DefectParams,
+    /// `ring.axial_offset` as set (it enters the scene's mounting with `ring.axial` = 2).
+    pub axial_offset: f64,
+}
+
+impl Config {
+    /// The default scene on `bearing`.
+    pub fn default_for(bearing: &BearingFile) -> Self {
+        let mut scene = Scene::default_scene();
+        scene.bearing = bearing.clone();
+        let defect = DefectParams::from_scene(&scene);
+        let axial_offset = scene.mounting.axial_offset.unwrap_or(0.0);
+        Self {
+            scene,
+            defect,
+            axial_offset,
+        }
+    }
+
+    /// The value of the parameter `name` (Integers as exact f64); `None` if there is none.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        match row(name)?.access {
+            Access::Param { get, .. } => Some(get(self)),
+            _ => None,
+        }
+    }
+
+    /// Sets the parameter `name` (as `fmi2Set*` does after the shell's type and range checks).
+    pub fn set(&mut self, name: &str, v: f64) -> Result<(), String> {
+        match row(name).map(|r| r.access) {
+            Some(Access::Param { set, .. }) => set(self, v),
+            _ => Err(format!("'{name}' is not a parameter")),
+        }
+    }
+}
+
+/// One variable of the FMU built for a bearing: its metadata and its access.
+#[derive(Debug, Clone)]
+pub struct Entry {
+    /// The variable as the shell and the XML see it.
+    pub var: Variable,
+    /// What it reads and writes.
+    pub role: Access,
+}
+
+/// The `SimpleType` name used for a unit.
+pub fn quantity_of(unit: &str) -> Option<&'static str> {
+    Some(match unit {
+        "rad/s" => "AngularVelocity",
+        "rad" => "Angle",
+        "m" => "Length",
+        "m/s" => "Velocity",
+        "m/s2" => "Acceleration",
+        "N" => "Force",
+        "N.m" => "Torque",
+        "kg" => "Mass",
+        "N/m" => "TranslationalSpringConstant",
+        "N.s/m" => "TranslationalDampingConstant",
+        _ => return None,
+    })
+}
+
+fn with_unit(mut v: Variable) -> Variable {
+    if let Some(u) = v.unit.clone() {
+        v.declared_type = quantity_of(&u).map(str::to_string);
+        if u == "rad/s" {
+            v.display_unit = Some("rpm".into());
+        }
+    }
+    v
+}
+
+/// The full table of the FMU built on `bearing`: [`ROWS`] with the default scene's start
+/// values, and the real outputs (1000 + i) before the solver counters.
+pub fn table(bearing: &BearingFile) -> Vec<Entry> {
+    let cfg = Config::default_for(bearing);
+    let inputs = cfg.scene.operating;
+    let journal = Journal::default();
+    let entry = |r: &VarRow| {
+        let start = match (r.access, r.ty) {
+            (Access::Input { get, .. }, _) => Start::Real(get(&inputs)),
+            (Access::Journal(k), _) => Start::Real(journal_get(&journal, k)),
+            (Access::Param { get, .. }, Integer) => Start::Integer(get(&cfg) as i32),
+            (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
+            (Access::Stat(_) | Access::Output(_), _) => Start::None,
+        };
+        Entry {
+            var: with_unit(r.variable(start)),
+            role: r.access,
+        }
+    };
+    let mut t: Vec<Entry> = ROWS
+        .iter()
+        .filter(|r| !matches!(r.access, Access::Stat(_)))
+        .map(entry)
+        .collect();
+    let z = bearing.bearing.z as usize;
+    for (i, o) in output_table(z).into_iter().enumerate() {
+        let var = Variable {
+            vr: 1000 + i as u32,
+            name: o.name.clone(),
+            ty: Real,
+            causality: Out,
+            variability: Variability::Continuous,
+            initial: Some(Initial::Calculated),
+            description: o.description.clone(),
+            unit: Some(o.unit.to_string()),
+            declared_type: None,
+            display_unit: None,
+            start: Start::None,
+            min: None,
+            max: None,
+        };
+        t.push(Entry {
+            var: with_unit(var),
+            role: Access::Output(i),
+        });
+    }
+    t.extend(
+        ROWS.iter()
+            .filter(|r| matches!(r.access, Access::Stat(_)))
+            .map(entry),
+    );
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn table_is_consistent() {
+        let b = BearingFile::default_preset();
+        let t = table(&b);
+        let vrs: HashSet<u32> = t.iter().map(|e| e.var.vr).collect();
+        assert_eq!(vrs.len(), t.len(), "unique value references");
+        let names: HashSet<&str> = t.iter().map(|e| e.var.name.as_str()).collect();
+        assert_eq!(names.len(), t.len(), "unique names");
+        let z = b.bearing.z as usize;
+        assert_eq!(t.len(), ROWS.len() + output_table(z).len());
+        assert_eq!(params().count(), 27);
+        for e in &t {
+            if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
+                assert!(*x >= lo, "{}", e.var.name);
+            }
+            if let (Start::Real(x), Some(hi)) = (&e.var.start, e.var.max) {
+                assert!(*x <= hi, "{}", e.var.name);
+            }
+        }
+        let speed = &t[0].var;
+        assert_eq!(speed.name, "shaft.speed");
+        assert_eq!(
+            speed.start,
+            Start::Real(9900.0 * std::f64::consts::PI / 30.0)
+        );
+        let fz = t.iter().find(|e| e.var.name == "load.Fz").unwrap();
+        assert_eq!(fz.var.start, Start::Real(-1000.0));
+    }
+
+    #[test]
+    fn params_round_trip() {
+        let b = BearingFile::default_preset();
+        let mut cfg = Config::default_for(&b);
+        for r in params() {
+            let v = cfg.get(r.name).unwrap();
+            cfg.set(r.name, v).unwrap();
+            assert_eq!(cfg.get(r.name), Some(v), "{}", r.name);
+        }
+        assert_eq!(cfg, Config::default_for(&b));
+    }
+}

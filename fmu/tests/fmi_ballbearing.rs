@@ -1,0 +1,1011 @@
+//! The BallBearing model through the generic FMI shell (the code the C entry points run):
+//! bearing from the resources, GUID check, parameters, initialization-mode outputs, states.
+
+use ballbearing_fmu::ballbearing::BallBearing;
+use fmi2::bindings::*;
+use fmi2::functions as sh;
+use raceway::config::BearingFile;
+use std::ffi::{CStr, CString};
+use std::os::raw::{c_char, c_void};
+use std::sync::Mutex;
+
+type Log = Mutex<Vec<(Fmi2Status, String)>>;
+
+/// With the format "%s", the message is the sixth argument, passed like a fixed argument by
+/// the x86-64 and aarch64 C ABIs.
+unsafe extern "C" fn logger(
+    env: Fmi2ComponentEnvironment,
+    _name: Fmi2String,
+    status: Fmi2Status,
+    _category: Fmi2String,
+    _fmt: Fmi2String,
+    msg: *const c_char,
+) {
+    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
+    let log = unsafe { &*(env as *const Log) };
+    // SAFETY: the shell passes the message as a NUL-terminated string valid during the call.
+    let m = unsafe { CStr::from_ptr(msg) }
+        .to_string_lossy()
+        .into_owned();
+    log.lock().unwrap().push((status, m));
+}
+
+struct H {
+    log: Box<Log>,
+    cb: Fmi2CallbackFunctions,
+}
+
+impl H {
+    fn new() -> Self {
+        let log: Box<Log> = Box::default();
+        // SAFETY: the shell always calls the logger with "%s" and one string (fixed_args_logger's contract).
+        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
+        let cb = Fmi2CallbackFunctions {
+            logger: Some(l),
+            allocate_memory: None,
+            free_memory: None,
+            step_finished: None,
+            component_environment: &*log as *const Log as *mut c_void,
+        };
+        Self { log, cb }
+    }
+    fn inst(&self, guid: &str, resources: Option<&str>) -> Fmi2Component {
+        let g = CString::new(guid).unwrap();
+        let r = resources.map(|r| CString::new(r).unwrap());
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe {
+            sh::instantiate::<BallBearing>(
+                c"bb".as_ptr(),
+                FMI2_CO_SIMULATION,
+                g.as_ptr(),
+                r.as_ref().map_or(std::ptr::null(), |r| r.as_ptr()),
+                &self.cb,
+                0,
+                0,
+            )
+        }
+    }
+    fn last(&self) -> String {
+        self.last_entry().1
+    }
+    /// The last message and the status it was logged with.
+    fn last_entry(&self) -> (Fmi2Status, String) {
+        self.log
+            .lock()
+            .unwrap()
+            .last()
+            .cloned()
+            .unwrap_or((Fmi2Status::Ok, String::new()))
+    }
+}
+
+fn vr(b: &BearingFile, name: &str) -> u32 {
+    ballbearing_fmu::variables::table(b)
+        .into_iter()
+        .find(|e| e.var.name == name)
+        .unwrap_or_else(|| panic!("{name}"))
+        .var
+        .vr
+}
+
+fn resources_with(text: &str) -> (tempdir::Dir, String) {
+    let d = tempdir::Dir::new();
+    std::fs::write(d.path().join("bearing.toml"), text).unwrap();
+    // percent-encode the space of the folder name, as Path.as_uri() does
+    let uri = format!("file://{}", d.path().to_string_lossy().replace(' ', "%20"));
+    (d, uri)
+}
+
+mod tempdir {
+    use std::path::{Path, PathBuf};
+    pub struct Dir(PathBuf);
+    impl Dir {
+        pub fn new() -> Self {
+            use std::sync::atomic::{AtomicUsize, Ordering};
+            static N: AtomicUsize = AtomicUsize::new(0);
+            let p = std::env::temp_dir().join(format!(
+                "raceway fmi test {} {}",
+                std::process::id(),
+                N.fetch_add(1, Ordering::SeqCst)
+            ));
+            std::fs::create_dir_all(&p).unwrap();
+            Self(p)
+        }
+        pub fn path(&self) -> &Path {
+            &self.0
+        }
+    }
+    impl Drop for Dir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+#[test]
+fn default_bearing_without_resources() {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    assert!(!c.is_null(), "{}", h.last());
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe { sh::free_instance::<BallBearing>(c) };
+    let c = h.inst(&ballbearing_fmu::guid(&b), Some("file:///no/such/folder"));
+    assert!(!c.is_null(), "{}", h.last());
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe { sh::free_instance::<BallBearing>(c) };
+}
+
+#[test]
+fn bearing_from_resources_decides_the_guid() {
+    let h = H::new();
+    let text = raceway::config::PRESETS
+        .iter()
+        .find(|(n, _)| *n == "cwru-6205-de")
+        .unwrap()
+        .1;
+    let cwru = BearingFile::load("cwru-6205-de").unwrap();
+    let (_d, uri) = resources_with(text);
+    let c = h.inst(&ballbearing_fmu::guid(&cwru), Some(&uri));
+    assert!(!c.is_null(), "{}", h.last());
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe { sh::free_instance::<BallBearing>(c) };
+    let default_guid = ballbearing_fmu::guid(&BearingFile::default_preset());
+    let c = h.inst(&default_guid, Some(&uri));
+    assert!(c.is_null());
+    assert!(h.last().contains("does not match this FMU"), "{}", h.last());
+}
+
+#[test]
+fn invalid_bearing_resource_is_refused_naming_the_field() {
+    let h = H::new();
+    let text = raceway::config::PRESETS[0]
+        .1
+        .replace("f_inner = 0.515", "f_inner = 0.4");
+    let (_d, uri) = resources_with(&text);
+    let c = h.inst("{any}", Some(&uri));
+    assert!(c.is_null());
+    assert!(h.last().contains("bearing.f_inner"), "{}", h.last());
+}
+
+#[test]
+fn initialization_mode_outputs_parameters_and_states() {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    assert!(!c.is_null());
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, 1e-7, 0.0, 1, 0.1),
+            Fmi2Status::Ok
+        );
+        let seed = vr(&b, "lumped.seed");
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &seed, 1, &7),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        // outputs in initialization mode: the quasi-static start, finite
+        let fz = vr(&b, "bearing.F.z");
+        let mut v = f64::NAN;
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &fz, 1, &mut v),
+            Fmi2Status::Ok
+        );
+        assert!(v.is_finite());
+        // a saved state of the instance before initialization restores
+        let mut s: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(sh::get_fmu_state::<BallBearing>(c, &mut s), Fmi2Status::Ok);
+        let mut got = 0;
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &seed, 1, &9),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::set_fmu_state::<BallBearing>(c, s), Fmi2Status::Ok);
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &seed, 1, &mut got),
+            Fmi2Status::Ok
+        );
+        assert_eq!(got, 7);
+        assert_eq!(sh::free_fmu_state::<BallBearing>(c, &mut s), Fmi2Status::Ok);
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        // fixed parameters are frozen now
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &seed, 1, &8),
+            Fmi2Status::Error
+        );
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
+#[test]
+fn unavailable_fidelity_fails_exit_initialization_with_the_library_message() {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let fid = vr(&b, "fidelity");
+    for code in 0..=4 {
+        let c = h.inst(&ballbearing_fmu::guid(&b), None);
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe {
+            assert_eq!(
+                sh::set_integer::<BallBearing>(c, &fid, 1, &code),
+                Fmi2Status::Ok
+            );
+            assert_eq!(
+                sh::enter_initialization_mode::<BallBearing>(c),
+                Fmi2Status::Ok
+            );
+            let s = sh::exit_initialization_mode::<BallBearing>(c);
+            if s != Fmi2Status::Ok {
+                assert_eq!(s, Fmi2Status::Error);
+                assert!(h.last().contains("unsupported"), "{code}: {}", h.last());
+                // reset leads out of the error
+                assert_eq!(sh::reset::<BallBearing>(c), Fmi2Status::Ok);
+                assert_eq!(
+                    sh::enter_initialization_mode::<BallBearing>(c),
+                    Fmi2Status::Ok
+                );
+                assert_eq!(
+                    sh::exit_initialization_mode::<BallBearing>(c),
+                    Fmi2Status::Ok
+                );
+            }
+            sh::free_instance::<BallBearing>(c);
+        }
+        let _ = code;
+    }
+    // out of range
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &fid, 1, &5),
+            Fmi2Status::Error
+        );
+        assert!(
+            h.last()
+                .contains("'fidelity' = 5 is outside its range [0, 4]"),
+            "{}",
+            h.last()
+        );
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
+/// One stalled fmi2DoStep of the default scene and what the instance reports afterwards.
+struct Stall {
+    status: Fmi2Status,
+    message: String,
+    terminated: Fmi2Boolean,
+    last_good: f64,
+    rhs_evals: i32,
+    steps: i32,
+    rejected: i32,
+    pedestal_z: f64,
+    ring_z: f64,
+    next: Fmi2Status,
+    wall: f64,
+}
+
+/// Initializes the default scene (tolerance from fmi2SetupExperiment, solver.max_steps), takes
+/// one 1 ms step, records the outcome, then checks that reset, a fresh initialization with the
+/// defaults and a step work, and frees the instance.
+fn stall(tolerance: f64, max_steps: i32) -> Stall {
+    let h = H::new();
+    let b = BearingFile::default_preset();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    assert!(!c.is_null(), "{}", h.last());
+    let (budget, rhs, steps, rejected) = (
+        vr(&b, "solver.max_steps"),
+        vr(&b, "solver.rhs_evals"),
+        vr(&b, "solver.steps"),
+        vr(&b, "solver.rejected"),
+    );
+    let (pz, rz) = (vr(&b, "pedestal.z"), vr(&b, "ring.z"));
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, tolerance, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &budget, 1, &max_steps),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        let start = std::time::Instant::now();
+        let status = sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1);
+        let wall = start.elapsed().as_secs_f64();
+        let message = h.last();
+        let mut terminated = FMI2_FALSE;
+        assert_eq!(
+            sh::get_boolean_status::<BallBearing>(c, FMI2_TERMINATED, &mut terminated),
+            Fmi2Status::Ok
+        );
+        let mut last_good = f64::NAN;
+        assert_eq!(
+            sh::get_real_status::<BallBearing>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last_good),
+            Fmi2Status::Ok
+        );
+        let (mut rhs_evals, mut n_steps, mut n_rejected) = (-1, -1, -1);
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rejected, 1, &mut n_rejected),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &rhs, 1, &mut rhs_evals),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &steps, 1, &mut n_steps),
+            Fmi2Status::Ok
+        );
+        let (mut pedestal_z, mut ring_z) = (f64::NAN, f64::NAN);
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &pz, 1, &mut pedestal_z),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &rz, 1, &mut ring_z),
+            Fmi2Status::Ok
+        );
+        let next = sh::do_step::<BallBearing>(c, last_good, 1e-3, 1);
+        // The instance is still usable: reset, initialize with the defaults, step.
+        assert_eq!(sh::reset::<BallBearing>(c), Fmi2Status::Ok, "{}", h.last());
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        sh::free_instance::<BallBearing>(c);
+        Stall {
+            status,
+            message,
+            terminated,
+            last_good,
+            rhs_evals,
+            steps: n_steps,
+            rejected: n_rejected,
+            pedestal_z,
+            ring_z,
+            next,
+            wall,
+        }
+    }
+}
+
+/// (accepted, rejected, RHS evaluations) of the work a failed step discarded, from its message
+/// "… (work discarded with the advance: A steps accepted, R rejected, E right-hand-side
+/// evaluations)".
+fn discarded_work(message: &str) -> (u64, u64, u64) {
+    let tail = message
+        .split("work discarded with the advance: ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no discarded work in: {message}"));
+    let n: Vec<u64> = tail
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|w| !w.is_empty())
+        .take(3)
+        .map(|w| w.parse().unwrap())
+        .collect();
+    (n[0], n[1], n[2])
+}
+
+/// T3 (FMU): a stall inside fmi2DoStep ends as fmi2Discard with a message, in bounded work, and
+/// leaves a usable instance. Criteria, for a step budget of 3 (solver.max_steps) on the default
+/// scene, whose first 1 ms step needs ~50 steps:
+/// - fmi2DoStep returns fmi2Discard and the logger receives a message naming the cause ("step
+///   budget") and the time;
+/// - fmi2Terminated is true, fmi2LastSuccessfulTime is the step's start (0), further
+///   fmi2DoStep calls are refused (fmi2Error), fmi2GetReal returns the outputs of that point
+///   (the pedestal at its static deflection −Fr/k_z within 2 %);
+/// - the work is bounded by counts, not by time: at most 3 attempted steps (accepted + rejected,
+///   as the message reports the discarded work) in the whole communication step, spall stops
+///   and contact events included, and at most 16 RHS evaluations per attempt (DOP853: 12
+///   stages, 3 for the dense output, 1 restart) plus 2 for the initial step size; a wall-time
+///   sanity bound of 20 s; the counters solver.steps, solver.rejected, solver.rhs_evals read
+///   those of the last good point (0);
+/// - fmi2Reset, a new initialization and a step then succeed, and the instance frees.
+///
+/// An unattainable tolerance (1e-18, below round-off) is refused by fmi2SetupExperiment with a
+/// message naming it: measured before this check, DOP853 at 1e-18 did not fail but crawled at
+/// 1e-9 s steps (7761 wall s per simulated s).
+#[test]
+fn t3_fmu_stall_ends_as_discard_with_a_message_in_bounded_work() {
+    let b = BearingFile::default_preset();
+    let zp = -1000.0 / b.pedestal.k_z; // default scene: Fr = 1000 N
+    let s = stall(1e-6, 3);
+    assert_eq!(s.status, Fmi2Status::Discard, "{}", s.message);
+    assert!(
+        s.message.contains("discarded") && s.message.contains("step budget"),
+        "{}",
+        s.message
+    );
+    assert_eq!(s.terminated, FMI2_TRUE);
+    assert_eq!(s.last_good, 0.0);
+    assert_eq!(s.next, Fmi2Status::Error);
+    assert!(s.pedestal_z.is_finite() && s.ring_z.is_finite());
+    assert!(
+        (s.pedestal_z - zp).abs() < 0.02 * zp.abs(),
+        "pedestal.z {} vs {zp}",
+        s.pedestal_z
+    );
+    assert_eq!((s.steps, s.rejected, s.rhs_evals), (0, 0, 0));
+    let (accepted, rejected, rhs_evals) = discarded_work(&s.message);
+    let attempts = accepted + rejected;
+    assert!((1..=3).contains(&attempts), "{attempts} attempted steps");
+    assert!(
+        rhs_evals <= 16 * attempts + 2,
+        "{rhs_evals} RHS evaluations for {attempts} attempted steps"
+    );
+    assert!(s.wall < 20.0, "{} s", s.wall);
+    eprintln!(
+        "T3 FMU stall: last good t = {:.6e} s, {accepted} steps + {rejected} rejected, \
+         {rhs_evals} RHS, {:.4} s wall: {}",
+        s.last_good, s.wall, s.message
+    );
+
+    let h = H::new();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 1, 1e-18, 0.0, 0, 0.0),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("tolerance = 1e-18"), "{}", h.last());
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
+/// Value references of every output (Real and Integer) of the default bearing.
+fn output_vrs(b: &BearingFile) -> (Vec<u32>, Vec<u32>) {
+    let mut real = Vec::new();
+    let mut int = Vec::new();
+    for e in ballbearing_fmu::variables::table(b) {
+        if e.var.causality == fmi2::Causality::Output {
+            match e.var.ty {
+                fmi2::VarType::Real => real.push(e.var.vr),
+                fmi2::VarType::Integer => int.push(e.var.vr),
+                _ => {}
+            }
+        }
+    }
+    (real, int)
+}
+
+/// Every output of the instance, as bits (Reals) and values (Integers).
+fn all_outputs(c: Fmi2Component, b: &BearingFile) -> (Vec<u64>, Vec<i32>) {
+    let (rv, iv) = output_vrs(b);
+    let mut r = vec![f64::NAN; rv.len()];
+    let mut i = vec![-1; iv.len()];
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, rv.as_ptr(), rv.len(), r.as_mut_ptr()),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, iv.as_ptr(), iv.len(), i.as_mut_ptr()),
+            Fmi2Status::Ok
+        );
+    }
+    (r.iter().map(|v| v.to_bits()).collect(), i)
+}
+
+/// Communication step of the good steps [s].
+const H_GOOD: f64 = 1e-4;
+
+/// An initialized instance at `fidelity` (and `coupling`) with a partial load zone (Fa 2000 N,
+/// Fr 4000 N: contacts open and close) and the step budget `max_steps`; `n` good steps of
+/// [`H_GOOD`] taken, every output read after each (as a master does). Returns the time.
+fn ready(
+    h: &H,
+    b: &BearingFile,
+    fidelity: i32,
+    coupling: i32,
+    max_steps: i32,
+    n: usize,
+) -> (Fmi2Component, f64) {
+    ready_at(
+        h,
+        b,
+        fidelity,
+        coupling,
+        max_steps,
+        n,
+        Some((2000.0, -4000.0)),
+    )
+}
+
+/// [`ready`] at the loads (load.Fx, load.Fz), or the default scene's.
+fn ready_at(
+    h: &H,
+    b: &BearingFile,
+    fidelity: i32,
+    coupling: i32,
+    max_steps: i32,
+    n: usize,
+    loads: Option<(f64, f64)>,
+) -> (Fmi2Component, f64) {
+    let c = h.inst(&ballbearing_fmu::guid(b), None);
+    assert!(!c.is_null(), "{}", h.last());
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        for (name, v) in [
+            ("fidelity", fidelity),
+            ("coupling", coupling),
+            ("solver.max_steps", max_steps),
+        ] {
+            assert_eq!(
+                sh::set_integer::<BallBearing>(c, &vr(b, name), 1, &v),
+                Fmi2Status::Ok,
+                "{name}"
+            );
+        }
+        if let Some((fx, fz)) = loads {
+            for (name, v) in [("load.Fx", fx), ("load.Fz", fz)] {
+                assert_eq!(
+                    sh::set_real::<BallBearing>(c, &vr(b, name), 1, &v),
+                    Fmi2Status::Ok,
+                    "{name}"
+                );
+            }
+        }
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        let mut t = 0.0;
+        for _ in 0..n {
+            assert_eq!(
+                sh::do_step::<BallBearing>(c, t, H_GOOD, 1),
+                Fmi2Status::Ok,
+                "{}",
+                h.last()
+            );
+            t += H_GOOD;
+            all_outputs(c, b);
+        }
+        (c, t)
+    }
+}
+
+fn last_successful_time(c: Fmi2Component) -> (Fmi2Status, f64) {
+    let mut t = f64::NAN;
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    let s = unsafe { sh::get_real_status::<BallBearing>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut t) };
+    (s, t)
+}
+
+/// The FMU state got now restores, into this instance after fmi2Reset and into a fresh
+/// instance through its serialized bytes, to the outputs `want`.
+fn state_restores_to(
+    h: &H,
+    b: &BearingFile,
+    c: Fmi2Component,
+    want: &(Vec<u64>, Vec<i32>),
+    what: &str,
+) {
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        let mut s: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(
+            sh::get_fmu_state::<BallBearing>(c, &mut s),
+            Fmi2Status::Ok,
+            "{what}: {}",
+            h.last()
+        );
+        let mut size = 0usize;
+        assert_eq!(
+            sh::serialized_fmu_state_size::<BallBearing>(c, s, &mut size),
+            Fmi2Status::Ok
+        );
+        let mut bytes: Vec<Fmi2Byte> = vec![0; size];
+        assert_eq!(
+            sh::serialize_fmu_state::<BallBearing>(c, s, bytes.as_mut_ptr(), size),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::reset::<BallBearing>(c), Fmi2Status::Ok);
+        assert_eq!(
+            sh::set_fmu_state::<BallBearing>(c, s),
+            Fmi2Status::Ok,
+            "{what}: {}",
+            h.last()
+        );
+        assert!(
+            all_outputs(c, b) == *want,
+            "{what}: outputs after fmi2SetFMUstate"
+        );
+        assert_eq!(sh::free_fmu_state::<BallBearing>(c, &mut s), Fmi2Status::Ok);
+        let fresh = h.inst(&ballbearing_fmu::guid(b), None);
+        let mut s2: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(
+            sh::deserialize_fmu_state::<BallBearing>(fresh, bytes.as_ptr(), size, &mut s2),
+            Fmi2Status::Ok,
+            "{what}: {}",
+            h.last()
+        );
+        assert_eq!(
+            sh::set_fmu_state::<BallBearing>(fresh, s2),
+            Fmi2Status::Ok,
+            "{what}: {}",
+            h.last()
+        );
+        assert!(
+            all_outputs(fresh, b) == *want,
+            "{what}: outputs in a fresh instance"
+        );
+        assert_eq!(
+            sh::free_fmu_state::<BallBearing>(fresh, &mut s2),
+            Fmi2Status::Ok
+        );
+        sh::free_instance::<BallBearing>(fresh);
+    }
+}
+
+/// The last good state after fmi2Discard, at every level (fidelity 0–4): a communication step
+/// longer than the step budget (`solver.max_steps`; at the kinematic level the spall passes
+/// count) is discarded, and then
+/// - the logger got the reason with status Discard, although logging is off;
+/// - every output (Real and Integer) is what was read before the failed step, bit for bit;
+/// - fmi2LastSuccessfulTime is the step's start, fmi2Terminated true;
+/// - a state got with fmi2GetFMUstate now (state StepFailed) restores to those outputs, in this
+///   instance after fmi2Reset and in a fresh one from its serialized bytes.
+#[test]
+fn discard_leaves_the_outputs_of_the_last_good_point_at_every_level() {
+    let b = BearingFile::default_preset();
+    // (budget, long step [s]): the 0.1 ms steps stay within the budget, the long one not.
+    for (fidelity, budget, long) in [
+        (0, 50, 10.0),
+        (1, 2, 1e9),
+        (2, 400, 1.0),
+        (3, 400, 1.0),
+        (4, 400, 1.0),
+    ] {
+        let h = H::new();
+        let n = if fidelity >= 3 { 5 } else { 20 };
+        let (c, t) = ready(&h, &b, fidelity, 0, budget, n);
+        let before = all_outputs(c, &b);
+        let what = format!("fidelity {fidelity}");
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe {
+            let status = sh::do_step::<BallBearing>(c, t, long, 1);
+            assert_eq!(status, Fmi2Status::Discard, "{what}: {}", h.last());
+            let (logged, message) = h.last_entry();
+            assert_eq!(logged, Fmi2Status::Discard, "{what}: {message}");
+            assert!(
+                message.contains("discarded") && message.contains("stopped at t ="),
+                "{what}: {message}"
+            );
+            assert!(all_outputs(c, &b) == before, "{what}: the outputs changed");
+            assert_eq!(last_successful_time(c), (Fmi2Status::Ok, t), "{what}");
+            let mut terminated = FMI2_FALSE;
+            assert_eq!(
+                sh::get_boolean_status::<BallBearing>(c, FMI2_TERMINATED, &mut terminated),
+                Fmi2Status::Ok
+            );
+            assert_eq!(terminated, FMI2_TRUE, "{what}");
+        }
+        state_restores_to(&h, &b, c, &before, &what);
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe {
+            assert_eq!(
+                last_successful_time(c),
+                (Fmi2Status::Ok, t),
+                "{what}: restored"
+            );
+            sh::free_instance::<BallBearing>(c);
+        }
+    }
+}
+
+/// The last good state after fmi2Error from fmi2DoStep: in coupling mode "motion" at the
+/// kinematic and quasi-static levels the outputs at the step's end need the quasi-static
+/// reaction at the journal's displacement there; a journal velocity that moves ball 0's groove
+/// centres onto each other by then makes it impossible. Then
+/// - the logger got the reason with status Error (logging off), naming the time whose outputs
+///   the master now reads;
+/// - every output is what was read before the failed step, bit for bit;
+/// - fmi2GetRealStatus is refused in the Error state (FMI 2.0 allows the status functions only
+///   in StepComplete, StepFailed, StepCanceled and Terminated), and the time is in the message;
+/// - a state got with fmi2GetFMUstate now (state Error) restores to those outputs.
+#[test]
+fn error_from_a_step_leaves_the_outputs_of_the_last_good_point() {
+    let b = BearingFile::default_preset();
+    let bearing = raceway::geometry::Bearing::new(&b).unwrap();
+    let (xi, ri) = bearing.groove_centre(raceway::geometry::Race::Inner);
+    let (xo, ro) = bearing.groove_centre(raceway::geometry::Race::Outer);
+    for fidelity in [0, 1] {
+        let h = H::new();
+        let (c, t) = ready(&h, &b, fidelity, 1, 1000, 5);
+        let what = format!("fidelity {fidelity}");
+        let get = |name: &str| {
+            let mut v = f64::NAN;
+            assert_eq!(
+                // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+                // and strings passed outlive the call (FMI 2.0 pointer rules).
+                unsafe { sh::get_real::<BallBearing>(c, &vr(&b, name), 1, &mut v) },
+                Fmi2Status::Ok
+            );
+            v
+        };
+        // Ball 0 (at the top, e_r = +z) has its inner groove centre at (xi − xo, ri − ro) + u
+        // from the outer one, u the ring displacement relative to the pedestal.
+        let target = [xo - xi, get("pedestal.y"), get("pedestal.z") + ro - ri];
+        let now = [get("journal.x"), get("journal.y"), get("journal.z")];
+        let before = all_outputs(c, &b);
+        let h_step = 1e-3;
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe {
+            for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+                let v = (target[k] - now[k]) / h_step;
+                let name = format!("journal.v.{axis}");
+                assert_eq!(
+                    sh::set_real::<BallBearing>(c, &vr(&b, &name), 1, &v),
+                    Fmi2Status::Ok,
+                    "{}",
+                    h.last()
+                );
+            }
+            let status = sh::do_step::<BallBearing>(c, t, h_step, 1);
+            let (logged, message) = h.last_entry();
+            assert_eq!(status, Fmi2Status::Error, "{what}: {message}");
+            assert_eq!(logged, Fmi2Status::Error, "{what}: {message}");
+            assert!(
+                message.contains("coincide")
+                    && message.contains(&format!("the outputs are those of t = {t}")),
+                "{what}: {message}"
+            );
+            assert!(all_outputs(c, &b) == before, "{what}: the outputs changed");
+            assert_eq!(last_successful_time(c).0, Fmi2Status::Error, "{what}");
+        }
+        state_restores_to(&h, &b, c, &before, &what);
+        // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+        // and strings passed outlive the call (FMI 2.0 pointer rules).
+        unsafe { sh::free_instance::<BallBearing>(c) };
+    }
+}
+
+/// Every FMI call returns in bounded time: at the kinematic level a communication step of 1e6 s
+/// would register about 1e9 spall passes (BPFO ≈ 980 Hz), which the default budget
+/// (solver.max_steps = 2 000 000 units of work per step, a spall pass one unit) does not cover:
+/// fmi2Discard at once (well under a second), with a message naming the passes needed, the
+/// pass rate and the budget; the outputs stay those of the step's start.
+#[test]
+fn an_enormous_kinematic_step_is_discarded_naming_the_spall_passes() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, t) = ready(&h, &b, 0, 0, 2_000_000, 3);
+    let before = all_outputs(c, &b);
+    let started = std::time::Instant::now();
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    let status = unsafe { sh::do_step::<BallBearing>(c, t, 1e6, 1) };
+    let wall = started.elapsed().as_secs_f64();
+    let (logged, message) = h.last_entry();
+    assert_eq!(
+        (status, logged),
+        (Fmi2Status::Discard, Fmi2Status::Discard),
+        "{message}"
+    );
+    assert!(wall < 1.0, "{wall} s");
+    eprintln!("{message}");
+    for needle in [
+        "spall passes",
+        "times per second",
+        "2000000",
+        "solver.max_steps",
+    ] {
+        assert!(message.contains(needle), "{needle}: {message}");
+    }
+    assert!(all_outputs(c, &b) == before);
+    assert_eq!(last_successful_time(c), (Fmi2Status::Ok, t));
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe { sh::free_instance::<BallBearing>(c) };
+}
+
+/// The reason of a failed step reaches the importer's logger with status Discard although
+/// logging is off, in facts: in coupling mode "motion" at the reduced level, the journal pulled
+/// 50 µm against the axial load opens every contact, a step of 1 s exhausts a budget of 200,
+/// and the message says so, with what the level knows about the state there.
+#[test]
+fn the_reason_of_a_discard_is_logged_with_status_discard() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, t) = ready_at(&h, &b, 3, 1, 200, 0, None);
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        let jx = vr(&b, "journal.x");
+        let mut x = f64::NAN;
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &jx, 1, &mut x),
+            Fmi2Status::Ok
+        );
+        let pulled = x - 5e-5;
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &jx, 1, &pulled),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t, 1.0, 1),
+            Fmi2Status::Discard
+        );
+        let (logged, message) = h.last_entry();
+        assert_eq!(logged, Fmi2Status::Discard, "{message}");
+        for needle in [
+            "step budget exhausted",
+            "contact is lost at every ball",
+            "fmi2LastSuccessfulTime = 0",
+        ] {
+            assert!(message.contains(needle), "{needle}: {message}");
+        }
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
+/// Plausibility warnings reach the importer with status fmi2Warning although logging is off,
+/// and the step that raised them returns fmi2Warning: a radial load of 30 kN on the Table-1
+/// bearing (beyond its static load rating, 29.3 kN) set during a run; an absurd one (1e9 N) is
+/// refused by the setter with fmi2Error naming it.
+#[test]
+fn loads_beyond_the_rating_warn_and_absurd_loads_are_refused() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, t) = ready_at(&h, &b, 2, 0, 2_000_000, 2, None);
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        let fz = vr(&b, "load.Fz");
+        let heavy = -30000.0;
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &heavy),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t, H_GOOD, 1),
+            Fmi2Status::Warning
+        );
+        let warnings: Vec<String> = h
+            .log
+            .lock()
+            .unwrap()
+            .iter()
+            .filter(|(s, _)| *s == Fmi2Status::Warning)
+            .map(|(_, m)| m.clone())
+            .collect();
+        assert!(
+            warnings.iter().any(|m| m.contains("static load rating C0")),
+            "{warnings:?}"
+        );
+        // Given once: the next step is Ok.
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t + H_GOOD, H_GOOD, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        let absurd = -1e9;
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &absurd),
+            Fmi2Status::Error
+        );
+        let (logged, message) = h.last_entry();
+        assert_eq!(logged, Fmi2Status::Error);
+        assert!(
+            message.contains("load.Fz") || message.contains("-1000000000"),
+            "{message}"
+        );
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
+/// An `fmi2SetReal` call applies all its values or none: when the simulation refuses a later
+/// value of the call (absurd loads), the earlier value (load.Fy) is taken back, in the
+/// parameters and in the running simulation alike.
+#[test]
+fn a_refused_value_takes_back_the_earlier_values_of_the_call() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, t) = ready_at(&h, &b, 2, 0, 2_000_000, 2, None);
+    let (fy, fz) = (vr(&b, "load.Fy"), vr(&b, "load.Fz"));
+    let before = all_outputs(c, &b);
+    let mut loads = [0.0; 2];
+    // SAFETY: c is a live instance; every array holds 2 elements.
+    unsafe {
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, [fy, fz].as_ptr(), 2, loads.as_mut_ptr()),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, [fy, fz].as_ptr(), 2, [500.0, -1e9].as_ptr()),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("load"), "{}", h.last());
+        let mut after = [f64::NAN; 2];
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, [fy, fz].as_ptr(), 2, after.as_mut_ptr()),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            after, loads,
+            "load.Fy stayed applied although load.Fz was refused"
+        );
+    }
+    assert_eq!(all_outputs(c, &b), before);
+    // The simulation runs on as if the call had not been made: same outputs as a twin that
+    // never saw it.
+    let twin = ready_at(&h, &b, 2, 0, 2_000_000, 2, None).0;
+    // SAFETY: c and twin are live instances.
+    unsafe {
+        for k in 0..3 {
+            let tk = t + k as f64 * H_GOOD;
+            assert_eq!(sh::do_step::<BallBearing>(c, tk, H_GOOD, 1), Fmi2Status::Ok);
+            assert_eq!(
+                sh::do_step::<BallBearing>(twin, tk, H_GOOD, 1),
+                Fmi2Status::Ok
+            );
+        }
+    }
+    assert_eq!(all_outputs(c, &b), all_outputs(twin, &b));
+    // SAFETY: both are live instances, freed once.
+    unsafe {
+        sh::free_instance::<BallBearing>(c);
+        sh::free_instance::<BallBearing>(twin);
+    }
+}
