@@ -8,7 +8,9 @@
 //! `macro_rules!` macros. A file is one module: inline modules (`mod tests { … }`, `pub mod out
 //! { … }`) belong to the file they are written in. Comments (doc links included: they point at
 //! what a reader may look at, not at what the code needs) and string literals are ignored. The
-//! test fails on any cycle and names it, with the line that makes each edge.
+//! test fails on any cycle and names it, with the line that makes each edge. Unit-test modules
+//! (`#[cfg(test)] mod … { … }`) are left out: they are clients of their module, not part of its
+//! layer.
 //!
 //! What counts as a dependency, so that a reader can layer the modules:
 //! - `mod child;` in a parent is containment, not a use: it does not make the parent depend on
@@ -138,7 +140,10 @@ fn tokenize(src: &str) -> Vec<Token> {
                 }
             }
         } else if ch.is_ascii_digit() {
-            while i < n && (is_ident(c[i]) || c[i] == '.' && c.get(i + 1).is_some_and(|d| d.is_ascii_digit())) {
+            while i < n
+                && (is_ident(c[i])
+                    || c[i] == '.' && c.get(i + 1).is_some_and(|d| d.is_ascii_digit()))
+            {
                 i += 1;
             }
         } else if is_ident_start(ch) || (ch == '$' && i + 1 < n && is_ident_start(c[i + 1])) {
@@ -337,6 +342,67 @@ fn parse_use_tree(
     }
 }
 
+/// True when the item starting at `toks[i]` (after its visibility) carries `#[cfg(test)]`.
+fn cfg_test(toks: &[Token], i: usize) -> bool {
+    let mut k = i;
+    // Skip the visibility (`pub`, `pub(crate)`, `pub(in …)`) backwards.
+    while k > 0 {
+        match &toks[k - 1].tok {
+            Tok::Ident(w) if w == "pub" => k -= 1,
+            Tok::Punct(')') if (1..k).rev().any(|m| ident(toks.get(m)) == Some("pub")) => {
+                while k > 0 && !is_punct(toks.get(k - 1), '(') {
+                    k -= 1;
+                }
+                k = k.saturating_sub(1);
+            }
+            _ => break,
+        }
+    }
+    // Attribute groups `#[…]` just before.
+    while k > 0 && is_punct(toks.get(k - 1), ']') {
+        let end = k - 1;
+        let mut start = end;
+        while start > 0 && !(is_punct(toks.get(start), '[') && is_punct(toks.get(start - 1), '#')) {
+            start -= 1;
+        }
+        if start == 0 {
+            return false;
+        }
+        let words: Vec<&str> = toks[start + 1..end]
+            .iter()
+            .map(|t| match &t.tok {
+                Tok::Ident(w) => w.as_str(),
+                Tok::Punct('(') => "(",
+                Tok::Punct(')') => ")",
+                _ => "?",
+            })
+            .collect();
+        if words == ["cfg", "(", "test", ")"] {
+            return true;
+        }
+        k = start - 1;
+    }
+    false
+}
+
+/// The index after the block whose `{` is at `toks[open]`.
+fn skip_block(toks: &[Token], open: usize) -> usize {
+    let mut depth = 0usize;
+    let mut k = open;
+    while k < toks.len() {
+        if is_punct(toks.get(k), '{') {
+            depth += 1;
+        } else if is_punct(toks.get(k), '}') {
+            depth -= 1;
+            if depth == 0 {
+                return k + 1;
+            }
+        }
+        k += 1;
+    }
+    k
+}
+
 /// Collects the module structure, bindings and named paths of one file whose module is
 /// `module`.
 fn parse_file(src: &str, module: &ModPath) -> FileInfo {
@@ -366,6 +432,10 @@ fn parse_file(src: &str, module: &ModPath) -> FileInfo {
                     (Some(name), Some(Tok::Punct(';'))) => {
                         info.file_mods.push((scope, name));
                         i += 3;
+                    }
+                    (Some(_), Some(Tok::Punct('{'))) if cfg_test(&toks, i) => {
+                        // Unit tests are the module's clients, not part of its layer.
+                        i = skip_block(&toks, i + 2);
                     }
                     (Some(name), Some(Tok::Punct('{'))) => {
                         let mut p = scope;
@@ -457,7 +527,10 @@ impl Crate {
             for m in &info.inline_mods {
                 c.file_of.insert(m.clone(), file.clone());
                 let (name, parent) = m.split_last().unwrap();
-                c.children.entry(parent.to_vec()).or_default().insert(name.clone());
+                c.children
+                    .entry(parent.to_vec())
+                    .or_default()
+                    .insert(name.clone());
                 c.children.entry(m.clone()).or_default();
             }
             // Where `mod x;` files live: beside a mod.rs / lib.rs / main.rs, else in a folder
@@ -478,7 +551,10 @@ impl Crate {
                 let path = if read(&flat).is_some() { flat } else { nested };
                 let mut m = scope.clone();
                 m.push(name.clone());
-                c.children.entry(scope.clone()).or_default().insert(name.clone());
+                c.children
+                    .entry(scope.clone())
+                    .or_default()
+                    .insert(name.clone());
                 queue.push((path, m));
             }
             for b in &info.bindings {
@@ -643,7 +719,11 @@ impl Crate {
             for b in &info.bindings {
                 if let Some(abs) = self.absolute(&b.scope, &b.target, 0) {
                     let m = self.resolve(&abs, 0);
-                    add(file, self.file(&m), (b.line, format!("use {}", b.target.join("::"))));
+                    add(
+                        file,
+                        self.file(&m),
+                        (b.line, format!("use {}", b.target.join("::"))),
+                    );
                 }
             }
             for n in &info.named {
@@ -831,7 +911,11 @@ fn workspace_roots(ws: &Path) -> Vec<PathBuf> {
                 roots.insert(src.join(f));
             }
         }
-        for e in std::fs::read_dir(ws.join(&src).join("bin")).into_iter().flatten().flatten() {
+        for e in std::fs::read_dir(ws.join(&src).join("bin"))
+            .into_iter()
+            .flatten()
+            .flatten()
+        {
             let p = src.join("bin").join(e.file_name());
             if p.extension().is_some_and(|x| x == "rs") {
                 roots.insert(p);
@@ -859,7 +943,10 @@ fn no_module_level_import_cycles() {
         files += Crate::load(root, &read).files.len();
         problems.extend(crate_cycles(root, &read));
     }
-    assert!(files > 20, "only {files} files read: is the module walk broken?");
+    assert!(
+        files > 20,
+        "only {files} files read: is the module walk broken?"
+    );
     assert!(
         problems.is_empty(),
         "{} module-level import cycle(s) (see tests/module_cycles.rs for what counts):\n{}",
@@ -888,7 +975,10 @@ mod checker {
         let found = run(&[
             ("src/lib.rs", "pub mod a;\npub mod b;\n"),
             ("src/a.rs", "use crate::b::B;\npub struct A;\n"),
-            ("src/b.rs", "pub struct B;\nfn f() { let _ = crate::a::A; }\n"),
+            (
+                "src/b.rs",
+                "pub struct B;\nfn f() { let _ = crate::a::A; }\n",
+            ),
         ]);
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(found[0].contains("src/a.rs uses src/b.rs"), "{}", found[0]);
@@ -953,8 +1043,22 @@ mod checker {
     }
 
     #[test]
+    fn unit_test_modules_do_not_count() {
+        let found = run(&[
+            ("src/lib.rs", "pub mod a;\npub mod b;\n"),
+            ("src/a.rs", "use crate::b::B;\npub struct A;\n"),
+            (
+                "src/b.rs",
+                "pub struct B;\n#[cfg(test)]\nmod tests { use crate::a::A; }\n",
+            ),
+        ]);
+        assert!(found.is_empty(), "{found:?}");
+    }
+
+    #[test]
     fn the_tokenizer_skips_literals_and_comments() {
-        let t = tokenize("let c = '\"'; /* crate::x /* nested */ */ let s = r#\"a\"b\"#; 'a: loop {}");
+        let t =
+            tokenize("let c = '\"'; /* crate::x /* nested */ */ let s = r#\"a\"b\"#; 'a: loop {}");
         let words: Vec<_> = t
             .iter()
             .filter_map(|t| match &t.tok {

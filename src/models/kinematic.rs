@@ -41,8 +41,8 @@ use super::quasi_static_level::{static_outputs, L1Table};
 use super::Model;
 use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};
+use crate::models::{out, Inputs, SimError};
 use crate::scene::Scene;
-use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::{PI, TAU};
 
 const CAGE: usize = 0;

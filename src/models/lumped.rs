@@ -16,9 +16,9 @@
 use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
+use crate::models::{out, Inputs, SimError};
 use crate::quasi_static;
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
-use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::{PI, TAU};
 
 // State layout.

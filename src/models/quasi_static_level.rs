@@ -17,9 +17,9 @@
 
 use super::Model;
 use crate::geometry::Bearing;
+use crate::models::{out, Inputs, SimError};
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{CageSpeed, Scene};
-use crate::simulation::{out, Inputs, SimError};
 use std::f64::consts::TAU;
 
 const CAGE: usize = 0;

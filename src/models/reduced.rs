@@ -55,8 +55,8 @@ use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
+use crate::models::{Inputs, SimError};
 use crate::scene::{Pulse, Scene};
-use crate::simulation::{Inputs, SimError};
 use std::f64::consts::TAU;
 
 /// States per ball.

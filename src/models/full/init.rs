@@ -5,7 +5,7 @@ use super::FullModel;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
 
-use crate::simulation::{Inputs, SimError};
+use crate::models::{Inputs, SimError};
 use std::f64::consts::TAU;
 
 /// A representative ball load for the spall's blend length "b": the mean load of a ball carrying

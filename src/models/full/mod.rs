@@ -28,9 +28,9 @@ use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 use crate::defect::DefectSpec;
 use crate::geometry::{Bearing, Race};
+use crate::models::{Inputs, SimError};
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
-use crate::simulation::{Inputs, SimError};
 use std::f64::consts::TAU;
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).

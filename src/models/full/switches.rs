@@ -486,7 +486,7 @@ macro_rules! ball_model_outputs {
     () => {
         fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
             use $crate::models::full::layout::{BW, PVY, PVZ, PY, PZ, RX};
-            use $crate::simulation::out;
+            use $crate::models::out;
             let mut dydt = std::mem::take(&mut self.scratch);
             self.rhs(t, y, &mut dydt);
             let p = self.lay.pedestal();
