@@ -9,6 +9,8 @@
 //! - [`model`](Model): the interface, with the [`Inputs`] and the errors ([`SimError`]);
 //!   [`out`]: the output vector's layout;
 //! - [`levels`]: the registry of levels (names, codes, constructors) and [`build`];
+//! - [`balls`]: what the ball-level models (reduced, full) share, in one struct they contain
+//!   ([`balls::BallCore`]);
 //! - one module per level: [`kinematic`] (L0), [`quasi_static_level`] (L1), [`lumped`] (L2),
 //!   [`reduced`] (L3), [`full`] (L4);
 //! - shared by the levels: the L1 start ([`solve_l1`], [`held_axial`]), the cage speed of the
@@ -18,6 +20,7 @@
 //! This module only declares and re-exports: every item lives in a submodule, so that the
 //! levels and the interface can be layered (tests/module_cycles.rs).
 
+pub mod balls;
 mod cage;
 pub mod full;
 pub mod kinematic;

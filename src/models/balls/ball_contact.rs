@@ -1,9 +1,8 @@
-//! One ball–race contact of the full model: geometry with changing contact angle (spec §2.2),
+//! One ball–race contact of the ball-level models (full and reduced): geometry with changing contact angle (spec §2.2),
 //! Hertz force with contact damping (C6), the spall's three effects (§4.4–4.6) and strip
 //! traction (§3.1–3.4). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
-use crate::config::StripRule;
-pub use crate::config::MAX_STRIPS;
+use crate::config::{StripRule, MAX_STRIPS};
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 
