@@ -747,9 +747,13 @@ impl Crate {
     }
 }
 
+/// One cycle (each file with the evidence of its edge to the next) and every file of its
+/// strongly connected component.
+type Cycle = (Vec<(PathBuf, Why)>, Vec<PathBuf>);
+
 /// Every cycle of the file graph, one per strongly connected component, each as the files in
 /// order with the evidence of each edge.
-fn cycles(edges: &BTreeMap<(PathBuf, PathBuf), Why>) -> Vec<(Vec<(PathBuf, Why)>, Vec<PathBuf>)> {
+fn cycles(edges: &BTreeMap<(PathBuf, PathBuf), Why>) -> Vec<Cycle> {
     let mut adj: BTreeMap<&PathBuf, Vec<&PathBuf>> = BTreeMap::new();
     for (a, b) in edges.keys() {
         adj.entry(a).or_default().push(b);
