@@ -1,6 +1,6 @@
 """A small co-simulation master over fmpy's FMU2Slave for the rotor <-> bearing coupling.
 
-Used by examples/coupling_study.py, examples/systems/*.py and tests/python/test_rotor.py.
+Used by studies/coupling_study.py, examples/systems/*.py and tests/python/test_rotor.py.
 
 Coupling (Jacobi, macro step H): at t_k the master reads the rotor's journal motion
 (x_k, v_k) and the bearing's reaction F_k, hands x_k, v_k to the bearing (which moves the

@@ -23,6 +23,7 @@ pub mod geometry;
 pub mod kinematics;
 pub mod limits;
 pub mod models;
+pub mod operating;
 pub mod quasi_static;
 pub mod scene;
 pub mod signal;

@@ -39,6 +39,7 @@
 
 use crate::geometry::{Bearing, Race};
 use crate::kinematics::{frequencies_from_cage, outer_race_control, FaultFrequencies};
+use crate::operating::OperatingPoint;
 use serde::Serialize;
 use std::f64::consts::PI;
 use std::fmt;
@@ -66,31 +67,6 @@ const MAX_BALL_ITER: usize = 60;
 const MAX_RING_ITER: usize = 60;
 const MAX_CONVEX_ITER: usize = 200;
 const FD_JACOBIAN_STEP: f64 = 1e-9;
-
-/// External load on the inner ring and shaft speed.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct LoadCase {
-    /// Shaft (inner-ring) speed Ω [rad/s].
-    pub speed: f64,
-    /// Axial force along +x \[N\].
-    pub fa: f64,
-    /// Force along +y \[N\].
-    pub fy: f64,
-    /// Force along +z \[N\] (a radial load F_r of the paper is `fz = −F_r`, C13).
-    pub fz: f64,
-}
-
-impl LoadCase {
-    /// The paper's load case: `fa` along +x, `fr` along −z, speed in rpm.
-    pub fn from_fa_fr_rpm(fa: f64, fr: f64, rpm: f64) -> Self {
-        Self {
-            speed: rpm * 2.0 * PI / 60.0,
-            fa,
-            fy: 0.0,
-            fz: -fr,
-        }
-    }
-}
 
 /// Equilibrium of one ball.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -888,10 +864,10 @@ fn convex_start(
     Ok((u, it))
 }
 
-fn check_input(case: &LoadCase) -> Result<(), QuasiStaticError> {
+fn check_input(case: &OperatingPoint) -> Result<(), QuasiStaticError> {
     for (name, value) in [
-        ("speed", case.speed),
-        ("fa", case.fa),
+        ("speed", case.shaft_speed),
+        ("fa", case.fx),
         ("fy", case.fy),
         ("fz", case.fz),
     ] {
@@ -903,19 +879,19 @@ fn check_input(case: &LoadCase) -> Result<(), QuasiStaticError> {
 }
 
 /// Solves the Jones–Harris quasi-static problem for a load case (see the module docs).
-pub fn solve(b: &Bearing, case: &LoadCase) -> Result<QuasiStatic, QuasiStaticError> {
+pub fn solve(b: &Bearing, case: &OperatingPoint) -> Result<QuasiStatic, QuasiStaticError> {
     solve_mounted(b, case, None)
 }
 
 /// Solves the quasi-static problem of an axially located inner ring: its axial displacement is
 /// held at `delta_a` \[m\] (from the unloaded, centred position; positive along +x, the
 /// direction an axial load Fa > 0 pushes it) and only the radial loads `case.fy`, `case.fz`
-/// act (`case.fa` is not used). The axial force the balls then need from the ring's location
+/// act (`case.fx` is not used). The axial force the balls then need from the ring's location
 /// is the solution's [`QuasiStatic::ring_force`]`[0]`: this is how a single angular-contact
 /// bearing carries a pure radial load when mounted.
 pub fn solve_located(
     b: &Bearing,
-    case: &LoadCase,
+    case: &OperatingPoint,
     delta_a: f64,
 ) -> Result<QuasiStatic, QuasiStaticError> {
     if !delta_a.is_finite() {
@@ -929,16 +905,16 @@ pub fn solve_located(
 
 fn solve_mounted(
     b: &Bearing,
-    case: &LoadCase,
+    case: &OperatingPoint,
     held: Option<f64>,
 ) -> Result<QuasiStatic, QuasiStaticError> {
     check_input(case)?;
     let g = Geometry::new(b);
-    let omega = case.speed;
-    let f_ext = [case.fa, case.fy, case.fz];
+    let omega = case.shaft_speed;
+    let f_ext = [case.fx, case.fy, case.fz];
     let fr = case.fy.hypot(case.fz);
     let deep_groove = b.alpha0 == 0.0;
-    if held.is_none() && b.alpha0 > 0.0 && case.fa <= 0.0 && (fr > 0.0 || case.fa < 0.0) {
+    if held.is_none() && b.alpha0 > 0.0 && case.fx <= 0.0 && (fr > 0.0 || case.fx < 0.0) {
         return Err(QuasiStaticError::BeyondGeometry(format!(
             "an angular-contact bearing (α0 = {:.2}°) needs an axial load Fa > 0 to carry a \
              load (Fa = {} N, Fr = {} N): its inner-ring balance Fa = Σ Q sin α would push the \
@@ -946,12 +922,12 @@ fn solve_mounted(
              carries it: scene [mounting] axial = \"located\", FMU ring.axial = 1 or 2, \
              raceway static --axial-offset)",
             b.alpha0.to_degrees(),
-            case.fa,
+            case.fx,
             fr
         )));
     }
     let active = [
-        held.is_none() && !(deep_groove && case.fa == 0.0),
+        held.is_none() && !(deep_groove && case.fx == 0.0),
         true,
         true,
     ];
@@ -961,8 +937,8 @@ fn solve_mounted(
     let mut u0 = [0.0; 3];
     if let Some(d) = held {
         u0[0] = d;
-    } else if case.fa > 0.0 {
-        u0[0] = pure_axial(b, case.fa)?.delta_axial;
+    } else if case.fx > 0.0 {
+        u0[0] = pure_axial(b, case.fx)?.delta_axial;
     }
     if fr > 0.0 {
         let qmax = 5.0 * fr / (b.z as f64 * b.alpha0.cos().max(0.1));
@@ -1313,9 +1289,9 @@ pub fn displacement_controlled(
     u: [f64; 3],
     warm: &mut Vec<[f64; 2]>,
 ) -> Result<QuasiStatic, QuasiStaticError> {
-    check_input(&LoadCase {
-        speed,
-        fa: u[0],
+    check_input(&OperatingPoint {
+        shaft_speed: speed,
+        fx: u[0],
         fy: u[1],
         fz: u[2],
     })?;
@@ -1364,14 +1340,14 @@ mod tests {
             ("cwru-6205-de", 300.0, 1500.0, 1797.0),
         ] {
             let b = Bearing::load(preset).unwrap();
-            let case = LoadCase::from_fa_fr_rpm(fa, fr, rpm);
+            let case = OperatingPoint::from_rpm(rpm, fa, fr);
             let qs = solve(&b, &case).unwrap();
             let g = Geometry::new(&b);
             let u = [qs.delta_axial, qs.delta_y, qs.delta_z];
             let xs: Vec<[f64; 2]> = qs.balls.iter().map(|e| e.x).collect();
-            let re = eval_ring(&g, case.speed, &u, &xs).unwrap();
-            let an = analytic_jacobian(&g, case.speed, &u, &re.balls).expect("analytic");
-            let fd = fd_jacobian(&g, case.speed, &u, &xs, STIFFNESS_STEP, [true; 3]).unwrap();
+            let re = eval_ring(&g, case.shaft_speed, &u, &xs).unwrap();
+            let an = analytic_jacobian(&g, case.shaft_speed, &u, &re.balls).expect("analytic");
+            let fd = fd_jacobian(&g, case.shaft_speed, &u, &xs, STIFFNESS_STEP, [true; 3]).unwrap();
             let scale = fd.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
             for r in 0..3 {
                 for c in 0..3 {

@@ -40,6 +40,7 @@
 
 use crate::config::{BearingFile, ConfigError};
 use crate::defect::DefectSpec;
+use crate::operating::OperatingPoint;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -61,21 +62,31 @@ pub enum Fidelity {
     Full,
 }
 
-/// Operating point: shaft speed and the loads on the inner ring (C13).
+/// The `[operating]` table of a scene file: speed in rpm, loads as the paper states them. It
+/// becomes an [`OperatingPoint`] (SI) as the file is read.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Operating {
+struct OperatingTable {
     /// Shaft speed \[rpm\].
-    pub speed_rpm: f64,
+    speed_rpm: f64,
     /// Axial load along +x \[N\].
     #[serde(default)]
-    pub fa: f64,
+    fa: f64,
     /// Radial load \[N\], applied along −z.
     #[serde(default)]
-    pub fr: f64,
+    fr: f64,
     /// Extra load along +y \[N\].
     #[serde(default)]
-    pub fy: f64,
+    fy: f64,
+}
+
+impl From<OperatingTable> for OperatingPoint {
+    fn from(t: OperatingTable) -> Self {
+        OperatingPoint {
+            fy: t.fy,
+            ..OperatingPoint::from_rpm(t.speed_rpm, t.fa, t.fr)
+        }
+    }
 }
 
 /// Integration method names of the scene and the FMU (codes 0, 1, 2).
@@ -440,7 +451,7 @@ struct SceneFile {
     bearing: BearingRef,
     #[serde(default)]
     fidelity: Fidelity,
-    operating: Operating,
+    operating: OperatingTable,
     #[serde(default)]
     defect: Option<DefectSpec>,
     #[serde(default)]
@@ -469,7 +480,8 @@ pub struct Scene {
     pub name: String,
     pub bearing: BearingFile,
     pub fidelity: Fidelity,
-    pub operating: Operating,
+    /// Shaft speed and loads (the file's `[operating]` table, in SI units).
+    pub operating: OperatingPoint,
     pub defect: Option<DefectSpec>,
     pub solver: SolverSettings,
     pub output: OutputSettings,
@@ -490,7 +502,7 @@ impl Scene {
     }
 
     /// A healthy scene on a bearing at an operating point.
-    pub fn healthy(bearing: BearingFile, operating: Operating) -> Self {
+    pub fn healthy(bearing: BearingFile, operating: OperatingPoint) -> Self {
         Self {
             name: "healthy".into(),
             bearing,
@@ -554,7 +566,7 @@ impl Scene {
             name: file.name,
             bearing,
             fidelity: file.fidelity,
-            operating: file.operating,
+            operating: file.operating.into(),
             defect: file.defect,
             solver: file.solver,
             output: file.output,
@@ -588,15 +600,15 @@ impl Scene {
                 Err(ConfigError::new(field, format!("{v} must be > 0")))
             }
         };
-        finite("operating.speed_rpm", self.operating.speed_rpm)?;
-        if self.operating.speed_rpm < 0.0 {
+        finite("operating.speed_rpm", self.operating.shaft_speed)?;
+        if self.operating.shaft_speed < 0.0 {
             return Err(ConfigError::new(
                 "operating.speed_rpm",
                 "must be ≥ 0 (the shaft turns about +x)",
             ));
         }
-        finite("operating.fa", self.operating.fa)?;
-        finite("operating.fr", self.operating.fr)?;
+        finite("operating.fa", self.operating.fx)?;
+        finite("operating.fr", self.operating.fz)?;
         finite("operating.fy", self.operating.fy)?;
         match (self.mounting.axial, self.mounting.axial_offset) {
             (_, Some(d)) if !d.is_finite() => {
@@ -679,11 +691,6 @@ impl Scene {
             d.validate()?;
         }
         Ok(())
-    }
-
-    /// Shaft speed [rad/s].
-    pub fn speed_rad_s(&self) -> f64 {
-        self.operating.speed_rpm * std::f64::consts::PI / 30.0
     }
 }
 

@@ -12,7 +12,8 @@ use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRE
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 // The models' interface types, at the paths they had when they lived here.
-pub use crate::models::{out, output_table, Inputs, OutputInfo, SimError};
+pub use crate::models::{out, output_table, OutputInfo, SimError};
+use crate::operating::OperatingPoint;
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
     grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
@@ -81,7 +82,7 @@ pub struct Simulation {
     bearing: Bearing,
     model: Box<dyn Model>,
     integrator: Integrator,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// Scratch for interpolated states between stops (CLI sampling).
     samples: Vec<f64>,
     sample_times: Vec<f64>,
@@ -124,7 +125,7 @@ impl Limits {
     /// at which ISO 76's load distribution puts the most loaded contact at the pressure limit
     /// (Hertz pressure grows as the cube root of the load), an error naming the loads. A
     /// located ring's axial reaction is not known here: only its radial load counts.
-    fn loads(&mut self, inputs: &Inputs, located: bool) -> Result<(), SimError> {
+    fn loads(&mut self, inputs: &OperatingPoint, located: bool) -> Result<(), SimError> {
         let fa = if located { 0.0 } else { inputs.fx };
         let p0 = self.rating.equivalent_load(fa, inputs.fy.hypot(inputs.fz));
         let limit = (MAX_CONTACT_PRESSURE / RATING_PRESSURE).powi(3) * self.rating.c0;
@@ -255,7 +256,7 @@ struct Snapshot {
     version: u32,
     fidelity: String,
     dim: usize,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     model: Vec<f64>,
     integrator: IntegratorState,
     #[serde(default)]
@@ -293,8 +294,8 @@ impl Simulation {
             warned_pressure: false,
             warnings: Vec::new(),
         };
-        let inputs = Inputs::from_scene(scene);
-        inputs.check()?;
+        let inputs = scene.operating;
+        inputs.check().map_err(SimError::Input)?;
         if scene.coupling == CouplingMode::Force {
             let located = scene.mounting.axial == crate::scene::AxialMount::Located;
             limits.loads(&inputs, located)?;
@@ -421,7 +422,7 @@ impl Simulation {
             let qo: Vec<f64> = r.solution.balls.iter().map(|b| b.q_outer).collect();
             self.limits.contacts(&self.bearing, &qi, &qo, t, cause)?;
             let load = r.load;
-            let eff = Inputs {
+            let eff = OperatingPoint {
                 fx: load[0],
                 fy: load[1],
                 fz: load[2],
@@ -538,7 +539,7 @@ impl Simulation {
         self.integrator.t()
     }
 
-    pub fn inputs(&self) -> Inputs {
+    pub fn inputs(&self) -> OperatingPoint {
         self.inputs
     }
 
@@ -549,8 +550,8 @@ impl Simulation {
     /// reported by [`Simulation::inputs`]) but the model runs on the start's loads (L2, L4) or
     /// on the load the displaced ring needs (L0, L1). With an axially located inner ring
     /// ([`crate::scene::Mounting`]) the axial load cannot change (an error names it).
-    pub fn set_inputs(&mut self, inputs: Inputs) -> Result<(), SimError> {
-        inputs.check()?;
+    pub fn set_inputs(&mut self, inputs: OperatingPoint) -> Result<(), SimError> {
+        inputs.check().map_err(SimError::Input)?;
         if inputs == self.inputs {
             return Ok(());
         }
@@ -588,9 +589,9 @@ impl Simulation {
     /// the model runs on once the model has taken the inputs).
     fn effective_inputs(
         &mut self,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         t: f64,
-    ) -> Result<(Inputs, Option<[f64; 3]>), SimError> {
+    ) -> Result<(OperatingPoint, Option<[f64; 3]>), SimError> {
         let mut eff = *inputs;
         let mut applied = None;
         if self.scene.coupling == CouplingMode::Motion {
@@ -637,7 +638,7 @@ impl Simulation {
         } else {
             self.start_loads
         };
-        let point = Inputs {
+        let point = OperatingPoint {
             fx,
             fy,
             fz,
@@ -1067,7 +1068,7 @@ impl Simulation {
                 self.model.dim()
             )));
         }
-        snap.inputs.check()?;
+        snap.inputs.check().map_err(SimError::Input)?;
         self.start.undoable = false;
         self.integrator
             .restore(&snap.integrator)

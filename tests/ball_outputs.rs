@@ -3,7 +3,8 @@
 
 use raceway::defect::DefectSpec;
 use raceway::geometry::Race;
-use raceway::scene::{CageSpeed, Fidelity, Operating, Scene};
+use raceway::operating::OperatingPoint;
+use raceway::scene::{CageSpeed, Fidelity, Scene};
 use raceway::simulation::{out, output_table, Simulation};
 use std::f64::consts::TAU;
 
@@ -11,15 +12,7 @@ const Z: usize = 14;
 
 fn scene(level: Fidelity, rpm: f64, fa: f64, fr: f64) -> Scene {
     let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
-    let mut s = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: rpm,
-            fa,
-            fr,
-            fy: 0.0,
-        },
-    );
+    let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = level;
     s
 }

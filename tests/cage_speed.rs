@@ -10,12 +10,13 @@ use raceway::models::full::steady::{steady_rotation, Orbit, SteadyError};
 
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::{self, Model};
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::{out, Inputs, Simulation};
+use raceway::operating::OperatingPoint;
+use raceway::scene::{Fidelity, Scene};
+use raceway::simulation::{out, Simulation};
 use std::f64::consts::TAU;
 
-fn inputs(rpm: f64, fa: f64, fr: f64) -> Inputs {
-    Inputs {
+fn inputs(rpm: f64, fa: f64, fr: f64) -> OperatingPoint {
+    OperatingPoint {
         shaft_speed: rpm * TAU / 60.0,
         fx: fa,
         fy: 0.0,
@@ -24,7 +25,7 @@ fn inputs(rpm: f64, fa: f64, fr: f64) -> Inputs {
 }
 
 /// The healthy full model at L1's start (tilt held) and its state, as the traction solve uses.
-fn start(b: &Bearing, i: &Inputs) -> (FullModel, Vec<f64>) {
+fn start(b: &Bearing, i: &OperatingPoint) -> (FullModel, Vec<f64>) {
     let options = FullOptions {
         traction: true,
         lock_tilt: true,
@@ -37,7 +38,7 @@ fn start(b: &Bearing, i: &Inputs) -> (FullModel, Vec<f64>) {
 }
 
 /// Each loaded ball's own orbital rate in its free steady rotation.
-fn free_rates(b: &Bearing, i: &Inputs) -> Result<Vec<f64>, SteadyError> {
+fn free_rates(b: &Bearing, i: &OperatingPoint) -> Result<Vec<f64>, SteadyError> {
     let (mut m, mut y) = start(b, i);
     let r = steady_rotation(&mut m, &mut y, Orbit::Free, None)?;
     assert_eq!(r.orbit, Orbit::Free);
@@ -136,12 +137,7 @@ fn continuation_from_a_nearby_ratio_gives_the_same_speed() {
 fn scene(level: Fidelity, rpm: f64, fa: f64, fr: f64) -> Scene {
     let mut s = Scene::healthy(
         raceway::config::BearingFile::load("niu2014-table1").unwrap(),
-        Operating {
-            speed_rpm: rpm,
-            fa,
-            fr,
-            fy: 0.0,
-        },
+        OperatingPoint::from_rpm(rpm, fa, fr),
     );
     s.fidelity = level;
     s

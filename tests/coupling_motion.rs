@@ -4,8 +4,9 @@
 #![allow(clippy::needless_range_loop)] // 3×3 index arithmetic reads best with indices
 
 use raceway::models::ReactionJacobian;
+use raceway::operating::OperatingPoint;
 use raceway::scene::{CouplingMode, Fidelity, Scene};
-use raceway::simulation::{out, Inputs, Journal, Simulation};
+use raceway::simulation::{out, Journal, Simulation};
 
 fn scene(fidelity: Fidelity, spall: bool) -> Scene {
     let mut s = Scene::default_scene();
@@ -102,7 +103,7 @@ fn starts_in_equilibrium_and_follows_the_journal(fidelity: Fidelity, rel: f64) {
     let o = outputs(&mut sim);
     // The start: the ring at the static equilibrium under the scene's loads (L1 start), so the
     // reaction balances the load.
-    let load = [sc.operating.fa, sc.operating.fy, -sc.operating.fr];
+    let load = [sc.operating.fx, sc.operating.fy, sc.operating.fz];
     for k in 0..3 {
         assert!(
             (o[out::BEARING_F_X + k] + load[k]).abs() < rel * 4000.0,
@@ -254,7 +255,7 @@ fn quasi_static_levels_give_the_displacement_controlled_reaction() {
         let mut sim = Simulation::new(&sc).unwrap();
         // The start reproduces the load (the L1 equilibrium, displacement-controlled).
         let f = force(&mut sim);
-        let load = [sc.operating.fa, sc.operating.fy, -sc.operating.fr];
+        let load = [sc.operating.fx, sc.operating.fy, sc.operating.fz];
         for k in 0..3 {
             assert!(
                 (f[k] + load[k]).abs() < 1e-3,
@@ -306,7 +307,7 @@ fn coupling_mode_in_scenes() {
 
 #[test]
 fn lumped_cage_speed_follows_the_reaction_when_the_speed_changes() {
-    use raceway::quasi_static::{solve, LoadCase};
+    use raceway::quasi_static::solve;
     let sc = scene(Fidelity::Lumped, false);
     let mut sim = Simulation::new(&sc).unwrap();
     // Press the journal 5 µm down (more radial load than the start's), then change the speed.
@@ -326,12 +327,12 @@ fn lumped_cage_speed_follows_the_reaction_when_the_speed_changes() {
     // here from L1's outer-race control, in the simulation from the last ratio: both converge
     // to within 1e-9 of the shaft speed).
     let traction = |fx: f64, fy: f64, fz: f64| {
-        let inputs = Inputs { fx, fy, fz, ..inp };
+        let inputs = OperatingPoint { fx, fy, fz, ..inp };
         let l1 = solve(
             sim.bearing(),
-            &LoadCase {
-                speed: inp.shaft_speed,
-                fa: fx,
+            &OperatingPoint {
+                shaft_speed: inp.shaft_speed,
+                fx,
                 fy,
                 fz,
             },
@@ -340,8 +341,8 @@ fn lumped_cage_speed_follows_the_reaction_when_the_speed_changes() {
         raceway::models::traction_cage_speed(sim.bearing(), &inputs, Some(&l1), None).unwrap()
     };
     let expect = traction(-f[0], -f[1], -f[2]);
-    let at_start_loads = traction(sc.operating.fa, sc.operating.fy, -sc.operating.fr);
-    assert!(f[2] > 1.5 * sc.operating.fr, "radial reaction {}", f[2]);
+    let at_start_loads = traction(sc.operating.fx, sc.operating.fy, sc.operating.fz);
+    assert!(f[2] > 1.5 * (-sc.operating.fz), "radial reaction {}", f[2]);
     assert!(
         (sim.cage_speed() - expect).abs() < 1e-8 * expect,
         "{} vs {expect}",

@@ -365,7 +365,7 @@ fn compliance_blend_over_the_semi_minor_axis() {
 /// (c = K^{−2/3}); outside there is none. The models locate the edge as a state event, so the
 /// frozen in-zone law (blend frozen on) must continue smoothly past the edge instead of
 /// dropping to the intact law inside a step (which made DOP853 stall at rtol 1e-12 at the
-/// exit edge of the reduced model, examples/stall_probe.rs).
+/// exit edge of the reduced model, studies/stall_probe.rs).
 #[test]
 fn frozen_zone_law_continues_smoothly_past_the_edges() {
     let b = table1();

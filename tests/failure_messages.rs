@@ -6,7 +6,7 @@
 use raceway::geometry::Bearing;
 use raceway::models::Model;
 use raceway::scene::{CouplingMode, Fidelity, Resonator, Scene};
-use raceway::simulation::{Inputs, Journal, SimError, Simulation};
+use raceway::simulation::{Journal, SimError, Simulation};
 
 /// A resonator at 100 THz on the lumped level's pedestal: an explicit method would need steps
 /// of about 1e-15 s, below the minimum step (1e-14 s), so the step collapses at the start, and
@@ -67,7 +67,7 @@ fn a_failure_with_every_contact_open_says_so() {
 fn every_level_names_its_states() {
     let s = Scene::default_scene();
     let bearing = Bearing::new(&s.bearing).unwrap();
-    let inputs = Inputs::from_scene(&s);
+    let inputs = s.operating;
     let expect: [(Fidelity, &[(usize, &str)]); 5] = [
         (
             Fidelity::Kinematic,

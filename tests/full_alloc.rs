@@ -5,8 +5,8 @@ use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::models::full::FullModel;
 use raceway::models::Model;
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::Inputs;
+use raceway::operating::OperatingPoint;
+use raceway::scene::{Fidelity, Scene};
 #[path = "common/alloc_counter.rs"]
 mod alloc_counter;
 use alloc_counter::allocations_during;
@@ -14,15 +14,7 @@ use alloc_counter::allocations_during;
 #[test]
 fn rhs_and_events_do_not_allocate() {
     let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
-    let mut scene = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: 9900.0,
-            fa: 4000.0,
-            fr: 1000.0,
-            fy: 0.0,
-        },
-    );
+    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
     scene.fidelity = Fidelity::Full;
     for defect in [None, Some(Race::Outer), Some(Race::Inner)] {
         scene.defect = defect.map(|ring| DefectSpec {
@@ -32,7 +24,7 @@ fn rhs_and_events_do_not_allocate() {
             theta0: 0.0,
         });
         let bearing = Bearing::new(&scene.bearing).unwrap();
-        let inputs = Inputs::from_scene(&scene);
+        let inputs = scene.operating;
         let mut m = FullModel::new(&scene, &bearing, &inputs).unwrap();
         let n = m.dim();
         let mut y = vec![0.0; n];

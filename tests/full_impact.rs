@@ -3,8 +3,8 @@
 //! Fr 1000 N) with the inner-ring tilt held, as `docs/validation.md` compares it. fel and feh
 //! are the peaks of the pedestal-acceleration pulse response (the run minus the same run
 //! without the pulse, zero-padded to 1 s, rectangular window, as `tests/lumped.rs` and
-//! `examples/validate_full.rs` measure them). They guard the C12 masses, which are calibrated
-//! on this test (`docs/spec-departures.md`): the paper's fel within 2 %, feh within 10 % and
+//! `studies/validate_full.rs` measure them). They guard the C12 masses, which are calibrated
+//! on this test (`docs/research/spec-departures.md`): the paper's fel within 2 %, feh within 10 % and
 //! rising with Fa.
 
 use raceway::scene::{Fidelity, Scene};
@@ -25,12 +25,12 @@ fn impact_frequencies(fa: f64) -> (f64, f64) {
     let mut sc = Scene::load(&p).unwrap();
     sc.fidelity = Fidelity::Full;
     sc.full.lock_tilt = true;
-    // 200 kHz as in examples/validate_full.rs: the pulse's corners (t0, t0 + 50 µs,
+    // 200 kHz as in studies/validate_full.rs: the pulse's corners (t0, t0 + 50 µs,
     // t0 + 100 µs) fall on samples, so the sampled triangle in pedestal.a.z (which holds the
     // pulse force itself) has the pulse's exact spectrum at low frequency. With corners between
     // samples at 51.2 kHz the broad fel peak (ζ ≈ 0.21) moves by up to 4 Hz; from 102.4 kHz up
     // the reading is within 0.5 Hz of the one with the pulse term transformed analytically
-    // (`cargo run --release --example fel_sampling`).
+    // (`cargo run --release -p raceway-studies --bin fel_sampling`).
     sc.output.sample_rate = 200_000.0;
     let s = pulse_response_spectrum(&sc, WINDOW);
     let fel = signal::dominant_peak(&s, 400.0, 800.0).unwrap().freq;

@@ -5,9 +5,10 @@
 use raceway::geometry::Bearing;
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
-use raceway::quasi_static::{self, LoadCase};
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::{out, Inputs, Simulation};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static;
+use raceway::scene::{Fidelity, Scene};
+use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
 use std::f64::consts::TAU;
 
@@ -28,15 +29,7 @@ impl System for Sys<'_> {
 
 fn healthy_scene(rpm: f64, fa: f64, fr: f64) -> Scene {
     let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
-    let mut s = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: rpm,
-            fa,
-            fr,
-            fy: 0.0,
-        },
-    );
+    let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = Fidelity::Full;
     s
 }
@@ -48,7 +41,7 @@ fn energy_drift(duration: f64, rtol: f64) -> (f64, f64, f64) {
     scene.bearing.pedestal.c_y = 0.0;
     scene.bearing.pedestal.c_z = 0.0;
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut model = FullModel::with_options(
         &scene,
         &bearing,
@@ -103,7 +96,7 @@ fn energy_is_conserved_without_traction_and_damping() {
 fn run_static(fa: f64, fr: f64, lock_tilt: bool, duration: f64) -> (Vec<f64>, Vec<f64>, f64) {
     let scene = healthy_scene(0.0, fa, fr);
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let mut model = FullModel::with_options(
         &scene,
         &bearing,
@@ -138,7 +131,7 @@ fn run_static(fa: f64, fr: f64, lock_tilt: bool, duration: f64) -> (Vec<f64>, Ve
 
 fn assert_close_to_l1(fa: f64, fr: f64, qi: &[f64], qo: &[f64]) {
     let bearing = Bearing::load("niu2014-table1").unwrap();
-    let qs = quasi_static::solve(&bearing, &LoadCase::from_fa_fr_rpm(fa, fr, 0.0)).unwrap();
+    let qs = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
     for (j, b) in qs.balls.iter().enumerate() {
         assert!(
             (qi[j] / b.q_inner - 1.0).abs() < 0.01 && (qo[j] / b.q_outer - 1.0).abs() < 0.01,
@@ -248,7 +241,7 @@ fn scene_full_table_reaches_the_model() {
 /// acceleration peak ω_n/√(1−2ζ²) of the whole mass on the pedestal spring,
 /// m = m_p + m_ir + z m_b, and the paper's 593.7 Hz ± 2 %. Sampled at 200 kHz, where the
 /// pulse's corners fall on samples (at 51.2 kHz they do not, and the sampled pulse moves the
-/// broad peak by up to 4 Hz: `examples/fel_sampling.rs`).
+/// broad peak by up to 4 Hz: `studies/fel_sampling.rs`).
 #[test]
 fn impact_test_fel_is_the_pedestal_mode() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

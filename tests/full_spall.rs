@@ -8,20 +8,13 @@ mod bounces;
 use bounces::inner_outer_alternations;
 use raceway::defect::DefectSpec;
 use raceway::geometry::Race;
-use raceway::scene::{Fidelity, Operating, Scene};
+use raceway::operating::OperatingPoint;
+use raceway::scene::{Fidelity, Scene};
 use raceway::simulation::{out, Simulation};
 
 fn sec31_scene(ring: Race, theta0: f64) -> Scene {
     let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
-    let mut s = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: 10_000.0,
-            fa: 3000.0,
-            fr: 0.0,
-            fy: 0.0,
-        },
-    );
+    let mut s = Scene::healthy(file, OperatingPoint::from_rpm(10_000.0, 3000.0, 0.0));
     s.fidelity = Fidelity::Full;
     s.defect = Some(DefectSpec {
         ring,
@@ -243,15 +236,7 @@ fn a_ball_pass_over_the_spall_conserves_energy() {
     file.contact.c_br = 0.0;
     file.pedestal.c_y = 0.0;
     file.pedestal.c_z = 0.0;
-    let mut scene = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: 10_000.0,
-            fa: 0.0,
-            fr: 1000.0,
-            fy: 0.0,
-        },
-    );
+    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(10_000.0, 0.0, 1000.0));
     scene.fidelity = Fidelity::Full;
     scene.defect = Some(DefectSpec {
         ring: Race::Outer,
@@ -260,7 +245,7 @@ fn a_ball_pass_over_the_spall_conserves_energy() {
         theta0: 0.0,
     });
     let bearing = raceway::geometry::Bearing::new(&scene.bearing).unwrap();
-    let inputs = raceway::simulation::Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let opts = FullOptions {
         traction: false,
         lock_tilt: false,

@@ -18,8 +18,8 @@ fn scene(level: Fidelity) -> (Scene, f64) {
     let mut s = Scene::default_scene();
     s.fidelity = level;
     // A partial load zone: balls leave and regain contact, so contact modes switch too.
-    s.operating.fa = 2000.0;
-    s.operating.fr = 4000.0;
+    s.operating.fx = 2000.0;
+    s.operating.fz = -4000.0;
     let (budget, long) = match level {
         Fidelity::Kinematic => (50, 10.0),
         Fidelity::QuasiStatic => (2, 1e9),

@@ -43,8 +43,8 @@ use raceway::simulation::{SimError, Simulation};
 fn scene(level: Fidelity, fa: f64, fr: f64) -> Scene {
     let mut s = Scene::default_scene();
     s.fidelity = level;
-    s.operating.fa = fa;
-    s.operating.fr = fr;
+    s.operating.fx = fa;
+    s.operating.fz = -fr;
     s
 }
 

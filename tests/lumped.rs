@@ -3,10 +3,11 @@
 //! stepping contract (communication-step invariance, save/restore, failure as a value).
 
 use raceway::geometry::Bearing;
-use raceway::quasi_static::{self, LoadCase};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static;
 use raceway::scene::Scene;
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, Inputs, SimError, Simulation};
+use raceway::simulation::{out, SimError, Simulation};
 use std::f64::consts::TAU;
 use std::path::Path;
 
@@ -83,7 +84,7 @@ fn outer_spall_envelope_peak_at_the_models_bpfo() {
 fn inner_spall_envelope_shows_bpfi_with_shaft_sidebands() {
     let sc = scene("sec3.5-inner.toml");
     let z = 14.0;
-    let fs_shaft = sc.operating.speed_rpm / 60.0;
+    let fs_shaft = sc.operating.speed_rpm() / 60.0;
     let ftf = model_cage_hz(&sc);
     let bpfi = z * (fs_shaft - ftf);
     assert!(bpfi > 1324.08 && bpfi < 1336.48, "model BPFI {bpfi}");
@@ -144,13 +145,13 @@ fn at_rest_the_ring_sits_where_l1_puts_it() {
     // Hertz constant): the ring displacement must agree and nothing may move.
     let mut sc = scene("default.toml");
     sc.defect = None;
-    sc.operating.speed_rpm = 0.0;
+    sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
     let bearing = Bearing::new(&sc.bearing).unwrap();
     let qs = quasi_static::solve(
         &bearing,
-        &LoadCase {
-            speed: 0.0,
-            fa: 4000.0,
+        &OperatingPoint {
+            shaft_speed: 0.0,
+            fx: 4000.0,
             fy: 0.0,
             fz: -1000.0,
         },
@@ -197,11 +198,11 @@ fn at_speed_the_ring_starts_at_the_lumped_equilibrium() {
     ] {
         let mut sc = scene("default.toml");
         sc.defect = None;
-        sc.operating.speed_rpm = rpm;
-        sc.operating.fa = fa;
-        sc.operating.fr = fr;
+        sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+        sc.operating.fx = fa;
+        sc.operating.fz = -fr;
         let bearing = Bearing::new(&sc.bearing).unwrap();
-        let rest = quasi_static::solve(&bearing, &LoadCase::from_fa_fr_rpm(fa, fr, 0.0)).unwrap();
+        let rest = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
         let mut sim = Simulation::new(&sc).unwrap();
         let mut o = vec![0.0; sim.output_table().len()];
         sim.outputs(&mut o);
@@ -334,14 +335,14 @@ fn invalid_inputs_are_rejected_by_name() {
     let mut sim = Simulation::new(&scene("default.toml")).unwrap();
     let good = sim.inputs();
     let e = sim
-        .set_inputs(Inputs {
+        .set_inputs(OperatingPoint {
             fz: f64::NAN,
             ..good
         })
         .unwrap_err();
     assert!(e.to_string().contains("load.Fz"), "{e}");
     let e = sim
-        .set_inputs(Inputs {
+        .set_inputs(OperatingPoint {
             shaft_speed: f64::INFINITY,
             ..good
         })

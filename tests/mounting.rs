@@ -1,12 +1,14 @@
 //! The axially located inner ring (issue 17 item 5): a single angular-contact bearing carries a
 //! pure radial load when its inner ring is held axially, as it is when mounted. Checked against
 //! the force-controlled solve (an independent problem with the same equilibrium), at every
-//! level, through the scene file, the FMU's parameters and the CLI.
+//! level, through the scene file and the FMU's parameters (the CLI's `static --axial-offset` in
+//! cli/tests/cli_static.rs).
 
 use raceway::fmi::variables::{Config, Param};
 use raceway::geometry::Bearing;
-use raceway::quasi_static::{solve, solve_located, LoadCase};
-use raceway::scene::{AxialMount, CouplingMode, Fidelity, Mounting, Operating, Scene};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static::{solve, solve_located};
+use raceway::scene::{AxialMount, CouplingMode, Fidelity, Mounting, Scene};
 use raceway::simulation::{out, Simulation};
 
 fn table1() -> Bearing {
@@ -23,13 +25,13 @@ fn the_location_reaction_is_the_axial_load_of_the_same_equilibrium() {
         (9900.0, 4000.0, 0.0),
         (9900.0, 4000.0, 5e-6),
     ] {
-        let case = LoadCase::from_fa_fr_rpm(0.0, fr, rpm);
+        let case = OperatingPoint::from_rpm(rpm, 0.0, fr);
         let located = solve_located(&b, &case, held).unwrap();
         let r = located.ring_force();
         assert!((located.delta_axial - held).abs() < 1e-15);
         assert!(r[0] > 0.1 * fr, "axial reaction {} N", r[0]);
         assert!((r[2] - case.fz).abs() < 1e-5, "radial balance {r:?}");
-        let free = solve(&b, &LoadCase::from_fa_fr_rpm(r[0], fr, rpm)).unwrap();
+        let free = solve(&b, &OperatingPoint::from_rpm(rpm, r[0], fr)).unwrap();
         assert!(
             (free.delta_axial - held).abs() < 1e-10,
             "{rpm} rpm, Fr {fr}: free ring at {} m, located at {held} m",
@@ -45,7 +47,7 @@ fn the_location_reaction_is_the_axial_load_of_the_same_equilibrium() {
 #[test]
 fn a_pure_radial_load_is_refused_unless_the_ring_is_located() {
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(0.0, 3000.0, 5000.0);
+    let case = OperatingPoint::from_rpm(5000.0, 0.0, 3000.0);
     let e = solve(&b, &case).unwrap_err().to_string();
     assert!(e.contains("located"), "{e}");
     assert!(solve_located(&b, &case, 0.0).is_ok());
@@ -54,12 +56,7 @@ fn a_pure_radial_load_is_refused_unless_the_ring_is_located() {
 fn located_scene(level: Fidelity, fa: f64, fr: f64, offset: Option<f64>) -> Scene {
     let mut s = Scene::healthy(
         raceway::config::BearingFile::load("niu2014-table1").unwrap(),
-        Operating {
-            speed_rpm: 6000.0,
-            fa,
-            fr,
-            fy: 0.0,
-        },
+        OperatingPoint::from_rpm(6000.0, fa, fr),
     );
     s.fidelity = level;
     s.mounting = Mounting {
@@ -77,9 +74,12 @@ fn every_level_runs_a_located_ring_under_a_pure_radial_load() {
     // reduced and full levels over 20 ms), against L1 at rest for the lumped level (no
     // centrifugal ball forces at L2).
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(0.0, 3000.0, 6000.0);
+    let case = OperatingPoint::from_rpm(6000.0, 0.0, 3000.0);
     let at_speed = solve_located(&b, &case, 2e-6).unwrap().ring_force()[0];
-    let rest = LoadCase { speed: 0.0, ..case };
+    let rest = OperatingPoint {
+        shaft_speed: 0.0,
+        ..case
+    };
     let at_rest = solve_located(&b, &rest, 2e-6).unwrap().ring_force()[0];
     for (level, t_end) in [
         (Fidelity::Kinematic, 0.02),
@@ -127,7 +127,7 @@ fn located_by_default_where_the_start_axial_load_puts_the_ring() {
     // ring.axial = 1: the start's Fa alone sets the place (a preload), then the ring is held
     // there while the radial load acts; the load input Fx cannot change afterwards.
     let b = table1();
-    let preload = solve(&b, &LoadCase::from_fa_fr_rpm(1000.0, 0.0, 6000.0)).unwrap();
+    let preload = solve(&b, &OperatingPoint::from_rpm(6000.0, 1000.0, 0.0)).unwrap();
     let mut sim =
         Simulation::new(&located_scene(Fidelity::QuasiStatic, 1000.0, 4000.0, None)).unwrap();
     let mut o = vec![0.0; sim.output_table().len()];
@@ -183,30 +183,4 @@ fn scene_files_and_fmu_parameters_set_the_mounting() {
     c.set(Param::RingAxial, 0.0).unwrap();
     assert_eq!(c.scene.mounting, Mounting::default());
     assert!(c.set(Param::RingAxial, 3.0).is_err());
-}
-
-#[test]
-fn cli_static_locates_the_ring_with_axial_offset() {
-    let exe = env!("CARGO_BIN_EXE_raceway");
-    let run = |args: &[&str]| std::process::Command::new(exe).args(args).output().unwrap();
-    let o = run(&["static", "--fr", "2000", "--axial-offset", "0", "--json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["axially_located"], true);
-    let r = v["axial_reaction"].as_f64().unwrap();
-    let expect = solve_located(&table1(), &LoadCase::from_fa_fr_rpm(0.0, 2000.0, 0.0), 0.0)
-        .unwrap()
-        .ring_force()[0];
-    assert!((r - expect).abs() < 1e-9 * expect);
-    let o = run(&[
-        "static",
-        "--fr",
-        "2000",
-        "--fa",
-        "10",
-        "--axial-offset",
-        "0",
-    ]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--axial-offset"));
 }

@@ -2,7 +2,8 @@
 //! closed-form pure-axial solution, plus equilibrium, deep-groove and failure cases.
 
 use raceway::geometry::Bearing;
-use raceway::quasi_static::{pure_axial, solve, LoadCase, QuasiStatic, QuasiStaticError};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static::{pure_axial, solve, QuasiStatic, QuasiStaticError};
 use std::time::Instant;
 
 fn table1() -> Bearing {
@@ -22,9 +23,9 @@ fn deg(x: f64) -> f64 {
 }
 
 /// Inner-ring balance: Σ ball forces on the ring equal the applied load to 1e-6 N.
-fn check_equilibrium(q: &QuasiStatic, case: &LoadCase) {
+fn check_equilibrium(q: &QuasiStatic, case: &OperatingPoint) {
     let f = q.ring_force();
-    let want = [case.fa, case.fy, case.fz];
+    let want = [case.fx, case.fy, case.fz];
     for k in 0..3 {
         assert!(
             (f[k] - want[k]).abs() <= 1e-6,
@@ -116,7 +117,7 @@ fn pure_axial_closed_form_matches_spec() {
 #[test]
 fn row1_pure_axial_0rpm() {
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(4000.0, 0.0, 0.0);
+    let case = OperatingPoint::from_rpm(0.0, 4000.0, 0.0);
     let q = solve(&b, &case).unwrap();
     report("Fa 4000 Fr 0 0 rpm", &q);
     check_equilibrium(&q, &case);
@@ -143,7 +144,7 @@ fn row1_pure_axial_0rpm() {
 #[test]
 fn row2_combined_0rpm() {
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(4000.0, 1000.0, 0.0);
+    let case = OperatingPoint::from_rpm(0.0, 4000.0, 1000.0);
     let q = solve(&b, &case).unwrap();
     report("Fa 4000 Fr 1000 0 rpm", &q);
     check_equilibrium(&q, &case);
@@ -171,7 +172,7 @@ fn row2_combined_0rpm() {
 #[test]
 fn row3_combined_9900rpm() {
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(4000.0, 1000.0, 9900.0);
+    let case = OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0);
     let t = Instant::now();
     let q = solve(&b, &case).unwrap();
     let el = t.elapsed();
@@ -238,7 +239,7 @@ fn row3_combined_9900rpm() {
 #[test]
 fn row4_pure_axial_10000rpm() {
     let b = table1();
-    let case = LoadCase::from_fa_fr_rpm(3000.0, 0.0, 10000.0);
+    let case = OperatingPoint::from_rpm(10000.0, 3000.0, 0.0);
     let q = solve(&b, &case).unwrap();
     report("Fa 3000 Fr 0 10000 rpm", &q);
     check_equilibrium(&q, &case);
@@ -260,7 +261,7 @@ fn row4_pure_axial_10000rpm() {
 fn deep_groove_radial_only() {
     let b = Bearing::load("cwru-6205-de").unwrap();
     for rpm in [0.0, 1797.0, 10000.0] {
-        let case = LoadCase::from_fa_fr_rpm(0.0, 1000.0, rpm);
+        let case = OperatingPoint::from_rpm(rpm, 0.0, 1000.0);
         let q = solve(&b, &case).unwrap();
         report(&format!("6205 Fr 1000 {rpm} rpm"), &q);
         check_equilibrium(&q, &case);
@@ -281,7 +282,7 @@ fn deep_groove_radial_only() {
     let mut file = table1().file;
     file.bearing.contact_angle_free_deg = 0.0;
     let b = Bearing::new(&file).unwrap();
-    let case = LoadCase::from_fa_fr_rpm(0.0, 1000.0, 10000.0);
+    let case = OperatingPoint::from_rpm(10000.0, 0.0, 1000.0);
     let q = solve(&b, &case).unwrap();
     report("Table-1 α0 = 0, Fr 1000, 10000 rpm", &q);
     check_equilibrium(&q, &case);
@@ -312,9 +313,9 @@ fn every_preset_and_speed_solves_in_equilibrium() {
             (50.0, 0.0, -50.0),
         ] {
             for rpm in [0.0, 3000.0, 15000.0] {
-                let case = LoadCase {
-                    speed: rpm * std::f64::consts::TAU / 60.0,
-                    fa,
+                let case = OperatingPoint {
+                    shaft_speed: rpm * std::f64::consts::TAU / 60.0,
+                    fx: fa,
                     fy,
                     fz,
                 };
@@ -361,9 +362,9 @@ fn random_loads_never_hang_or_fail_to_converge() {
             };
             let th = rnd() * std::f64::consts::TAU;
             let rpm = if rnd() < 0.3 { 0.0 } else { 20000.0 * rnd() };
-            let case = LoadCase {
-                speed: rpm * std::f64::consts::TAU / 60.0,
-                fa,
+            let case = OperatingPoint {
+                shaft_speed: rpm * std::f64::consts::TAU / 60.0,
+                fx: fa,
                 fy: -fr * th.sin(),
                 fz: fr * th.cos(),
             };
@@ -378,7 +379,7 @@ fn random_loads_never_hang_or_fail_to_converge() {
     }
 }
 
-fn expect_err(b: &Bearing, case: LoadCase, want: fn(&QuasiStaticError) -> bool) -> String {
+fn expect_err(b: &Bearing, case: OperatingPoint, want: fn(&QuasiStaticError) -> bool) -> String {
     let t = Instant::now();
     let e = solve(b, &case).expect_err("should fail");
     assert!(
@@ -393,58 +394,58 @@ fn expect_err(b: &Bearing, case: LoadCase, want: fn(&QuasiStaticError) -> bool) 
 #[test]
 fn failures_are_reported_quickly_with_reasons() {
     let b = table1();
-    let m = expect_err(&b, LoadCase::from_fa_fr_rpm(0.0, 0.0, 0.0), |e| {
+    let m = expect_err(&b, OperatingPoint::from_rpm(0.0, 0.0, 0.0), |e| {
         matches!(e, QuasiStaticError::NoBallLoaded(_))
     });
     assert!(m.contains("no ball"), "{m}");
-    expect_err(&b, LoadCase::from_fa_fr_rpm(0.0, 0.0, 9900.0), |e| {
+    expect_err(&b, OperatingPoint::from_rpm(9900.0, 0.0, 0.0), |e| {
         matches!(e, QuasiStaticError::NoBallLoaded(_))
     });
     let dg = Bearing::load("cwru-6205-de").unwrap();
-    expect_err(&dg, LoadCase::from_fa_fr_rpm(0.0, 0.0, 0.0), |e| {
+    expect_err(&dg, OperatingPoint::from_rpm(0.0, 0.0, 0.0), |e| {
         matches!(e, QuasiStaticError::NoBallLoaded(_))
     });
     // pure radial on an angular-contact bearing, and a pull on it
-    let m = expect_err(&b, LoadCase::from_fa_fr_rpm(0.0, 1000.0, 0.0), |e| {
+    let m = expect_err(&b, OperatingPoint::from_rpm(0.0, 0.0, 1000.0), |e| {
         matches!(e, QuasiStaticError::BeyondGeometry(_))
     });
     assert!(m.contains("Fa"), "{m}");
-    expect_err(&b, LoadCase::from_fa_fr_rpm(-100.0, 0.0, 0.0), |e| {
+    expect_err(&b, OperatingPoint::from_rpm(0.0, -100.0, 0.0), |e| {
         matches!(e, QuasiStaticError::BeyondGeometry(_))
     });
     // crushing loads
-    let m = expect_err(&b, LoadCase::from_fa_fr_rpm(1e7, 0.0, 0.0), |e| {
+    let m = expect_err(&b, OperatingPoint::from_rpm(0.0, 1e7, 0.0), |e| {
         matches!(e, QuasiStaticError::BeyondGeometry(_))
     });
     assert!(m.contains("deflection") || m.contains("angle"), "{m}");
-    expect_err(&b, LoadCase::from_fa_fr_rpm(4000.0, 1e7, 9900.0), |e| {
+    expect_err(&b, OperatingPoint::from_rpm(9900.0, 4000.0, 1e7), |e| {
         matches!(e, QuasiStaticError::BeyondGeometry(_))
     });
-    expect_err(&dg, LoadCase::from_fa_fr_rpm(0.0, 1e8, 0.0), |e| {
+    expect_err(&dg, OperatingPoint::from_rpm(0.0, 0.0, 1e8), |e| {
         matches!(e, QuasiStaticError::BeyondGeometry(_))
     });
     // non-finite inputs are named
     for (case, name) in [
         (
-            LoadCase {
-                speed: f64::NAN,
-                fa: 1.0,
+            OperatingPoint {
+                shaft_speed: f64::NAN,
+                fx: 1.0,
                 fy: 0.0,
                 fz: 0.0,
             },
             "speed",
         ),
-        (LoadCase::from_fa_fr_rpm(f64::INFINITY, 0.0, 0.0), "fa"),
+        (OperatingPoint::from_rpm(0.0, f64::INFINITY, 0.0), "fa"),
         (
-            LoadCase {
-                speed: 0.0,
-                fa: 1.0,
+            OperatingPoint {
+                shaft_speed: 0.0,
+                fx: 1.0,
                 fy: f64::NAN,
                 fz: 0.0,
             },
             "fy",
         ),
-        (LoadCase::from_fa_fr_rpm(1.0, f64::NEG_INFINITY, 0.0), "fz"),
+        (OperatingPoint::from_rpm(0.0, 1.0, f64::NEG_INFINITY), "fz"),
     ] {
         let m = expect_err(&b, case, |e| {
             matches!(e, QuasiStaticError::NonFinite { .. })
@@ -460,7 +461,7 @@ fn clearance_is_play_narrowing_the_load_zone() {
     let tight = raceway::geometry::Bearing::new(&f).unwrap();
     f.bearing.clearance = 10e-6;
     let loose = raceway::geometry::Bearing::new(&f).unwrap();
-    let case = raceway::quasi_static::LoadCase::from_fa_fr_rpm(0.0, 1000.0, 0.0);
+    let case = OperatingPoint::from_rpm(0.0, 0.0, 1000.0);
     let qt = raceway::quasi_static::solve(&tight, &case).unwrap();
     let ql = raceway::quasi_static::solve(&loose, &case).unwrap();
     let loaded = |q: &raceway::quasi_static::QuasiStatic| q.loaded_balls().count();
@@ -478,7 +479,7 @@ fn clearance_is_play_narrowing_the_load_zone() {
     // The ring moves through the play first: a larger radial displacement.
     assert!(ql.delta_radial() > qt.delta_radial() + 5e-6);
     // Unloaded, no ball touches: a clear error, not an interference fit.
-    let none = raceway::quasi_static::LoadCase::from_fa_fr_rpm(0.0, 0.0, 0.0);
+    let none = OperatingPoint::from_rpm(0.0, 0.0, 0.0);
     let e = raceway::quasi_static::solve(&loose, &none).unwrap_err();
     assert!(e.to_string().to_lowercase().contains("no ball"), "{e}");
 }
@@ -492,8 +493,8 @@ fn light_radial_load_at_high_speed_closes_the_centrifugal_gap() {
     let b = raceway::geometry::Bearing::load("cwru-6205-de").unwrap();
     let mut last = 0.0;
     for fr in [0.5, 1.0, 10.0, 35.0, 100.0] {
-        let q = solve(&b, &LoadCase::from_fa_fr_rpm(0.0, fr, 30_700.0)).unwrap();
-        check_equilibrium(&q, &LoadCase::from_fa_fr_rpm(0.0, fr, 30_700.0));
+        let q = solve(&b, &OperatingPoint::from_rpm(30_700.0, 0.0, fr)).unwrap();
+        check_equilibrium(&q, &OperatingPoint::from_rpm(30_700.0, 0.0, fr));
         let dr = q.delta_radial();
         assert!(
             dr > last && dr > 1e-6 && dr < 1e-5,

@@ -11,9 +11,10 @@ use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
 use raceway::models::reduced::{ReducedModel, ReducedOptions};
 use raceway::models::Model;
-use raceway::quasi_static::{self, LoadCase};
-use raceway::scene::{Fidelity, Operating, Scene};
-use raceway::simulation::{out, Inputs, Simulation};
+use raceway::operating::OperatingPoint;
+use raceway::quasi_static;
+use raceway::scene::{Fidelity, Scene};
+use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
 use std::f64::consts::TAU;
 
@@ -30,15 +31,7 @@ impl System for Sys<'_> {
 
 fn scene(rpm: f64, fa: f64, fr: f64) -> Scene {
     let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
-    let mut s = Scene::healthy(
-        file,
-        Operating {
-            speed_rpm: rpm,
-            fa,
-            fr,
-            fy: 0.0,
-        },
-    );
+    let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = Fidelity::Reduced;
     s
 }
@@ -55,7 +48,7 @@ fn model(scene: &Scene, traction: bool) -> (ReducedModel, Vec<f64>) {
 
 fn model_with(scene: &Scene, options: ReducedOptions) -> (ReducedModel, Vec<f64>) {
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(scene);
+    let inputs = scene.operating;
     let mut m = ReducedModel::with_options(scene, &bearing, &inputs, options).unwrap();
     let mut y0 = vec![0.0; m.dim()];
     m.initial_state(&mut y0);
@@ -98,12 +91,12 @@ fn axial_push_left_after_2ms(options: ReducedOptions, push: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Why L3 takes its traction over strips (examples/divergence.rs): with the rolling traction
+/// Why L3 takes its traction over strips (studies/divergence.rs): with the rolling traction
 /// of spec §6 L3 alone (`strips = 0`), nothing but the normal contacts acts on a ball's motion
 /// across the groove (along c1 in its axial–radial plane), so that motion rings on: about 40 %
 /// of an axial push is left after 2 ms, and long runs over a spall separate at about 180/s
 /// whatever the tolerance. L4's strip traction damps it (0.9 % left at 1.5…2 ms,
-/// examples/divergence.rs level=full), and so does L3's default strip traction.
+/// studies/divergence.rs level=full), and so does L3's default strip traction.
 #[test]
 fn motion_across_the_groove_is_damped_by_the_strip_traction() {
     let push = 1e-5; // 1e-3 of the velocity nominal
@@ -180,7 +173,7 @@ fn balls_started_from_l1_stay_put_at_zero_speed() {
     let bearing = Bearing::load("niu2014-table1").unwrap();
     for (fa, fr) in [(4000.0, 0.0), (4000.0, 1000.0)] {
         let (qi, qo, acc, speed) = run_static(fa, fr, 2e-3);
-        let qs = quasi_static::solve(&bearing, &LoadCase::from_fa_fr_rpm(fa, fr, 0.0)).unwrap();
+        let qs = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
         for (j, b) in qs.balls.iter().enumerate() {
             assert!(
                 (qi[j] / b.q_inner - 1.0).abs() < 0.01 && (qo[j] / b.q_outer - 1.0).abs() < 0.01,

@@ -6,9 +6,10 @@
 use nalgebra::DMatrix;
 use raceway::geometry::{Bearing, Race};
 use raceway::models::{self, Model};
+use raceway::operating::OperatingPoint;
 use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::signal::{envelope, envelope_spectrum, peaks, Window};
-use raceway::simulation::{out, Inputs, SimError, Simulation};
+use raceway::simulation::{out, SimError, Simulation};
 use raceway::solver::{Integrator, Method, Options, System, Tableau};
 use std::time::Instant;
 
@@ -37,7 +38,7 @@ impl System for Sys {
 
 fn build(scene: &Scene) -> (Sys, Vec<f64>) {
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(scene);
+    let inputs = scene.operating;
     let mut model = models::build(scene, &bearing, &inputs).unwrap();
     let mut y0 = vec![0.0; model.dim()];
     model.initial_state(&mut y0);
@@ -167,7 +168,7 @@ fn simulate(scene: &Scene, t_end: f64) -> (Result<(), SimError>, f64, u64, Vec<V
 
 /// Static pedestal deflection −Fr/k_p [m] (spec §7).
 fn static_zp(scene: &Scene) -> f64 {
-    -scene.operating.fr / scene.bearing.pedestal.k_z
+    scene.operating.fz / scene.bearing.pedestal.k_z
 }
 
 /// True if every output is finite and the pedestal stays within 50 µm of its static deflection
@@ -277,7 +278,7 @@ fn t5_start_from_rest_and_low_speed() {
     let (r, _, evals_nominal, _) = simulate(&default_scene(), t_end);
     r.unwrap();
     let mut s = default_scene();
-    s.operating.speed_rpm = 0.0;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
     let (r, _, _, rows) = simulate(&s, t_end);
     r.unwrap();
     let zp = static_zp(&s);
@@ -295,7 +296,7 @@ fn t5_start_from_rest_and_low_speed() {
     }
     for rpm in [10.0, 100.0] {
         let mut s = default_scene();
-        s.operating.speed_rpm = rpm;
+        s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
         let (r, _, evals, rows) = simulate(&s, t_end);
         assert!(r.is_ok(), "{rpm} rpm: {r:?}");
         assert!(physical(&s, &rows), "{rpm} rpm");
@@ -305,13 +306,13 @@ fn t5_start_from_rest_and_low_speed() {
         );
     }
     let mut s = default_scene();
-    s.operating.speed_rpm = 0.0;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
     let mut sim = Simulation::new(&s).unwrap();
-    let base = Inputs::from_scene(&s);
+    let base = s.operating;
     let mut o = vec![0.0; sim.output_table().len()];
     for k in 1..=20 {
         let rpm = 600.0 * k as f64 / 20.0;
-        sim.set_inputs(Inputs {
+        sim.set_inputs(OperatingPoint {
             shaft_speed: rpm * std::f64::consts::TAU / 60.0,
             ..base
         })
@@ -333,9 +334,9 @@ fn t5_start_from_rest_and_low_speed() {
 #[test]
 fn t6_contact_loss_at_light_load_and_high_speed() {
     let mut s = default_scene();
-    s.operating.fa = 100.0;
-    s.operating.fr = 1000.0;
-    s.operating.speed_rpm = 20_000.0;
+    s.operating.fx = 100.0;
+    s.operating.fz = -1000.0;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(20_000.0);
     let (r, _, _, rows) = simulate(&s, 0.03);
     assert!(r.is_ok(), "{r:?}");
     assert!(physical(&s, &rows));
@@ -446,7 +447,7 @@ fn t8_long_run_spectra_converge_and_nothing_drifts() {
     .unwrap();
     assert!(rows.len() >= n_total);
     let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = Inputs::from_scene(&scene);
+    let inputs = scene.operating;
     let l1 = models::solve_l1(&bearing, &inputs, "T8").unwrap();
     // The cage speed the balls follow: the traction solve from L1 (the scene's default
     // `lumped.cage_speed`), computed here independently of the simulation.
@@ -456,7 +457,7 @@ fn t8_long_run_spectra_converge_and_nothing_drifts() {
     // is L1's at zero speed under the same loads.
     let l1 = models::solve_l1(
         &bearing,
-        &Inputs {
+        &OperatingPoint {
             shaft_speed: 0.0,
             ..inputs
         },

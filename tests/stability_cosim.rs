@@ -36,7 +36,7 @@ fn scene() -> Scene {
     let mut s = Scene::default_scene();
     s.coupling = CouplingMode::Motion;
     s.defect = None;
-    s.operating.speed_rpm = 0.0;
+    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
     let p = &mut s.bearing.pedestal;
     p.mass = 1000.0;
     p.k_y = 1e13;

@@ -123,7 +123,7 @@ fn observed_order_sizes_the_retry_after_two_rejections() {
 }
 
 /// The scene's `solver.pi_beta` reaches the integrator's controller (fewer rejections on the
-/// spall scene at the lumped level, as `docs/step-control.md` measured for β = 0.08) and is
+/// spall scene at the lumped level, as `docs/research/step-control.md` measured for β = 0.08) and is
 /// validated with the field named.
 #[test]
 fn scene_pi_beta_reaches_the_controller_and_is_validated() {

@@ -33,11 +33,7 @@ harmonics = 2
 "#;
 
 fn run(sw: &Sweep, dir: &Path, jobs: usize) -> Summary {
-    let opts = ExecOptions {
-        jobs,
-        only: None,
-        progress: false,
-    };
+    let opts = ExecOptions { jobs, only: None };
     sweep::execute(sw, dir, &opts).expect("sweep runs")
 }
 
@@ -82,7 +78,7 @@ base = "../scenes/default.toml"
     assert_eq!(ids.len(), runs.len());
     // The scene of a run carries its values.
     let (scene, noise) = sw.scene_for(&runs[17]).unwrap();
-    assert_eq!(scene.operating.speed_rpm, 9000.0);
+    assert_eq!(scene.operating.speed_rpm(), 9000.0);
     let d = scene.defect.unwrap();
     assert_eq!(d.width, 2e-3);
     assert_eq!(d.ring, raceway::geometry::Race::Inner);
@@ -295,7 +291,6 @@ fn a_results_file_of_another_sweep_is_refused() {
         &ExecOptions {
             jobs: 1,
             only: Some(vec![8]),
-            progress: false,
         },
     )
     .unwrap_err();

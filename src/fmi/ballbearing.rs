@@ -8,15 +8,17 @@ use super::shell::{
 };
 use super::variables::{table, Config, Input, JournalInput, Param, Role, Stat};
 use crate::config::BearingFile;
+use crate::operating::OperatingPoint;
 use crate::scene::{CouplingMode, Scene};
-use crate::simulation::{out, Inputs, Journal, SimError, Simulation};
+use crate::simulation::{out, Journal, SimError, Simulation};
 use std::path::Path;
 
 /// Name of the bearing description inside the FMU's `resources/`.
 pub const BEARING_RESOURCE: &str = "bearing.toml";
 
 /// Version of the model part of the serialized FMU state.
-const MODEL_STATE_VERSION: u32 = 2;
+// 3: the operating point in SI units (shaft speed in rad/s, force components).
+const MODEL_STATE_VERSION: u32 = 3;
 
 /// Reads `resources/bearing.toml`, or the default preset when there is none.
 pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
@@ -53,7 +55,7 @@ pub struct BallBearing {
     /// The configuration as instantiated (for fmi2Reset).
     initial: Config,
     cfg: Config,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// Journal inputs (coupling mode "motion") and whether the master has set any of them; if
     /// not, the journal starts at the static equilibrium of the L1 start, at rest.
     journal: Journal,
@@ -81,7 +83,7 @@ impl BallBearing {
         let entries = table(bearing);
         let guid = super::guid(bearing);
         let cfg = Config::default_for(bearing);
-        let inputs = Inputs::from_scene(&cfg.scene);
+        let inputs = cfg.scene.operating;
         let n_out = entries
             .iter()
             .filter(|e| matches!(e.role, Role::Output(_)))
@@ -120,11 +122,10 @@ impl BallBearing {
             }
             s.solver.rtol = t;
         }
-        s.operating.speed_rpm = self.inputs.shaft_speed * 30.0 / std::f64::consts::PI;
-        s.operating.fa = self.inputs.fx;
-        s.operating.fy = self.inputs.fy;
-        s.operating.fr = -self.inputs.fz;
-        self.inputs.check().map_err(sim_err)?;
+        s.operating = self.inputs;
+        self.inputs
+            .check()
+            .map_err(|m| sim_err(SimError::Input(m)))?;
         s.bearing.validate().map_err(|e| e.to_string())?;
         s.validate().map_err(|e| e.to_string())?;
         Ok(s)
@@ -347,7 +348,7 @@ impl FmuModel for BallBearing {
 
     fn reset(&mut self) -> Result<(), String> {
         self.cfg = self.initial.clone();
-        self.inputs = Inputs::from_scene(&self.cfg.scene);
+        self.inputs = self.cfg.scene.operating;
         self.journal = Journal::default();
         self.journal_set = false;
         self.start_time = 0.0;
@@ -389,7 +390,7 @@ impl FmuModel for BallBearing {
                 if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
                     live.sim.set_inputs(next).map_err(sim_err)?;
                 } else {
-                    next.check().map_err(sim_err)?;
+                    next.check().map_err(|m| sim_err(SimError::Input(m)))?;
                 }
                 self.inputs = next;
                 self.invalidate();
@@ -525,10 +526,10 @@ impl FmuModel for BallBearing {
             (Some(live), true) => {
                 let op = &live.scene.operating;
                 w.bool(true)
-                    .f64(op.speed_rpm)
-                    .f64(op.fa)
-                    .f64(op.fr)
+                    .f64(op.shaft_speed)
+                    .f64(op.fx)
                     .f64(op.fy)
+                    .f64(op.fz)
                     .f64(live.scene.solver.rtol)
                     .bytes(&live.sim.save_state());
             }
@@ -572,19 +573,18 @@ impl FmuModel for BallBearing {
         let tolerance = r.opt_f64("tolerance")?;
         let initialized = r.bool("initialized flag")?;
         let live = if r.bool("simulation flag")? {
-            let speed = r.f64("operating speed")?;
-            let fa = r.f64("operating fa")?;
-            let fr = r.f64("operating fr")?;
-            let fy = r.f64("operating fy")?;
+            let operating = OperatingPoint {
+                shaft_speed: r.f64("operating shaft speed")?,
+                fx: r.f64("operating fx")?,
+                fy: r.f64("operating fy")?,
+                fz: r.f64("operating fz")?,
+            };
             let rtol = r.f64("rtol")?;
             let sim_bytes = r.bytes("simulation state")?;
             r.finish("the BallBearing state")?;
             let mut scene = cfg.scene.clone();
             scene.defect = cfg.defect.spec();
-            scene.operating.speed_rpm = speed;
-            scene.operating.fa = fa;
-            scene.operating.fr = fr;
-            scene.operating.fy = fy;
+            scene.operating = operating;
             scene.solver.rtol = rtol;
             let mut sim = Simulation::new(&scene).map_err(sim_err)?;
             sim.restore_state(sim_bytes).map_err(sim_err)?;

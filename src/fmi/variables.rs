@@ -10,8 +10,9 @@ use super::shell::{Causality, Initial, Start, VarType, Variability, Variable};
 use crate::config::{BearingFile, DefectMode};
 use crate::defect::DefectSpec;
 use crate::geometry::Race;
+use crate::operating::OperatingPoint;
 use crate::scene::{AxialMount, CageSpeed, CouplingMode, Fidelity, MethodName, Mounting, Scene};
-use crate::simulation::{output_table, Inputs, Journal};
+use crate::simulation::{output_table, Journal};
 
 /// The continuous inputs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,7 +26,7 @@ pub enum Input {
 impl Input {
     pub const ALL: [Input; 4] = [Input::ShaftSpeed, Input::Fx, Input::Fy, Input::Fz];
 
-    pub fn get(self, i: &Inputs) -> f64 {
+    pub fn get(self, i: &OperatingPoint) -> f64 {
         match self {
             Input::ShaftSpeed => i.shaft_speed,
             Input::Fx => i.fx,
@@ -34,7 +35,7 @@ impl Input {
         }
     }
 
-    pub fn set(self, i: &mut Inputs, v: f64) {
+    pub fn set(self, i: &mut OperatingPoint, v: f64) {
         match self {
             Input::ShaftSpeed => i.shaft_speed = v,
             Input::Fx => i.fx = v,
@@ -494,7 +495,7 @@ fn with_unit(mut v: Variable, unit: Option<&str>) -> Variable {
 /// The full table for an FMU built on `bearing`.
 pub fn table(bearing: &BearingFile) -> Vec<Entry> {
     let cfg = Config::default_for(bearing);
-    let inputs = Inputs::from_scene(&cfg.scene);
+    let inputs = cfg.scene.operating;
     let mut t = Vec::new();
     let input_info = [
         (

@@ -2,9 +2,10 @@
 //! caged balance of the strip traction on the full model's balls, or L1's outer-race control.
 
 use super::full::{steady, FullModel, FullOptions};
-use super::model::{Inputs, Model, SimError};
+use super::model::{Model, SimError};
 use super::start::operating_point;
 use crate::geometry::Bearing;
+use crate::operating::OperatingPoint;
 
 /// Cage speed [rad/s] of the levels with kinematic balls at a positive shaft speed, from the L1
 /// solution `qs` at `inputs`: the traction solve ([`traction_cage_speed`], started from
@@ -13,7 +14,7 @@ use crate::geometry::Bearing;
 /// equilibrium is an error naming it (never a silent switch to outer-race control).
 pub fn kinematic_levels_cage_speed(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     qs: &crate::quasi_static::QuasiStatic,
     cage: crate::scene::CageSpeed,
     previous: Option<f64>,
@@ -35,7 +36,7 @@ pub fn kinematic_levels_cage_speed(
 /// names the operating point and the reason when there is no equilibrium.
 pub fn traction_cage_speed(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     l1: Option<&crate::quasi_static::QuasiStatic>,
     ratio: Option<f64>,
 ) -> Result<f64, SimError> {

@@ -41,7 +41,8 @@ use super::quasi_static_level::{static_outputs, L1Table};
 use super::Model;
 use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};
-use crate::models::{out, Inputs, SimError};
+use crate::models::{out, SimError};
+use crate::operating::OperatingPoint;
 use crate::scene::Scene;
 use std::f64::consts::{PI, TAU};
 
@@ -66,7 +67,7 @@ struct Mode {
 pub struct KinematicModel {
     bearing: Bearing,
     table: L1Table,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     defect: Option<SpallSummary>,
     theta_start: f64,
     /// Series Hertz constant of a ball [N/m^1.5].
@@ -115,7 +116,11 @@ struct Memo {
 
 impl KinematicModel {
     /// Builds the generator for a scene (L1 at the scene's inputs).
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         let table = L1Table::solve(
             bearing,
             inputs,
@@ -569,7 +574,7 @@ impl Model for KinematicModel {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, t: f64, y: &[f64]) -> Result<(), SimError> {
         let table = if self.table.moved(inputs) {
             Some(L1Table::solve(
                 &self.bearing,

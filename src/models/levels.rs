@@ -6,13 +6,14 @@
 //! Adding a level: write its model in one file under `models/` (a [`Model`]), add its variant
 //! to [`Fidelity`] (the key a scene names it by) and its row here.
 
-use super::model::{Inputs, Model, SimError};
+use super::model::{Model, SimError};
 use super::{full, kinematic, lumped, quasi_static_level, reduced};
 use crate::geometry::Bearing;
+use crate::operating::OperatingPoint;
 use crate::scene::{Fidelity, Scene};
 
 /// Builds a level's model for a scene at the start's inputs.
-pub type Constructor = fn(&Scene, &Bearing, &Inputs) -> Result<Box<dyn Model>, SimError>;
+pub type Constructor = fn(&Scene, &Bearing, &OperatingPoint) -> Result<Box<dyn Model>, SimError>;
 
 /// One fidelity level.
 #[derive(Clone, Copy)]
@@ -105,7 +106,7 @@ pub fn level(f: Fidelity) -> &'static Level {
 pub fn build(
     scene: &Scene,
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
 ) -> Result<Box<dyn Model>, SimError> {
     (level(scene.fidelity).build)(scene, bearing, inputs)
 }

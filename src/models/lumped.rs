@@ -16,7 +16,8 @@
 use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
-use crate::models::{out, Inputs, SimError};
+use crate::models::{out, SimError};
+use crate::operating::OperatingPoint;
 use crate::quasi_static;
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
 use std::f64::consts::{PI, TAU};
@@ -95,12 +96,12 @@ pub struct LumpedModel {
     jitter_seed: u64,
     /// Azimuth of ball 0 at θ_c = 0 [rad].
     theta_start: f64,
-    inputs: Inputs,
+    inputs: OperatingPoint,
     /// ω_c/Ω from L1 at the inputs of the last L1 solve, and those inputs.
     cage_ratio: f64,
     /// Where the cage speed comes from (`lumped.cage_speed`).
     cage: CageSpeed,
-    l1_inputs: Inputs,
+    l1_inputs: OperatingPoint,
     /// Static ring displacement relative to the outer ring from L1 at rest (for the initial
     /// state: this model has no centrifugal ball forces, see [`LumpedModel::new`]).
     ring_offset: [f64; 3],
@@ -135,7 +136,11 @@ const EVENT_FORCE_SCALE: f64 = 1e8;
 
 impl LumpedModel {
     /// Builds the model for a scene; the cage speed and the initial ring offset come from L1.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let half_balls = 0.5 * bearing.z as f64 * bearing.ball_mass;
         let resonator = scene.lumped.resonator.as_ref().map(|r: &Resonator| {
@@ -191,7 +196,7 @@ impl LumpedModel {
             held_axial: super::held_axial(
                 scene,
                 bearing,
-                &Inputs {
+                &OperatingPoint {
                     shaft_speed: 0.0,
                     ..*inputs
                 },
@@ -205,7 +210,7 @@ impl LumpedModel {
         // ball forces here). At speed they move L1's ring by tens of µm (−56 µm axially at
         // 14286 rpm under 345 N on the Table-1 bearing), far enough that no ball of this model
         // touched and the Newton refinement had nothing to work with.
-        let rest = Inputs {
+        let rest = OperatingPoint {
             shaft_speed: 0.0,
             ..*inputs
         };
@@ -240,7 +245,7 @@ impl LumpedModel {
     fn solve_l1(
         &mut self,
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
     ) -> Result<quasi_static::QuasiStatic, SimError> {
         let qs = super::solve_l1_held(
             bearing,
@@ -581,7 +586,7 @@ fn kinematic_cage_ratio(bearing: &Bearing, qs: &quasi_static::QuasiStatic) -> f6
 
 /// A representative ball load for the blend length "b" of the spall edge: the mean load of a
 /// ball carrying the axial load, or the peak load of the radial load zone (Stribeck), at least 10 N.
-fn reference_ball_load(bearing: &Bearing, inputs: &Inputs) -> f64 {
+fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
     let z = bearing.z as f64;
     let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
     let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;
@@ -696,7 +701,7 @@ impl Model for LumpedModel {
         self.static_ring(y);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         if self.prescribed {
             // Motion coupling: the simulation moves the L1 point (update_operating_point).
             self.inputs = *inputs;
@@ -705,10 +710,10 @@ impl Model for LumpedModel {
         // Re-solve L1 for the cage-speed ratio when the operating point has moved by more than
         // 2 % since the last solve (an operating point without equilibrium is an error).
         let old = self.l1_inputs;
-        let load = |i: &Inputs| (i.fx * i.fx + i.fy * i.fy + i.fz * i.fz).sqrt();
+        let load = |i: &OperatingPoint| (i.fx * i.fx + i.fy * i.fy + i.fz * i.fz).sqrt();
         let moved = (inputs.shaft_speed - old.shaft_speed).abs()
             > 0.02 * old.shaft_speed.abs().max(1.0)
-            || load(&Inputs {
+            || load(&OperatingPoint {
                 shaft_speed: 0.0,
                 fx: inputs.fx - old.fx,
                 fy: inputs.fy - old.fy,
@@ -892,7 +897,7 @@ impl Model for LumpedModel {
             return Err(format!("lumped model state has 5 values, got {}", s.len()));
         }
         self.cage_ratio = s[0];
-        self.l1_inputs = Inputs {
+        self.l1_inputs = OperatingPoint {
             shaft_speed: s[1],
             fx: s[2],
             fy: s[3],
@@ -929,7 +934,7 @@ impl Model for LumpedModel {
             ));
         }
         self.cage_ratio = b[0];
-        self.l1_inputs = Inputs {
+        self.l1_inputs = OperatingPoint {
             shaft_speed: b[1],
             fx: b[2],
             fy: b[3],
@@ -966,7 +971,7 @@ impl Model for LumpedModel {
         })
     }
 
-    fn update_operating_point(&mut self, inputs: &Inputs) -> Result<(), SimError> {
+    fn update_operating_point(&mut self, inputs: &OperatingPoint) -> Result<(), SimError> {
         let bearing = self.bearing.clone();
         self.solve_l1(&bearing, inputs).map(|_| ())
     }

@@ -6,7 +6,8 @@
 //! prescribed) at which the integrator must land and the model may switch a frozen discrete
 //! mode (spec `solvers.md`, "Events").
 //!
-//! - [`model`](Model): the interface, with the [`Inputs`] and the errors ([`SimError`]);
+//! - [`model`](Model): the interface, with the errors ([`SimError`]; the inputs are a
+//!   [`crate::operating::OperatingPoint`]);
 //!   [`out`]: the output vector's layout;
 //! - [`levels`]: the registry of levels (names, codes, constructors) and [`build`];
 //! - [`balls`]: what the ball-level models (reduced, full) share, in one struct they contain
@@ -35,6 +36,6 @@ mod start;
 
 pub use cage::{kinematic_levels_cage_speed, traction_cage_speed};
 pub use levels::{build, Level, LEVELS};
-pub use model::{Inputs, Model, ReactionJacobian, RingStates, SimError};
+pub use model::{Model, ReactionJacobian, RingStates, SimError};
 pub use out::{output_table, OutputInfo};
 pub use start::{held_axial, operating_point, solve_l1, solve_l1_held};

@@ -1,57 +1,11 @@
 //! The interface between a dynamic model and the [`Simulation`](crate::simulation::Simulation)
-//! that drives it: the [`Model`] trait, the continuous [`Inputs`] a model runs on, the errors it
-//! reports ([`SimError`]), and what motion coupling needs of a level ([`RingStates`],
-//! [`ReactionJacobian`]). The output vector's layout is [`super::out`].
+//! that drives it: the [`Model`] trait (whose continuous inputs are an [`OperatingPoint`]), the
+//! errors a model reports ([`SimError`]), and what motion coupling needs of a level
+//! ([`RingStates`], [`ReactionJacobian`]). The output vector's layout is [`super::out`].
 
 use crate::config::ConfigError;
-use crate::scene::Scene;
+use crate::operating::OperatingPoint;
 use std::fmt;
-
-/// The continuous inputs (the FMU's `shaft.speed`, `load.Fx/Fy/Fz`).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Inputs {
-    /// Shaft (inner-ring) speed about +x [rad/s].
-    pub shaft_speed: f64,
-    /// External force on the inner ring \[N\] (Fx = Fa along +x, Fz = −Fr).
-    pub fx: f64,
-    pub fy: f64,
-    pub fz: f64,
-}
-
-impl Inputs {
-    /// The scene's operating point as inputs.
-    pub fn from_scene(scene: &Scene) -> Self {
-        Self {
-            shaft_speed: scene.speed_rad_s(),
-            fx: scene.operating.fa,
-            fy: scene.operating.fy,
-            fz: -scene.operating.fr,
-        }
-    }
-
-    /// Rejects non-finite or impossible values, naming the input.
-    pub fn check(&self) -> Result<(), SimError> {
-        for (name, v) in [
-            ("shaft.speed", self.shaft_speed),
-            ("load.Fx", self.fx),
-            ("load.Fy", self.fy),
-            ("load.Fz", self.fz),
-        ] {
-            if !v.is_finite() {
-                return Err(SimError::Input(format!(
-                    "{name} = {v} is not a finite number"
-                )));
-            }
-        }
-        if self.shaft_speed < 0.0 {
-            return Err(SimError::Input(format!(
-                "shaft.speed = {} rad/s: the model supports speeds ≥ 0",
-                self.shaft_speed
-            )));
-        }
-        Ok(())
-    }
-}
 
 /// What went wrong.
 #[derive(Debug, Clone, PartialEq)]
@@ -148,7 +102,7 @@ pub trait Model: Send {
 
     /// New inputs, constant from time `t` on (state `y` at that time). On an error (no
     /// equilibrium at the new inputs, named in the message) the model is unchanged.
-    fn set_inputs(&mut self, inputs: &Inputs, t: f64, y: &[f64]) -> Result<(), SimError>;
+    fn set_inputs(&mut self, inputs: &OperatingPoint, t: f64, y: &[f64]) -> Result<(), SimError>;
 
     /// Right-hand side; must not allocate.
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
@@ -269,7 +223,7 @@ pub trait Model: Send {
     /// [`crate::simulation::L1_SPEED_STEP`] since the last call; levels without an L1 cage speed
     /// ignore it. (In force mode the level follows its own inputs.) On an error the level
     /// keeps its operating point.
-    fn update_operating_point(&mut self, _inputs: &Inputs) -> Result<(), SimError> {
+    fn update_operating_point(&mut self, _inputs: &OperatingPoint) -> Result<(), SimError> {
         Ok(())
     }
 

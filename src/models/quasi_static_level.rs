@@ -17,7 +17,8 @@
 
 use super::Model;
 use crate::geometry::Bearing;
-use crate::models::{out, Inputs, SimError};
+use crate::models::{out, SimError};
+use crate::operating::OperatingPoint;
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{CageSpeed, Scene};
 use std::f64::consts::TAU;
@@ -44,7 +45,7 @@ pub struct L1Table {
     /// Mean inner contact angle of the loaded balls \[rad\].
     pub alpha: f64,
     /// Inputs the table was solved for.
-    pub inputs: Inputs,
+    pub inputs: OperatingPoint,
     /// Where `cage_speed` comes from.
     pub cage: CageSpeed,
     /// The axial displacement a located inner ring is held at \[m\] (None: the axial load acts).
@@ -60,7 +61,7 @@ impl L1Table {
     /// table solved nearby, if given).
     pub fn solve(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         cage: CageSpeed,
         held: Option<f64>,
         previous: Option<&L1Table>,
@@ -103,7 +104,7 @@ impl L1Table {
     /// Restores [`L1Table::state`] (the cage speed may be missing in states saved before it was
     /// kept; it is then solved again).
     pub fn restore(&mut self, bearing: &Bearing, s: &[f64]) -> Result<(), String> {
-        let inputs = Inputs {
+        let inputs = OperatingPoint {
             shaft_speed: s[0],
             fx: s[1],
             fy: s[2],
@@ -119,7 +120,7 @@ impl L1Table {
         Ok(())
     }
 
-    fn from_solution(bearing: &Bearing, qs: &QuasiStatic, inputs: &Inputs) -> Self {
+    fn from_solution(bearing: &Bearing, qs: &QuasiStatic, inputs: &OperatingPoint) -> Self {
         let loaded: Vec<_> = qs.loaded_balls().collect();
         let alpha = if loaded.is_empty() {
             bearing.alpha0
@@ -170,7 +171,7 @@ impl L1Table {
     }
 
     /// True when `new` differs from the solved inputs by more than 2 % in speed or load.
-    pub fn moved(&self, new: &Inputs) -> bool {
+    pub fn moved(&self, new: &OperatingPoint) -> bool {
         let old = &self.inputs;
         let load = |x: f64, y: f64, z: f64| (x * x + y * y + z * z).sqrt();
         (new.shaft_speed - old.shaft_speed).abs() > 0.02 * old.shaft_speed.abs().max(1.0)
@@ -186,7 +187,7 @@ impl L1Table {
 pub(crate) fn static_outputs(
     table: &L1Table,
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     theta_start: f64,
     cage: f64,
     o: &mut [f64],
@@ -267,12 +268,16 @@ fn floor(x: f64) -> f64 {
 pub struct QuasiStaticModel {
     bearing: Bearing,
     table: L1Table,
-    inputs: Inputs,
+    inputs: OperatingPoint,
 }
 
 impl QuasiStaticModel {
     /// Solves L1 at the scene's inputs.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         Ok(Self {
             bearing: bearing.clone(),
             table: L1Table::solve(
@@ -313,7 +318,7 @@ impl Model for QuasiStaticModel {
         y.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         if self.table.moved(inputs) {
             self.table = L1Table::solve(
                 &self.bearing,

@@ -58,7 +58,8 @@ use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::Bearing;
-use crate::models::{Inputs, RingStates, SimError};
+use crate::models::{RingStates, SimError};
+use crate::operating::OperatingPoint;
 use crate::scene::Scene;
 use std::f64::consts::TAU;
 
@@ -162,7 +163,11 @@ fn traction_of(
 
 impl ReducedModel {
     /// Builds the model for a scene with the default options.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         Self::with_options(scene, bearing, inputs, ReducedOptions::default())
     }
 
@@ -170,7 +175,7 @@ impl ReducedModel {
     pub fn with_options(
         scene: &Scene,
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: ReducedOptions,
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
@@ -404,7 +409,7 @@ impl Model for ReducedModel {
         y.copy_from_slice(&self.core.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.core.inputs = *inputs;
         Ok(())
     }

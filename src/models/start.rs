@@ -1,14 +1,15 @@
 //! The quasi-static (L1) start every level takes, and the operating point in messages.
 
-use super::model::{Inputs, SimError};
+use super::model::SimError;
 use crate::geometry::Bearing;
+use crate::operating::OperatingPoint;
 use crate::scene::{AxialMount, Scene};
 
 /// L1 (quasi-static) solution at the given inputs; every level starts from it (spec §7). A failure
 /// names the operating point and says why, prefixed by what needed the solution.
 pub fn solve_l1(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     purpose: &str,
 ) -> Result<crate::quasi_static::QuasiStatic, SimError> {
     solve_l1_held(bearing, inputs, None, purpose)
@@ -18,19 +19,13 @@ pub fn solve_l1(
 /// `inputs.fx` does not act, see [`crate::quasi_static::solve_located`]).
 pub fn solve_l1_held(
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
     held: Option<f64>,
     purpose: &str,
 ) -> Result<crate::quasi_static::QuasiStatic, SimError> {
-    let case = crate::quasi_static::LoadCase {
-        speed: inputs.shaft_speed,
-        fa: inputs.fx,
-        fy: inputs.fy,
-        fz: inputs.fz,
-    };
     match held {
-        None => crate::quasi_static::solve(bearing, &case),
-        Some(d) => crate::quasi_static::solve_located(bearing, &case, d),
+        None => crate::quasi_static::solve(bearing, inputs),
+        Some(d) => crate::quasi_static::solve_located(bearing, inputs, d),
     }
     .map_err(|e| {
         let held = held.map_or(String::new(), |d| {
@@ -49,14 +44,14 @@ pub fn solve_l1_held(
 pub fn held_axial(
     scene: &Scene,
     bearing: &Bearing,
-    inputs: &Inputs,
+    inputs: &OperatingPoint,
 ) -> Result<Option<f64>, SimError> {
     match (scene.mounting.axial, scene.mounting.axial_offset) {
         (AxialMount::Load, _) => Ok(None),
         (AxialMount::Located, Some(d)) => Ok(Some(d)),
         (AxialMount::Located, None) if inputs.fx == 0.0 => Ok(Some(0.0)),
         (AxialMount::Located, None) => {
-            let preload = Inputs {
+            let preload = OperatingPoint {
                 fy: 0.0,
                 fz: 0.0,
                 ..*inputs
@@ -72,7 +67,7 @@ pub fn held_axial(
 }
 
 /// The operating point for messages: "shaft.speed = … rad/s (… rpm), load = (…, …, …) N".
-pub fn operating_point(inputs: &Inputs) -> String {
+pub fn operating_point(inputs: &OperatingPoint) -> String {
     format!(
         "shaft.speed = {:.3} rad/s ({:.1} rpm), load = ({}, {}, {}) N",
         inputs.shaft_speed,

@@ -173,7 +173,7 @@ pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<M
         ));
     }
 
-    let shaft_hz = scene.operating.speed_rpm / 60.0;
+    let shaft_hz = scene.operating.shaft_speed / std::f64::consts::TAU;
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
     let freqs = [ftf, z as f64 * ftf, z as f64 * (shaft_hz - ftf)];
     let mut row: MetricRow = freqs.iter().map(|f| num(*f)).collect();

@@ -48,9 +48,21 @@ pub struct ExecOptions {
     pub jobs: usize,
     /// Only these run indices (e.g. one task of a distributed sweep); `None` = all.
     pub only: Option<Vec<usize>>,
-    /// Show a progress bar with ETA on stderr (hidden when stderr is not a terminal).
-    pub progress: bool,
 }
+
+/// Receives [`execute_with_progress`]'s reports, e.g. to draw a progress bar; every method
+/// does nothing by default. [`run_done`](Progress::run_done) is called from the worker threads.
+pub trait Progress: Sync {
+    /// Before the first run: how many runs will be executed now.
+    fn start(&self, _runs: usize) {}
+    /// After each run (failed or not): its index in the grid and its wall time in seconds.
+    fn run_done(&self, _index: usize, _wall_s: f64) {}
+    /// After the last run.
+    fn finish(&self) {}
+}
+
+/// No progress reports.
+impl Progress for () {}
 
 /// What [`execute`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -68,6 +80,16 @@ pub struct Summary {
 /// Runs the selected runs of `sweep` that `out_dir/results.csv` does not have yet, on
 /// `opts.jobs` threads, appending a row per run as it finishes.
 pub fn execute(sweep: &Sweep, out_dir: &Path, opts: &ExecOptions) -> Result<Summary, SweepError> {
+    execute_with_progress(sweep, out_dir, opts, &())
+}
+
+/// [`execute`], reporting to `progress` as the runs start and finish.
+pub fn execute_with_progress(
+    sweep: &Sweep,
+    out_dir: &Path,
+    opts: &ExecOptions,
+    progress: &dyn Progress,
+) -> Result<Summary, SweepError> {
     std::fs::create_dir_all(out_dir)
         .map_err(|e| SweepError::new(format!("cannot create {}: {e}", out_dir.display())))?;
     let runs = sweep.runs();
@@ -94,18 +116,7 @@ pub fn execute(sweep: &Sweep, out_dir: &Path, opts: &ExecOptions) -> Result<Summ
         skipped: selected.len() - todo.len(),
         ..Summary::default()
     };
-    let bar = if opts.progress {
-        let b = indicatif::ProgressBar::new(todo.len() as u64);
-        b.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
-        ) {
-            b.set_style(style);
-        }
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    progress.start(todo.len());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs)
         .build()
@@ -145,11 +156,10 @@ pub fn execute(sweep: &Sweep, out_dir: &Path, opts: &ExecOptions) -> Result<Summ
                     w.get_or_insert(e);
                 }
             }
-            bar.inc(1);
-            bar.set_message(format!("last: run {} {:.2} s", run.index, wall));
+            progress.run_done(run.index, wall);
         });
     });
-    bar.finish_and_clear();
+    progress.finish();
     if let Some(e) = write_error.into_inner().ok().flatten() {
         return Err(e);
     }

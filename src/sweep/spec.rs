@@ -544,9 +544,11 @@ impl Sweep {
                 "defect.blend_length" => {
                     scene.bearing.defect.blend_length = crate::config::BlendLength::Metres(num()?)
                 }
-                "operating.speed_rpm" => scene.operating.speed_rpm = num()?,
-                "operating.fa" => scene.operating.fa = num()?,
-                "operating.fr" => scene.operating.fr = num()?,
+                "operating.speed_rpm" => {
+                    scene.operating.shaft_speed = crate::operating::rpm_to_rad_s(num()?)
+                }
+                "operating.fa" => scene.operating.fx = num()?,
+                "operating.fr" => scene.operating.fz = -num()?,
                 "operating.fy" => scene.operating.fy = num()?,
                 "fidelity" => scene.fidelity = parse_fidelity(key, v)?,
                 "lumped.seed" if *v == AxisValue::Text("run".into()) => {

@@ -1,7 +1,7 @@
 """Two-way rotor <-> BallBearing co-simulation (motion mode), issue #6 acceptance in small:
 the constant-input boundary against omega H = 4 zeta, the interface Jacobian at H = 1 ms, the
 convergence to the monolithic force-mode reference, and the SSP system in libcosimpy and fmpy.
-The full-size numbers are in docs/coupling.md (examples/coupling_study.py)."""
+The full-size numbers are in docs/coupling.md (studies/coupling_study.py)."""
 
 import math
 import subprocess
@@ -14,6 +14,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "examples"))
 sys.path.insert(0, str(REPO / "examples" / "systems"))
+sys.path.insert(0, str(REPO / "studies"))
 import cosim_master as cm  # noqa: E402
 import coupling_study as cs  # noqa: E402
 

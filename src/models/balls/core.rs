@@ -15,7 +15,8 @@ use super::pass::{BallFrame, ContactPass, Loaded, Normal};
 use super::switches::{contact_event, Switches};
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
-use crate::models::{out, Inputs, RingStates, SimError};
+use crate::models::{out, RingStates, SimError};
+use crate::operating::OperatingPoint;
 use crate::scene::Pulse;
 use std::f64::consts::TAU;
 
@@ -56,7 +57,7 @@ pub fn race_const(b: &Bearing, race: Race) -> RaceConst {
 
 /// A representative ball load for the spall's blend length "b": the mean load of a ball carrying
 /// the axial load or the peak load of the radial load zone (Stribeck), at least 10 N.
-pub fn reference_ball_load(bearing: &Bearing, inputs: &Inputs) -> f64 {
+pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
     let z = bearing.z as f64;
     let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
     let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;
@@ -104,7 +105,7 @@ pub struct BallCore {
     pub(crate) defect: Option<Defect>,
     /// Semi-major-axis factor of the spall-edge contact.
     pub(crate) defect_a_star: f64,
-    pub(crate) inputs: Inputs,
+    pub(crate) inputs: OperatingPoint,
     /// Reference cage speed ratio ψ̇/Ω.
     pub(crate) cage_ratio: f64,
     /// Azimuth of ball 0 at ψ = 0 [rad].
@@ -139,7 +140,7 @@ impl BallCore {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         lay: Layout,
         spin: BallSpin,
         tilt: bool,
@@ -164,7 +165,7 @@ impl BallCore {
     #[allow(clippy::too_many_arguments)]
     pub fn with_defect(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         lay: Layout,
         spin: BallSpin,
         tilt: bool,

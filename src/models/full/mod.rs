@@ -25,7 +25,8 @@ use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
-use crate::models::{Inputs, ReactionJacobian, SimError};
+use crate::models::{ReactionJacobian, SimError};
+use crate::operating::OperatingPoint;
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
 
@@ -69,7 +70,11 @@ pub struct FullModel {
 
 impl FullModel {
     /// Builds the model for a scene with the default options.
-    pub fn new(scene: &Scene, bearing: &Bearing, inputs: &Inputs) -> Result<Self, SimError> {
+    pub fn new(
+        scene: &Scene,
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+    ) -> Result<Self, SimError> {
         Self::with_options(scene, bearing, inputs, FullOptions::default())
     }
 
@@ -77,7 +82,7 @@ impl FullModel {
     pub fn with_options(
         scene: &Scene,
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
     ) -> Result<Self, SimError> {
         let held = super::held_axial(scene, bearing, inputs)?;
@@ -98,7 +103,7 @@ impl FullModel {
     /// [`steady::steady_rotation`] for the kinematic levels' cage speed.
     pub fn healthy(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
         l1: Option<&QuasiStatic>,
     ) -> Result<Self, SimError> {
@@ -108,7 +113,7 @@ impl FullModel {
     #[allow(clippy::too_many_arguments)]
     fn build(
         bearing: &Bearing,
-        inputs: &Inputs,
+        inputs: &OperatingPoint,
         options: FullOptions,
         defect: Option<&DefectSpec>,
         pulse: Option<Pulse>,
@@ -415,7 +420,7 @@ impl Model for FullModel {
         y.copy_from_slice(&self.core.y0);
     }
 
-    fn set_inputs(&mut self, inputs: &Inputs, _t: f64, _y: &[f64]) -> Result<(), SimError> {
+    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
         self.core.inputs = *inputs;
         Ok(())
     }

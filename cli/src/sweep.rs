@@ -1,0 +1,111 @@
+//! `raceway sweep`: run a parameter grid on N threads, appending to `DIR/results.csv`.
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use raceway::sweep::{self, ExecOptions, Progress, Sweep};
+use std::path::PathBuf;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Sweep file (TOML), e.g. examples/sweeps/small.toml
+    pub sweep: PathBuf,
+    /// Output folder: results.csv (appended, resumed), results.sorted.csv, signals/
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Worker threads (default: one per core)
+    #[arg(long, default_value_t = 0)]
+    pub jobs: usize,
+    /// Only these run indices, e.g. `--runs 0,3,7` (one task of a distributed sweep)
+    #[arg(long, value_delimiter = ',')]
+    pub runs: Option<Vec<usize>>,
+    /// Print the grid (run_index, run_id, parameters) as CSV and exit
+    #[arg(long)]
+    pub list: bool,
+    /// No progress bar and no summary
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+pub fn run(args: Args) -> Result<(), String> {
+    let sw = Sweep::load(&args.sweep).map_err(|e| e.to_string())?;
+    if args.list {
+        let keys: Vec<&str> = sw.axes.iter().map(|a| a.key.as_str()).collect();
+        println!("run_index,run_id,{}", keys.join(","));
+        for r in sw.runs() {
+            let vals: Vec<String> = r.params.iter().map(|(_, v)| v.canonical()).collect();
+            println!("{},{},{}", r.index, r.id, vals.join(","));
+        }
+        return Ok(());
+    }
+    let out = args
+        .out
+        .ok_or("--out DIR is required (where results.csv is written)")?;
+    let started = Instant::now();
+    let opts = ExecOptions {
+        jobs: args.jobs,
+        only: args.runs,
+    };
+    let bar = Bar {
+        show: !args.quiet,
+        bar: OnceLock::new(),
+    };
+    let s = sweep::execute_with_progress(&sw, &out, &opts, &bar).map_err(|e| e.to_string())?;
+    let results = out.join("results.csv");
+    sweep::results::write_sorted(&results, &out.join("results.sorted.csv"))
+        .map_err(|e| e.to_string())?;
+    if !args.quiet {
+        eprintln!(
+            "sweep '{}': {} runs selected, {} already in {}, {} run now ({} failed) in {:.2} s wall on {} threads",
+            sw.name,
+            s.selected,
+            s.skipped,
+            results.display(),
+            s.ran,
+            s.failed,
+            started.elapsed().as_secs_f64(),
+            if args.jobs == 0 {
+                rayon::current_num_threads()
+            } else {
+                args.jobs
+            }
+        );
+    }
+    Ok(())
+}
+
+/// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal), made when
+/// the sweep knows how many runs it executes; none with `--quiet`.
+struct Bar {
+    show: bool,
+    bar: OnceLock<ProgressBar>,
+}
+
+impl Progress for Bar {
+    fn start(&self, runs: usize) {
+        if !self.show {
+            return;
+        }
+        let b = ProgressBar::new(runs as u64);
+        b.set_draw_target(ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, {msg} (eta {eta})",
+        ) {
+            b.set_style(style);
+        }
+        let _ = self.bar.set(b);
+    }
+
+    fn run_done(&self, index: usize, wall_s: f64) {
+        if let Some(b) = self.bar.get() {
+            b.inc(1);
+            b.set_message(format!("last: run {index} {wall_s:.2} s"));
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(b) = self.bar.get() {
+            b.finish_and_clear();
+        }
+    }
+}

@@ -1,0 +1,121 @@
+//! `raceway simulate --columns`, run as a user would: the chosen columns, in the order asked,
+//! with the same text as in the full table; a bad column name is an error that names it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn raceway(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(args)
+        .output()
+        .expect("the raceway binary runs")
+}
+
+fn scene() -> String {
+    format!(
+        "{}/../examples/scenes/default.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("raceway-cli-simulate-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+/// Header and rows of a CSV file.
+fn table(path: &PathBuf) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let head = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (head, rows)
+}
+
+fn simulate(level: &str, out: &Path, extra: &[&str]) {
+    let mut args = vec![
+        "simulate",
+        &scene(),
+        "--fidelity",
+        level,
+        "--duration",
+        "0.02",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]
+    .into_iter()
+    .map(String::from)
+    .collect::<Vec<_>>();
+    args.extend(extra.iter().map(|s| s.to_string()));
+    let a: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = raceway(&a);
+    assert!(
+        o.status.success(),
+        "raceway {a:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn chosen_columns_are_the_full_tables_columns() {
+    for level in ["kinematic", "lumped"] {
+        let all = tmp(&format!("{level}-all.csv"));
+        simulate(level, &all, &[]);
+        let (head, rows) = table(&all);
+        for pick in [
+            // Bearing-level only (the models skip the per-ball block) …
+            vec!["bearing.F.z", "pedestal.a.z"],
+            // … and with a per-ball column.
+            vec!["pedestal.a.z", "contact.outer.Q[7]", "ball.separated[7]"],
+        ] {
+            let some = tmp(&format!("{level}-some.csv"));
+            simulate(level, &some, &["--columns", &pick.join(",")]);
+            let (h, r) = table(&some);
+            let mut want = vec!["time"];
+            want.extend(&pick);
+            assert_eq!(h, want, "{level}: header");
+            assert_eq!(r.len(), rows.len(), "{level}: rows");
+            assert!(r.len() > 1000);
+            let idx: Vec<usize> = want
+                .iter()
+                .map(|n| head.iter().position(|x| x == n).unwrap())
+                .collect();
+            for (a, b) in rows.iter().zip(&r) {
+                let sel: Vec<&String> = idx.iter().map(|&i| &a[i]).collect();
+                assert_eq!(sel, b.iter().collect::<Vec<_>>(), "{level}: {pick:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_bad_column_is_named_and_nothing_is_written() {
+    let out = tmp("bad.csv");
+    let _ = std::fs::remove_file(&out);
+    for (cols, says) in [
+        ("pedestal.a.z,pedestal.a.q", "unknown output 'pedestal.a.q'"),
+        (
+            "pedestal.a.z,pedestal.a.z",
+            "'pedestal.a.z' is asked for twice",
+        ),
+    ] {
+        let o = raceway(&[
+            "simulate",
+            &scene(),
+            "--duration",
+            "0.01",
+            "--columns",
+            cols,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success(), "{cols}: must fail");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(says), "{cols}: stderr {err}");
+        assert!(!out.exists(), "{cols}: no file for a bad request");
+    }
+}

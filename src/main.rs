@@ -1,7 +1,0 @@
-//! The `raceway` command-line program.
-
-mod cli;
-
-fn main() {
-    std::process::exit(cli::run());
-}
