@@ -111,6 +111,10 @@ pub struct ContactSection {
     pub strip_rule: StripRule,
 }
 
+/// Most traction strips `contact.n_strips` may ask for (the strip tables of the ball-level
+/// models have this many entries).
+pub const MAX_STRIPS: usize = 32;
+
 /// Quadrature rule of the strip traction over the contact ellipse's major axis (spec §3.1, C7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
@@ -461,7 +465,7 @@ impl BearingFile {
         if let Some(k) = c.k_outer {
             check_positive("contact.K_outer", k)?;
         }
-        let max = crate::models::full::contact::MAX_STRIPS as u32;
+        let max = MAX_STRIPS as u32;
         if !(1..=max).contains(&c.n_strips) {
             return Err(ConfigError::new(
                 "contact.n_strips",

@@ -44,7 +44,8 @@ use crate::operating::OperatingPoint;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// Fidelity level ("model no more than a scene needs"); the integer codes are the FMU's.
+/// Fidelity level ("model no more than a scene needs"): the key of a level's row in
+/// [`crate::models::levels::LEVELS`], which gives its name, FMU code and constructor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Fidelity {
@@ -59,52 +60,6 @@ pub enum Fidelity {
     Reduced,
     /// L4: the paper's full model.
     Full,
-}
-
-impl Fidelity {
-    /// The FMU's integer code (the level number L0..L4).
-    pub fn code(self) -> i32 {
-        match self {
-            Fidelity::Kinematic => 0,
-            Fidelity::QuasiStatic => 1,
-            Fidelity::Lumped => 2,
-            Fidelity::Reduced => 3,
-            Fidelity::Full => 4,
-        }
-    }
-
-    pub fn from_code(code: i32) -> Option<Self> {
-        Some(match code {
-            0 => Fidelity::Kinematic,
-            1 => Fidelity::QuasiStatic,
-            2 => Fidelity::Lumped,
-            3 => Fidelity::Reduced,
-            4 => Fidelity::Full,
-            _ => return None,
-        })
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Fidelity::Kinematic => "kinematic",
-            Fidelity::QuasiStatic => "quasi_static",
-            Fidelity::Lumped => "lumped",
-            Fidelity::Reduced => "reduced",
-            Fidelity::Full => "full",
-        }
-    }
-
-    pub fn from_name(s: &str) -> Option<Self> {
-        [
-            Fidelity::Kinematic,
-            Fidelity::QuasiStatic,
-            Fidelity::Lumped,
-            Fidelity::Reduced,
-            Fidelity::Full,
-        ]
-        .into_iter()
-        .find(|f| f.name() == s)
-    }
 }
 
 /// The `[operating]` table of a scene file: speed in rpm, loads as the paper states them. It

@@ -11,13 +11,14 @@ use crate::geometry::Bearing;
 use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
+// The models' interface types, at the paths they had when they lived here.
+pub use crate::models::{out, output_table, OutputInfo, SimError};
 use crate::operating::OperatingPoint;
 use crate::scene::{CouplingMode, MethodName, Scene};
 use crate::solver::{
     grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
     Method, Options, StepView, System,
 };
-use std::fmt;
 
 /// The journal's (inner-ring centre's) motion in coupling mode "motion": displacement `x` \[m\]
 /// and velocity `v` [m/s] along x, y, z at the time it was set, in the frame and from the origin
@@ -59,196 +60,6 @@ impl Journal {
             self.x[2] + self.v[2] * dt,
         ]
     }
-}
-
-/// What went wrong.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SimError {
-    /// A scene or bearing value is invalid.
-    Config(ConfigError),
-    /// An input is invalid (named in the message).
-    Input(String),
-    /// An advance could not reach its end: it stopped at `t` (the last step the integrator
-    /// accepted, or the time whose outputs the model could not catch up to within the step
-    /// budget), for the reason in `message`. The simulation is back where the advance started
-    /// ([`Simulation::time`]), as if it had not been asked.
-    Solver { t: f64, message: String },
-    /// The requested feature is not available at this fidelity level.
-    Unsupported(String),
-    /// A saved state could not be restored.
-    State(String),
-}
-
-impl fmt::Display for SimError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SimError::Config(e) => write!(f, "{e}"),
-            SimError::Input(m) => write!(f, "invalid input: {m}"),
-            SimError::Solver { t, message } => {
-                write!(f, "integration failed at t = {t} s: {message}")
-            }
-            SimError::Unsupported(m) => write!(f, "unsupported: {m}"),
-            SimError::State(m) => write!(f, "cannot restore state: {m}"),
-        }
-    }
-}
-
-impl std::error::Error for SimError {}
-
-impl From<ConfigError> for SimError {
-    fn from(e: ConfigError) -> Self {
-        SimError::Config(e)
-    }
-}
-
-/// Name, unit and meaning of one output.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OutputInfo {
-    pub name: String,
-    pub unit: &'static str,
-    pub description: String,
-}
-
-/// Index of each fixed output in the output vector; per-ball contact forces follow.
-pub mod out {
-    pub const PEDESTAL_A_Y: usize = 0;
-    pub const PEDESTAL_A_Z: usize = 1;
-    pub const PEDESTAL_Y: usize = 2;
-    pub const PEDESTAL_Z: usize = 3;
-    pub const PEDESTAL_V_Y: usize = 4;
-    pub const PEDESTAL_V_Z: usize = 5;
-    pub const RING_X: usize = 6;
-    pub const RING_Y: usize = 7;
-    pub const RING_Z: usize = 8;
-    pub const BEARING_F_X: usize = 9;
-    pub const BEARING_F_Y: usize = 10;
-    pub const BEARING_F_Z: usize = 11;
-    pub const FRICTION_TORQUE: usize = 12;
-    pub const CAGE_SPEED: usize = 13;
-    /// First of the z inner contact forces, then z outer ones; then the z ball orbital speeds
-    /// ([`orbit_speed`]) and the z separation flags ([`separated`]).
-    pub const CONTACT_START: usize = 14;
-    /// Number of bearing-level outputs (pedestal, ring, bearing force, torque, cage speed): an
-    /// output vector of this length has no per-ball block
-    /// ([`super::Simulation::set_ball_outputs`]).
-    pub const BEARING_OUTPUTS: usize = CONTACT_START;
-
-    /// True when `o` has room for the per-ball block of a bearing with `z` balls (models fill
-    /// it only then).
-    #[inline]
-    pub fn has_ball_block(o: &[f64], z: usize) -> bool {
-        o.len() >= separated(z, z)
-    }
-
-    /// Index of ball j's orbital speed θ̇ (j from 0) in a bearing with `z` balls.
-    #[inline]
-    pub fn orbit_speed(z: usize, j: usize) -> usize {
-        CONTACT_START + 2 * z + j
-    }
-
-    /// Index of ball j's separation flag (j from 0) in a bearing with `z` balls.
-    #[inline]
-    pub fn separated(z: usize, j: usize) -> usize {
-        CONTACT_START + 3 * z + j
-    }
-
-    /// Sets every ball's separation flag from its contact forces already in `o`: 1 when the
-    /// ball touches neither race (both normal forces zero), else 0.
-    #[inline]
-    pub fn set_separation_flags(o: &mut [f64], z: usize) {
-        // One bounds check for the four blocks (inner, outer, orbit, flags), not three per ball:
-        // the kinematic and quasi-static levels call this at every output sample.
-        let (forces, rest) = o[CONTACT_START..separated(z, z)].split_at_mut(2 * z);
-        let (q_in, q_out) = forces.split_at(z);
-        let flags = &mut rest[z..];
-        for ((f, qi), qo) in flags.iter_mut().zip(q_in).zip(q_out) {
-            *f = if *qi == 0.0 && *qo == 0.0 { 1.0 } else { 0.0 };
-        }
-    }
-}
-
-/// The outputs of a bearing with `z` balls, in output-vector order.
-pub fn output_table(z: usize) -> Vec<OutputInfo> {
-    let mut v: Vec<OutputInfo> = [
-        ("pedestal.a.y", "m/s2", "Pedestal acceleration along y"),
-        (
-            "pedestal.a.z",
-            "m/s2",
-            "Pedestal acceleration along z (the paper's radial acceleration)",
-        ),
-        (
-            "pedestal.y",
-            "m",
-            "Pedestal (outer ring) displacement along y",
-        ),
-        (
-            "pedestal.z",
-            "m",
-            "Pedestal (outer ring) displacement along z",
-        ),
-        ("pedestal.v.y", "m/s", "Pedestal velocity along y"),
-        ("pedestal.v.z", "m/s", "Pedestal velocity along z"),
-        ("ring.x", "m", "Inner-ring displacement along x (axial)"),
-        ("ring.y", "m", "Inner-ring displacement along y"),
-        ("ring.z", "m", "Inner-ring displacement along z"),
-        (
-            "bearing.F.x",
-            "N",
-            "Force of the bearing on the shaft (inner ring) along x",
-        ),
-        (
-            "bearing.F.y",
-            "N",
-            "Force of the bearing on the shaft (inner ring) along y",
-        ),
-        (
-            "bearing.F.z",
-            "N",
-            "Force of the bearing on the shaft (inner ring) along z",
-        ),
-        (
-            "torque.friction",
-            "N.m",
-            "Bearing friction (drive) torque; 0 at levels without traction (kinematic, lumped)",
-        ),
-        ("cage.speed", "rad/s", "Cage (mean ball orbital) speed"),
-    ]
-    .into_iter()
-    .map(|(n, u, d)| OutputInfo {
-        name: n.to_string(),
-        unit: u,
-        description: d.to_string(),
-    })
-    .collect();
-    for race in ["inner", "outer"] {
-        for j in 1..=z {
-            v.push(OutputInfo {
-                name: format!("contact.{race}.Q[{j}]"),
-                unit: "N",
-                description: format!("Normal contact force of ball {j} on the {race} race"),
-            });
-        }
-    }
-    for j in 1..=z {
-        v.push(OutputInfo {
-            name: format!("ball.orbit_speed[{j}]"),
-            unit: "rad/s",
-            description: format!(
-                "Orbital speed of ball {j} about the shaft axis (the cage speed at the kinematic \
-                 and quasi-static levels, plus the slip-jitter rate at the lumped level)"
-            ),
-        });
-    }
-    for j in 1..=z {
-        v.push(OutputInfo {
-            name: format!("ball.separated[{j}]"),
-            unit: "1",
-            description: format!(
-                "1 while ball {j} touches neither race (both contact forces zero), else 0"
-            ),
-        });
-    }
-    v
 }
 
 /// Work counters of the integrator since the start (or the last reset).

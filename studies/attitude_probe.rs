@@ -3,7 +3,7 @@
 //! spin vectors w = ω_b − θ̇ e_x (as L3 reads β from L1: β = atan2(−ê_s·e_r, ê_s·e_x) with
 //! ê_s = −w/|w|), next to the L3 attitude. `cargo run --release -p raceway-studies --bin attitude_probe -- SCENE [duration] [lock]`
 use raceway::geometry::Bearing;
-use raceway::models::full::layout::{BOM, BTH, BW};
+use raceway::models::balls::layout::{BOM, BTH, BW};
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::reduced::ReducedModel;
 use raceway::models::Model;
@@ -51,7 +51,7 @@ fn main() {
     )
     .unwrap();
     let z = scene.bearing.bearing.z as usize;
-    let theta_start = raceway::models::full::init::choose_theta_start(z, m.defect());
+    let theta_start = raceway::models::balls::core::choose_theta_start(z, m.defect());
     let mut t_next: f64 = 0.005;
     while integ.t() < duration {
         let out = integ

@@ -8,7 +8,7 @@
 //! `cargo run --release -p raceway-studies --bin modal_probe -- RPM [traction on|off] [FA]`
 use nalgebra::{Complex, DMatrix, DVector};
 use raceway::geometry::Bearing;
-use raceway::models::full::layout::{BR, BX, PZ, RX};
+use raceway::models::balls::layout::{BR, BX, PZ, RX};
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
 use raceway::scene::{Fidelity, Scene};

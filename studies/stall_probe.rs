@@ -8,7 +8,6 @@
 //! `cargo run --release -p raceway-studies --bin stall_probe -- [rtol] [duration] [method]`
 
 use raceway::geometry::Bearing;
-use raceway::models::full::switches::SwitchedModel;
 use raceway::models::reduced::{ReducedModel, PER_BALL};
 use raceway::models::Model;
 use raceway::scene::Scene;
@@ -75,8 +74,8 @@ fn main() {
     let mut g = vec![0.0; m.n_events()];
     m.events(t0, &y, &mut g);
     for j in 0..z {
-        let (tbd, rate) = m.spall_angle(&d, &y, j);
-        let sw = m.switches();
+        let (tbd, rate) = m.core().theta_bd(&d, &y, j);
+        let sw = m.core().switches();
         println!(
             "ball {j:2}: tbd {:+.6e} (te {:.5e}) rate {:+.3e} side {:+} blend {:?} law ({:?},{:?}) g_in {:+.3e} g_out {:+.3e} zone {:+.3e} centre {:+.3e} blendm {:+.3e}",
             tbd,

@@ -7,7 +7,7 @@
 //! (pedestal stiffness K in N/m; `located`: the ring held axially, `[mounting] axial`).
 use raceway::config::BearingFile;
 use raceway::geometry::Bearing;
-use raceway::models::full::{self, steady, FullModel, FullOptions};
+use raceway::models::full::{steady, FullModel, FullOptions};
 use raceway::models::{self, Model};
 use raceway::operating::OperatingPoint;
 use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
@@ -81,7 +81,7 @@ fn main() {
         }
     };
     // The build's two solves again from L1's start, each timed.
-    full::init::initial_state(&mut m, &b, Some(&qs)).expect("start");
+    m.restart_from_l1(&b, Some(&qs)).expect("start");
     let mut y0 = vec![0.0; m.dim()];
     m.initial_state(&mut y0);
     for orbit in [steady::Orbit::Free, steady::Orbit::Caged] {

@@ -22,7 +22,7 @@
 //! contacts inside the spall.
 
 use raceway::contact::traction::TractionCurve;
-use raceway::models::full::contact::{strip_sums, SlipField, Strips};
+use raceway::models::balls::ball_contact::{strip_sums, SlipField, Strips};
 use raceway::models::full::FullModel;
 use raceway::models::Model;
 use raceway::scene::{Fidelity, Scene};

@@ -5,7 +5,7 @@
 //! where the former solve hung or returned garbage.
 
 use raceway::geometry::Bearing;
-use raceway::models::full::layout::BW;
+use raceway::models::balls::layout::BW;
 use raceway::models::full::steady::{steady_rotation, Orbit, SteadyError};
 
 use raceway::models::full::{FullModel, FullOptions};

@@ -3,8 +3,9 @@
 //! strip sums against closed forms and a fine reference.
 
 use raceway::config::TractionSection;
+use raceway::config::MAX_STRIPS;
 use raceway::contact::traction::TractionCurve;
-use raceway::models::full::contact::{strip_sums, SlipField, Strips, TractionBatch, MAX_STRIPS};
+use raceway::models::balls::ball_contact::{strip_sums, SlipField, Strips, TractionBatch};
 
 /// ∫_{−1}^{1} (3/4)(1 − s²) s^p ds.
 fn moment(p: usize) -> f64 {

@@ -41,9 +41,9 @@ use super::quasi_static_level::{static_outputs, L1Table};
 use super::Model;
 use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};
+use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
 use crate::scene::Scene;
-use crate::simulation::{out, SimError};
 use std::f64::consts::{PI, TAU};
 
 const CAGE: usize = 0;

@@ -16,10 +16,10 @@
 use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
+use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
 use crate::quasi_static;
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
-use crate::simulation::{out, SimError};
 use std::f64::consts::{PI, TAU};
 
 // State layout.

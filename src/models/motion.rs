@@ -21,8 +21,8 @@
 
 use super::ReactionJacobian;
 use crate::geometry::Bearing;
+use crate::models::SimError;
 use crate::quasi_static::{displacement_controlled, QuasiStatic};
-use crate::simulation::SimError;
 
 /// One solved journal position.
 #[derive(Debug, Clone)]

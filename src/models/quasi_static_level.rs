@@ -17,10 +17,10 @@
 
 use super::Model;
 use crate::geometry::Bearing;
+use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
 use crate::quasi_static::QuasiStatic;
 use crate::scene::{CageSpeed, Scene};
-use crate::simulation::{out, SimError};
 use std::f64::consts::TAU;
 
 const CAGE: usize = 0;

@@ -6,9 +6,10 @@
 //! angular velocity is `θ̇ e_x + ω_s ê_s`. The inner ring translates (no tilt, spin prescribed,
 //! C4); the outer ring moves with the 2-DOF pedestal (C3).
 //!
-//! The normal contacts are the full model's ([`super::full::contact::evaluate_law`]: geometry
+//! The normal contacts are the full model's ([`super::balls::ball_contact::evaluate_law`]: geometry
 //! with changing contact angles, Hertz with contact damping, the spall's three effects), with
-//! the full model's frozen modes and their events ([`super::full::switches::Switches`]): the
+//! the full model's frozen modes and their events ([`super::balls::switches::Switches`]), all held by the
+//! [`BallCore`] it shares with the full model: the
 //! contact switches (closing, opening), the spall half (edges and centre) and the C9 blend
 //! boundary are located on the dense output, and a frozen law holds between them.
 //!
@@ -31,11 +32,11 @@
 //!
 //! The attitude β is not L1's outer-race control (25.8° on the §3.5 bearing) but the one the
 //! traction sets: the balls' steady rotation solved on the full model at the start
-//! ([`full_model::steady::steady_rotation`], 33.6°; L4's balls settle to 33.4° within
+//! ([`super::full::steady::steady_rotation`], 33.6°; L4's balls settle to 33.4° within
 //! ≈ 20 ms). With it L3's cage runs at 69.964 Hz against L4's 69.957 Hz (tilt held), and its
 //! friction torque is 0.203 against 0.202 N m (with L1's attitude: 70.121 Hz, 0.311 N m).
 //!
-//! State layout ([`ReducedLayout`]), deviations as in the full model (solvers.md): per ball j
+//! State layout ([`Layout::reduced`]), deviations as in the full model (solvers.md): per ball j
 //! (7 states from `7 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_s. Then the inner
 //! ring (6 from `7 z`): x, y, z, ẋ, ẏ, ż; the pedestal (4 from `7 z + 6`): y_p, z_p, ẏ_p, ż_p;
 //! the reference cage angle ψ (`7 z + 10`) and the shaft angle φ (`7 z + 11`). 7z + 12 states
@@ -44,73 +45,39 @@
 //! The initial state is the full model's (spec §7, from L1) with the balls' steady rotation,
 //! reduced to these states.
 
-use super::full::contact::{
-    self, add, cross, dot, scale, sub, BallKin, ContactOut, RaceConst, RingPose, Strips, V3,
+use super::balls::ball_contact::{
+    add, cross, dot, scale, sub, BallKin, ContactOut, RingPose, Strips, V3,
 };
-use super::full::layout::{BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RV, RX};
-use super::full::pass::ContactPass;
-use super::full::switches::{SwitchedModel, Switches};
-use super::full::{self as full_model, FullModel, FullOptions};
+use super::balls::layout::{
+    ball_state_name, pedestal_state_name, ring_state_name, Layout, BOM, BR, BTH, BVR, BVX, BW, BX,
+    PVY, PVZ, PY, PZ, REDUCED_PER_BALL, REDUCED_RING_STATES, RV, RX,
+};
+use super::balls::{BallCore, BallSpin};
+use super::full::{steady::SteadyReport, FullModel, FullOptions};
 use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
-use crate::geometry::{Bearing, Race};
+use crate::geometry::Bearing;
+use crate::models::{RingStates, SimError};
 use crate::operating::OperatingPoint;
-use crate::scene::{Pulse, Scene};
-use crate::simulation::SimError;
+use crate::scene::Scene;
 use std::f64::consts::TAU;
 
-/// States per ball.
 /// Traction strips of L3 by default ([`ReducedOptions::strips`]). Measured on the §3.5 outer
 /// scene (0.1 s, DOP853 rtol 1e-6): mean cage speed 70.267 Hz with the spec's single rolling
 /// point, 69.947 with 2 strips, 70.121 with 4, 70.127 with 10; the full model 70.030 (10 strips; 70.030 with 8).
 pub const L3_STRIPS: usize = 4;
 
-pub const PER_BALL: usize = 7;
+/// States per ball.
+pub const PER_BALL: usize = REDUCED_PER_BALL;
 /// Offset of the spin rate ω_s inside a ball's block (x, r, θ, ẋ, ṙ, θ̇ are at the full
 /// model's offsets `layout::BX` … `layout::BW`).
-pub const BWS: usize = 6;
+pub const BWS: usize = BOM;
 /// States of the inner-ring block (x, y, z at `layout::RX`, velocities at `layout::RV`).
-pub const RING_STATES: usize = 6;
+pub const RING_STATES: usize = REDUCED_RING_STATES;
 
-/// Index arithmetic of the reduced model for a bearing with `z` balls.
-#[derive(Debug, Clone, Copy)]
-pub struct ReducedLayout {
-    pub z: usize,
-}
-
-impl ReducedLayout {
-    /// First state of ball j.
-    #[inline(always)]
-    pub fn ball(&self, j: usize) -> usize {
-        PER_BALL * j
-    }
-    /// First state of the inner ring (x, y, z, ẋ, ẏ, ż).
-    #[inline(always)]
-    pub fn ring(&self) -> usize {
-        PER_BALL * self.z
-    }
-    /// First state of the pedestal (y_p, z_p, ẏ_p, ż_p).
-    #[inline(always)]
-    pub fn pedestal(&self) -> usize {
-        PER_BALL * self.z + RING_STATES
-    }
-    /// Reference cage angle ψ.
-    #[inline(always)]
-    pub fn psi(&self) -> usize {
-        PER_BALL * self.z + RING_STATES + 4
-    }
-    /// Shaft angle φ.
-    #[inline(always)]
-    pub fn phi(&self) -> usize {
-        PER_BALL * self.z + RING_STATES + 5
-    }
-    /// Number of states.
-    #[inline(always)]
-    pub fn dim(&self) -> usize {
-        PER_BALL * self.z + RING_STATES + 6
-    }
-}
+/// The reduced model's state layout ([`Layout::reduced`]).
+pub type ReducedLayout = Layout;
 
 /// Switches of the reduced model that are not part of a scene (diagnostics and tests).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -118,7 +85,7 @@ pub struct ReducedOptions {
     /// Traction on (default) or frictionless contacts.
     pub traction: bool,
     /// Strips of the traction over the contact ellipse (default [`L3_STRIPS`]): the full
-    /// model's strip traction ([`contact::evaluate_law`]) with the ball's angular velocity
+    /// model's strip traction ([`super::balls::ball_contact::evaluate_law`]) with the ball's angular velocity
     /// constrained to `θ̇ e_x + ω_s ê_s`. 0 is the spec's literal L3 (§6): one point at the
     /// ellipse centre, rolling component only. That variant leaves the ball's motion across the
     /// groove undamped and the cage 0.33 % fast; see the module notes.
@@ -134,6 +101,22 @@ impl Default for ReducedOptions {
     }
 }
 
+/// The L3 model.
+pub struct ReducedModel {
+    /// What it shares with the full model (see [`BallCore`]).
+    core: BallCore,
+    traction: Option<TractionCurve>,
+    /// Strip layout of the traction; `None`: one point, rolling component only (spec-literal).
+    strips: Option<Strips>,
+    /// (cos β, sin β) of the fixed attitude angle.
+    attitude: (f64, f64),
+    /// The Newton solve of the balls' steady rotation behind the attitude (None without
+    /// traction or at zero speed).
+    settle: Option<SteadyReport>,
+    /// Moment of the bearing on the inner ring about x (last RHS) [N m].
+    ring_moment_x: f64,
+}
+
 /// One contact's rolling traction: force on the ball and the contact point relative to the
 /// ball centre.
 #[derive(Debug, Clone, Copy, Default)]
@@ -142,62 +125,40 @@ struct Traction {
     r_cp: V3,
 }
 
-/// The L3 model.
-pub struct ReducedModel {
-    lay: ReducedLayout,
-    z: usize,
-    ball_mass: f64,
-    ball_inertia: f64,
+/// Rolling traction of one closed contact (single point, rolling component only) on a ball of
+/// radius `ball_radius`.
+#[inline(always)]
+fn traction_of(
     ball_radius: f64,
-    pitch_radius: f64,
-    inner: RaceConst,
-    outer: RaceConst,
-    c_br: f64,
-    traction: Option<TractionCurve>,
-    /// Strip layout of the traction; `None`: one point, rolling component only (spec-literal).
-    strips: Option<Strips>,
-    m_ir: f64,
-    m_p: f64,
-    k_py: f64,
-    k_pz: f64,
-    c_py: f64,
-    c_pz: f64,
-    pulse: Option<Pulse>,
-    defect: Option<Defect>,
-    /// Semi-major-axis factor of the spall-edge contact.
-    defect_a_star: f64,
-    inputs: OperatingPoint,
-    /// Reference cage speed ratio ψ̇/Ω.
-    cage_ratio: f64,
-    /// Azimuth of ball 0 at ψ = 0 [rad].
-    theta_start: f64,
-    /// (cos β, sin β) of the fixed attitude angle.
-    attitude: (f64, f64),
-    /// The Newton solve of the balls' steady rotation behind the attitude (None without
-    /// traction or at zero speed).
-    settle: Option<full_model::steady::SteadyReport>,
-    /// The full model's note on the start this one is reduced from ([`Model::start_note`]).
-    start_note: Option<String>,
-    /// Frozen spall halves, blend sides and contact modes, and their switches (as in the
-    /// full model).
-    sw: Switches,
-    /// Normal forces of the last RHS evaluation (inner, outer) [N].
-    q_inner: Vec<f64>,
-    q_outer: Vec<f64>,
-    /// Initial state (the full model's L1 start, reduced).
-    y0: Vec<f64>,
-    /// Scratch derivative for outputs.
-    scratch: Vec<f64>,
-    /// Force of the bearing on the inner ring (last RHS) [N] and its moment about x [N m].
-    ring_force: V3,
-    ring_moment_x: f64,
-    /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
-    held_axial: Option<f64>,
-    /// Coupling mode "motion": the ring translation is prescribed (zero translational
-    /// acceleration; `Simulation` writes the journal's position and velocity into the states).
-    prescribed: bool,
-    /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
-    pass: ContactPass,
+    curve: &TractionCurve,
+    kin: &BallKin,
+    ring: &RingPose,
+    c: &ContactOut,
+) -> Traction {
+    if c.q <= 0.0 {
+        return Traction::default();
+    }
+    let n = scale(c.qn, 1.0 / c.q);
+    // Rolling direction: the ring's circumferential direction at the ball; in a spall the
+    // contact frame turns about c1 with the normal, c2 = n_q × c1.
+    let rr = ring.to_ring(sub(kin.p, ring.p));
+    let inv_rho = 1.0 / (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
+    let c2_ring = ring.to_inertial([0.0, -rr[2] * inv_rho, rr[1] * inv_rho]);
+    let c2 = if c.in_defect {
+        let c1 = cross(c2_ring, n);
+        cross(n, scale(c1, 1.0 / dot(c1, c1).sqrt()))
+    } else {
+        c2_ring
+    };
+    let r_cp = scale(n, ball_radius - 0.5 * c.delta);
+    let v_ball = add(kin.v, cross(kin.omega, r_cp));
+    let v_race = add(ring.v, cross(ring.omega(), sub(add(kin.p, r_cp), ring.p)));
+    let u2 = dot(sub(v_ball, v_race), c2);
+    let f2 = -c.q * curve.kappa_over_u(u2.abs()) * u2;
+    Traction {
+        f: scale(c2, f2),
+        r_cp,
+    }
 }
 
 impl ReducedModel {
@@ -238,53 +199,26 @@ impl ReducedModel {
         } else {
             None
         };
-        let defect = full.defect().cloned();
-        let defect_a_star = defect
-            .as_ref()
-            .map_or(0.0, |d| d.corner_hertz().semi_axis_factors().0);
-        let lay = ReducedLayout { z };
-        let cage_ratio = if inputs.shaft_speed > 0.0 {
-            full.cage_speed() / inputs.shaft_speed
-        } else {
-            0.5 * (1.0 - bearing.gamma(bearing.alpha0))
-        };
+        let mut core = BallCore::with_defect(
+            bearing,
+            inputs,
+            Layout::reduced(z),
+            BallSpin::Fixed { cos: 1.0, sin: 0.0 },
+            false,
+            full.defect().cloned(),
+            scene.pulse.clone(),
+            full.held_axial(),
+        );
+        if inputs.shaft_speed > 0.0 {
+            core.cage_ratio = full.cage_speed() / inputs.shaft_speed;
+        }
         let mut m = Self {
-            lay,
-            z,
-            ball_mass: bearing.ball_mass,
-            ball_inertia: bearing.ball_inertia,
-            ball_radius: bearing.ball_radius(),
-            pitch_radius: 0.5 * bearing.dm,
-            inner: full_model::race_const(bearing, Race::Inner),
-            outer: full_model::race_const(bearing, Race::Outer),
-            c_br: file.contact.c_br,
+            core,
             traction,
             strips: (options.strips > 0).then(|| Strips::new(options.strips)),
-            m_ir: file.inner_ring.mass,
-            m_p: file.pedestal.mass,
-            k_py: file.pedestal.k_y,
-            k_pz: file.pedestal.k_z,
-            c_py: file.pedestal.c_y,
-            c_pz: file.pedestal.c_z,
-            pulse: scene.pulse.clone(),
-            theta_start: full_model::init::choose_theta_start(z, defect.as_ref()),
-            defect,
-            defect_a_star,
-            inputs: *inputs,
-            cage_ratio,
             attitude: (1.0, 0.0),
             settle: None,
-            start_note: None,
-            sw: Switches::new(z),
-            q_inner: vec![0.0; z],
-            q_outer: vec![0.0; z],
-            y0: vec![0.0; lay.dim()],
-            scratch: vec![0.0; lay.dim()],
-            ring_force: [0.0; 3],
             ring_moment_x: 0.0,
-            prescribed: false,
-            held_axial: full.held_axial(),
-            pass: ContactPass::new(z),
         };
         m.reduce_initial_state(&full, bearing);
         Ok(m)
@@ -301,19 +235,20 @@ impl ReducedModel {
         // With traction the full model starts in the balls' steady rotation: the attitude the
         // traction sets, not L1's outer-race control (see the module notes).
         self.settle = full.settle_report();
-        self.start_note = full.start_note().map(str::to_owned);
-        let lay = self.lay;
-        let y = &mut self.y0;
+        self.core.start_note = full.start_note().map(str::to_owned);
+        let lay = self.core.lay;
+        let (z, theta_start) = (self.core.z, self.core.theta_start);
+        let y = &mut self.core.y0;
         y.iter_mut().for_each(|v| *v = 0.0);
         // Spin vectors w_j = ω_b − θ̇ e_x of the full start.
-        let mut spins = Vec::with_capacity(self.z);
+        let mut spins = Vec::with_capacity(z);
         let (mut beta_sum, mut n_beta) = (0.0, 0);
-        for j in 0..self.z {
+        for j in 0..z {
             let (bf, b) = (fl.ball(j), lay.ball(j));
             for k in [BX, BR, BTH, BVX, BVR, BW] {
                 y[b + k] = yf[bf + k];
             }
-            let theta = self.theta_start + TAU * j as f64 / self.z as f64 + yf[bf + BTH];
+            let theta = theta_start + TAU * j as f64 / z as f64 + yf[bf + BTH];
             let (s, c) = theta.sin_cos();
             let er = [0.0, -s, c];
             let w = [yf[bf + 6] - yf[bf + BW], yf[bf + 7], yf[bf + 8]];
@@ -333,6 +268,7 @@ impl ReducedModel {
         };
         let (sb, cb) = beta.sin_cos();
         self.attitude = (cb, sb);
+        self.core.spin = BallSpin::Fixed { cos: cb, sin: sb };
         for (j, (w, er)) in spins.into_iter().enumerate() {
             let es = [cb, -sb * er[1], -sb * er[2]];
             y[lay.ball(j) + BWS] = dot(w, es);
@@ -350,13 +286,18 @@ impl ReducedModel {
         y[lay.phi()] = yf[fl.phi()];
     }
 
+    /// What the model shares with the full one: layout, poses, contacts, modes.
+    pub fn core(&self) -> &BallCore {
+        &self.core
+    }
+
     /// The state layout.
-    pub fn layout(&self) -> ReducedLayout {
-        self.lay
+    pub fn layout(&self) -> Layout {
+        self.core.layout()
     }
 
     /// The solve of the balls' steady rotation (None without traction or at zero speed).
-    pub fn settle_report(&self) -> Option<full_model::steady::SteadyReport> {
+    pub fn settle_report(&self) -> Option<SteadyReport> {
         self.settle
     }
 
@@ -367,121 +308,17 @@ impl ReducedModel {
 
     /// Normal forces of the last evaluation: (inner, outer) per ball \[N\].
     pub fn contact_forces(&self) -> (&[f64], &[f64]) {
-        (&self.q_inner, &self.q_outer)
+        self.core.contact_forces()
     }
 
     /// The spall, if any.
     pub fn defect(&self) -> Option<&Defect> {
-        self.defect.as_ref()
-    }
-
-    #[inline(always)]
-    fn inner_pose(&self, y: &[f64]) -> RingPose {
-        let r = self.lay.ring();
-        RingPose {
-            p: [y[r + RX], y[r + RX + 1], y[r + RX + 2]],
-            v: [y[r + RV], y[r + RV + 1], y[r + RV + 2]],
-            beta: [0.0; 3],
-            beta_rate: [0.0; 3],
-            spin: self.inputs.shaft_speed,
-        }
-    }
-
-    #[inline(always)]
-    fn outer_pose(&self, y: &[f64]) -> RingPose {
-        let p = self.lay.pedestal();
-        RingPose {
-            p: [0.0, y[p + PY], y[p + PZ]],
-            v: [0.0, y[p + PVY], y[p + PVZ]],
-            beta: [0.0; 3],
-            beta_rate: [0.0; 3],
-            spin: 0.0,
-        }
-    }
-
-    /// Ball j's kinematics (angular velocity θ̇ e_x + ω_s ê_s) and its cylindrical triad
-    /// (e_r, e_θ), radius and orbital rate.
-    #[inline(always)]
-    fn ball_kin(&self, y: &[f64], j: usize) -> (BallKin, V3, V3, f64, f64) {
-        let b = self.lay.ball(j);
-        let theta =
-            y[self.lay.psi()] + self.theta_start + TAU * j as f64 / self.z as f64 + y[b + BTH];
-        let (s, c) = theta.sin_cos();
-        let er = [0.0, -s, c];
-        let et = [0.0, -c, -s];
-        let r = self.pitch_radius + y[b + BR];
-        let w = y[b + BW];
-        let ws = y[b + BWS];
-        let (cb, sb) = self.attitude;
-        let (vx, vr) = (y[b + BVX], y[b + BVR]);
-        let kin = BallKin {
-            p: [y[b + BX], r * er[1], r * er[2]],
-            v: [vx, vr * er[1] + r * w * et[1], vr * er[2] + r * w * et[2]],
-            omega: [w + ws * cb, -ws * sb * er[1], -ws * sb * er[2]],
-        };
-        (kin, er, et, r, w)
-    }
-
-    /// Rolling traction of one closed contact (single point, rolling component only).
-    #[inline(always)]
-    fn traction_of(
-        &self,
-        curve: &TractionCurve,
-        kin: &BallKin,
-        ring: &RingPose,
-        c: &ContactOut,
-    ) -> Traction {
-        if c.q <= 0.0 {
-            return Traction::default();
-        }
-        let n = scale(c.qn, 1.0 / c.q);
-        // Rolling direction: the ring's circumferential direction at the ball; in a spall the
-        // contact frame turns about c1 with the normal, c2 = n_q × c1.
-        let rr = ring.to_ring(sub(kin.p, ring.p));
-        let inv_rho = 1.0 / (rr[1] * rr[1] + rr[2] * rr[2]).sqrt();
-        let c2_ring = ring.to_inertial([0.0, -rr[2] * inv_rho, rr[1] * inv_rho]);
-        let c2 = if c.in_defect {
-            let c1 = cross(c2_ring, n);
-            cross(n, scale(c1, 1.0 / dot(c1, c1).sqrt()))
-        } else {
-            c2_ring
-        };
-        let r_cp = scale(n, self.ball_radius - 0.5 * c.delta);
-        let v_ball = add(kin.v, cross(kin.omega, r_cp));
-        let v_race = add(ring.v, cross(ring.omega(), sub(add(kin.p, r_cp), ring.p)));
-        let u2 = dot(sub(v_ball, v_race), c2);
-        let f2 = -c.q * curve.kappa_over_u(u2.abs()) * u2;
-        Traction {
-            f: scale(c2, f2),
-            r_cp,
-        }
-    }
-
-    /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
-    fn theta_bd(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
-        let (kin, _, _, _, w) = self.ball_kin(y, j);
-        let (pose, rate) = match d.ring() {
-            Race::Inner => (self.inner_pose(y), w - self.inputs.shaft_speed),
-            Race::Outer => (self.outer_pose(y), w),
-        };
-        (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
+        self.core.defect()
     }
 
     /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\].
     pub fn hertz_potential(&self, y: &[f64]) -> f64 {
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        let mut e = 0.0;
-        for j in 0..self.z {
-            let (kin, _, _, _, _) = self.ball_kin(y, j);
-            for (pose, race) in [(&inner, &self.inner), (&outer, &self.outer)] {
-                let c = contact::evaluate(&kin, pose, race, self.ball_radius, 0.0, None, None);
-                if c.delta > 0.0 {
-                    e += 0.4 * race.k * c.delta * c.delta * c.delta.sqrt();
-                }
-            }
-        }
-        e
+        self.core.hertz_potential(y)
     }
 
     /// Total mechanical energy \[J\]: ball translation and spin ½Jω_s², inner-ring translation,
@@ -489,27 +326,26 @@ impl ReducedModel {
     /// constant loads. Conserved without traction, damping and spall (the orbital part θ̇ e_x
     /// of the ball's angular velocity is kinematic here and carries no energy of its own).
     pub fn energy(&self, y: &[f64]) -> f64 {
-        let inner = self.inner_pose(y);
-        let mut e = self.hertz_potential(y);
-        for j in 0..self.z {
-            let (kin, _, _, _, _) = self.ball_kin(y, j);
-            let ws = y[self.lay.ball(j) + BWS];
-            e += 0.5 * self.ball_mass * dot(kin.v, kin.v) + 0.5 * self.ball_inertia * ws * ws;
+        let c = &self.core;
+        let inner = c.inner_pose(y);
+        let mut e = c.hertz_potential(y);
+        for j in 0..c.z {
+            let (kin, _, _, _, _) = c.ball_kin(y, j);
+            let ws = y[c.lay.ball(j) + BWS];
+            e += 0.5 * c.ball_mass * dot(kin.v, kin.v) + 0.5 * c.ball_inertia * ws * ws;
         }
-        let p = self.lay.pedestal();
-        e += 0.5 * self.m_ir * dot(inner.v, inner.v)
-            + 0.5 * self.m_p * (y[p + PVY].powi(2) + y[p + PVZ].powi(2))
-            + 0.5 * self.k_py * y[p + PY].powi(2)
-            + 0.5 * self.k_pz * y[p + PZ].powi(2)
-            - (self.inputs.fx * inner.p[0]
-                + self.inputs.fy * inner.p[1]
-                + self.inputs.fz * inner.p[2]);
+        let p = c.lay.pedestal();
+        e += 0.5 * c.m_ir * dot(inner.v, inner.v)
+            + 0.5 * c.m_p * (y[p + PVY].powi(2) + y[p + PVZ].powi(2))
+            + 0.5 * c.k_py * y[p + PY].powi(2)
+            + 0.5 * c.k_pz * y[p + PZ].powi(2)
+            - (c.inputs.fx * inner.p[0] + c.inputs.fy * inner.p[1] + c.inputs.fz * inner.p[2]);
         e
     }
 
     /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
-        (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+        self.core.mean_orbital_speed(y)
     }
 
     /// Bearing friction (drive) torque of the last right-hand side: minus the moment of the
@@ -519,20 +355,18 @@ impl ReducedModel {
     }
 }
 
-super::full::switches::impl_switched_model!(ReducedModel);
-
 impl Model for ReducedModel {
     fn dim(&self) -> usize {
-        self.lay.dim()
+        self.core.lay.dim()
     }
 
     fn start_note(&self) -> Option<String> {
-        self.start_note.clone()
+        self.core.start_note.clone()
     }
 
     fn state_name(&self, i: usize) -> String {
-        use super::full::layout::{ball_state_name, pedestal_state_name, ring_state_name};
-        let (lay, ring, pedestal) = (self.lay, self.lay.ring(), self.lay.pedestal());
+        let lay = self.core.lay;
+        let (ring, pedestal) = (lay.ring(), lay.pedestal());
         match i {
             _ if i < ring => ball_state_name(i / PER_BALL, i % PER_BALL, &["spin rate ω_s"]),
             _ if i < pedestal => ring_state_name(i - ring),
@@ -546,8 +380,9 @@ impl Model for ReducedModel {
     fn nominal(&self, out: &mut [f64]) {
         // As the full model: deflection-scale positions 1e-5 m, velocities 1e-2 m/s, angle
         // deviations 1e-3 rad, orbital rates 100 rad/s, spins 1e3 rad/s.
-        for j in 0..self.z {
-            let b = self.lay.ball(j);
+        let lay = self.core.lay;
+        for j in 0..self.core.z {
+            let b = lay.ball(j);
             out[b + BX] = 1e-5;
             out[b + BR] = 1e-5;
             out[b + BTH] = 1e-3;
@@ -556,65 +391,68 @@ impl Model for ReducedModel {
             out[b + BW] = 100.0;
             out[b + BWS] = 1e3;
         }
-        let r = self.lay.ring();
+        let r = lay.ring();
         for k in 0..3 {
             out[r + RX + k] = 1e-5;
             out[r + RV + k] = 1e-2;
         }
-        let p = self.lay.pedestal();
+        let p = lay.pedestal();
         out[p + PY] = 1e-5;
         out[p + PZ] = 1e-5;
         out[p + PVY] = 1e-2;
         out[p + PVZ] = 1e-2;
-        out[self.lay.psi()] = 1.0;
-        out[self.lay.phi()] = 1.0;
+        out[lay.psi()] = 1.0;
+        out[lay.phi()] = 1.0;
     }
 
     fn initial_state(&self, y: &mut [f64]) {
-        y.copy_from_slice(&self.y0);
+        y.copy_from_slice(&self.core.y0);
     }
 
     fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
-        self.inputs = *inputs;
+        self.core.inputs = *inputs;
         Ok(())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let inner = self.inner_pose(y);
-        let outer = self.outer_pose(y);
-        let psi_rate = self.cage_ratio * self.inputs.shaft_speed;
+        let c = &mut self.core;
+        let inner = c.inner_pose(y);
+        let outer = c.outer_pose(y);
+        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
         let (cb, sb) = self.attitude;
         let mut f_ring: V3 = [0.0; 3];
         let mut m_ring_x = 0.0;
         let mut f_outer: V3 = [0.0; 3];
-        let (m, jb) = (self.ball_mass, self.ball_inertia);
+        let jb = c.ball_inertia;
         let strip_traction = match (&self.traction, &self.strips) {
             (Some(curve), Some(strips)) => Some((curve, strips)),
             _ => None,
         };
         // Every ball's normal contacts first, then the strip traction of all loaded contacts
         // in one batch, then the equations of motion.
-        let mut pass = std::mem::take(&mut self.pass);
-        let (race_in, race_out, _, _) = self.contact_constants();
-        pass.evaluate(
-            self.z,
-            strip_traction,
-            [&inner, &outer],
-            [race_in, race_out],
-            |j| self.ball_kin(y, j),
-            |j, kin, w, slip, grooves, out| {
-                self.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
-            },
-        );
-        for j in 0..self.z {
-            let b = self.lay.ball(j);
+        let mut pass = std::mem::take(&mut c.pass);
+        {
+            let c = &*c;
+            pass.evaluate(
+                c.z,
+                strip_traction,
+                [&inner, &outer],
+                [&c.inner, &c.outer],
+                |j| c.ball_kin(y, j),
+                |j, kin, w, slip, grooves, out| {
+                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
+                },
+            );
+        }
+        for j in 0..c.z {
+            let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
             let (ci, co) = &pass.contacts[j];
-            self.sw.note_stage(t, j, ci, co);
+            c.sw.note_stage(t, j, ci, co);
             // Inside a step the frozen law may give a round-off-small negative force just
             // before a located loss of contact: report it as 0.
-            self.q_inner[j] = ci.q.max(0.0);
-            self.q_outer[j] = co.q.max(0.0);
+            c.q_inner[j] = ci.q.max(0.0);
+            c.q_outer[j] = co.q.max(0.0);
             let (fi, fo, moment) = if strip_traction.is_some() {
                 // Strip traction: the forces include it, the moments are about the ball centre.
                 // Reaction on the inner ring about its axis, as in the full model.
@@ -626,8 +464,8 @@ impl Model for ReducedModel {
             } else {
                 let (ti, to) = match &self.traction {
                     Some(curve) => (
-                        self.traction_of(curve, &kin, &inner, ci),
-                        self.traction_of(curve, &kin, &outer, co),
+                        traction_of(c.ball_radius, curve, &kin, &inner, ci),
+                        traction_of(c.ball_radius, curve, &kin, &outer, co),
                     ),
                     None => (Traction::default(), Traction::default()),
                 };
@@ -642,43 +480,74 @@ impl Model for ReducedModel {
             };
             let f = add(fi, fo);
             let es = [cb, -sb * er[1], -sb * er[2]];
-            let vr = y[b + BVR];
-            dydt[b + BX] = y[b + BVX];
-            dydt[b + BR] = vr;
-            dydt[b + BTH] = w - psi_rate;
-            dydt[b + BVX] = f[0] / m;
-            dydt[b + BVR] = dot(f, er) / m + r * w * w;
-            dydt[b + BW] = (dot(f, et) / m - 2.0 * vr * w) / r;
+            c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
             dydt[b + BWS] = dot(moment, es) / jb;
             // Reactions: −F on the inner ring at the contact point, −F on the outer ring.
             f_ring = sub(f_ring, fi);
             f_outer = sub(f_outer, fo);
         }
-        self.pass = pass;
-        self.ring_force = f_ring;
+        c.pass = pass;
+        c.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
-        let r = self.lay.ring();
-        let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
-        for k in 0..3 {
-            dydt[r + RX + k] = y[r + RV + k];
-            dydt[r + RV + k] = if self.prescribed || (k == 0 && self.held_axial.is_some()) {
-                0.0
-            } else {
-                (ext[k] + f_ring[k]) / self.m_ir
-            };
-        }
-        let p = self.lay.pedestal();
-        let pulse = self.pulse.as_ref().map_or(0.0, |pl| pl.force(t));
-        dydt[p + PY] = y[p + PVY];
-        dydt[p + PZ] = y[p + PVZ];
-        dydt[p + PVY] = (f_outer[1] - self.k_py * y[p + PY] - self.c_py * y[p + PVY]) / self.m_p;
-        dydt[p + PVZ] =
-            (f_outer[2] - self.k_pz * y[p + PZ] - self.c_pz * y[p + PVZ] - pulse) / self.m_p;
-        dydt[self.lay.psi()] = psi_rate;
-        dydt[self.lay.phi()] = self.inputs.shaft_speed;
+        self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
     }
 
-    super::full::switches::switched_model_events!();
+    fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
+        self.core.next_stop(t, t_max)
+    }
 
-    super::full::switches::ball_model_outputs!();
+    fn update_mode(&mut self, t: f64, y: &[f64]) {
+        self.core.update_mode(t, y);
+    }
+
+    fn begin_step(&mut self) {
+        self.core.sw.begin_step();
+    }
+
+    fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
+        self.core.sw.suspect(t_old, t_new)
+    }
+
+    fn event_fired(&mut self, index: usize) {
+        self.core.sw.event_fired(index);
+    }
+
+    fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
+        self.core.diagnose(y)
+    }
+
+    fn checkpoint(&self, b: &mut Vec<f64>) {
+        self.core.checkpoint(b);
+    }
+
+    fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+        self.core.rollback(b)
+    }
+
+    fn n_events(&self) -> usize {
+        self.core.n_events()
+    }
+
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        self.core.events(y, g);
+    }
+
+    fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+        let mut dydt = std::mem::take(&mut self.core.scratch);
+        self.rhs(t, y, &mut dydt);
+        self.core.outputs(y, &dydt, self.friction_torque(), o);
+        self.core.scratch = dydt;
+    }
+
+    fn cage_speed(&self) -> f64 {
+        self.core.cage_speed()
+    }
+
+    fn ring_states(&self) -> Option<RingStates> {
+        Some(self.core.ring_states())
+    }
+
+    fn set_prescribed_ring(&mut self, on: bool) {
+        self.core.prescribed = on;
+    }
 }

@@ -27,37 +27,19 @@
 //! from the run's parameters, so the rows do not depend on the number of threads; only their
 //! order in the file and the `wall_s` column do.
 
+mod error;
 pub mod metrics;
 pub mod results;
 pub mod spec;
 
+pub use error::SweepError;
 pub use metrics::{evaluate, metric_columns};
 pub use results::{canonical_rows, ResultsFile};
 pub use spec::{known_keys, run_id, Axis, AxisValue, Keep, Run, Sweep};
 
-use std::fmt;
 use std::path::Path;
 use std::sync::Mutex;
 use std::time::Instant;
-
-/// A sweep-level error (bad sweep file, unusable output folder); failed runs are not errors.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SweepError(pub String);
-
-impl SweepError {
-    /// An error with a message.
-    pub fn new(m: impl Into<String>) -> Self {
-        Self(m.into())
-    }
-}
-
-impl fmt::Display for SweepError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for SweepError {}
 
 /// How to execute a sweep.
 #[derive(Debug, Clone, Default)]

@@ -1,53 +1,27 @@
 //! Initial state of the full model from the quasi-static solution (spec §7).
 
-use super::layout::*;
-use super::FullModel;
-use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
-
-use crate::operating::OperatingPoint;
-use crate::simulation::SimError;
+use crate::models::balls::layout::*;
+use crate::models::balls::BallCore;
+use crate::models::{solve_l1_held, SimError};
 use std::f64::consts::TAU;
 
-/// A representative ball load for the spall's blend length "b": the mean load of a ball carrying
-/// the axial load or the peak load of the radial load zone (Stribeck), at least 10 N.
-pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
-    let z = bearing.z as f64;
-    let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
-    let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;
-    axial.max(radial).max(10.0)
-}
-
-/// Ball 0's start azimuth: 0 (where L1 puts it), or an offset when that puts a ball within
-/// θ_e + 0.02 rad of the spall (§7 step 4).
-pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
-    let Some(d) = defect else { return 0.0 };
-    let clear = d.half_angle() + 0.02;
-    let spacing = TAU / z as f64;
-    let theta0 = match d.ring() {
-        Race::Outer | Race::Inner => d.theta0(),
-    };
-    [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
-        .into_iter()
-        .find(|&s| {
-            (0..z).all(|j| crate::defect::wrap(s + spacing * j as f64 - theta0).abs() > clear)
-        })
-        .unwrap_or(0.5 * spacing)
-}
-
-/// Fills `m.y0` and the reference cage ratio from L1 at the model's inputs (`l1`, if given,
-/// must be the L1 solution at those inputs; otherwise it is solved here).
+/// Fills the full model's initial state `m.y0` and the reference cage ratio from L1 at the
+/// model's inputs (`l1`, if given, must be the L1 solution at those inputs; otherwise it is
+/// solved here), with the pedestal at rest when `centred`, else at its static deflection.
+/// Returns each ball's orbital rate under L1's outer-race control.
 pub fn initial_state(
-    m: &mut FullModel,
+    m: &mut BallCore,
+    centred: bool,
     bearing: &Bearing,
     l1: Option<&crate::quasi_static::QuasiStatic>,
-) -> Result<(), SimError> {
+) -> Result<Vec<f64>, SimError> {
     let inputs = m.inputs;
     let solved;
     let qs = match l1 {
         Some(qs) => qs,
         None => {
-            solved = super::super::solve_l1_held(
+            solved = solve_l1_held(
                 bearing,
                 &inputs,
                 m.held_axial,
@@ -66,7 +40,7 @@ pub fn initial_state(
         0.0
     };
     // Each loaded ball's own outer-race-control rate, where the steady-rotation solve starts.
-    m.l1_orbit = qs
+    let l1_orbit = qs
         .balls
         .iter()
         .take(m.z)
@@ -85,7 +59,7 @@ pub fn initial_state(
     // The pedestal at its static deflection, or at rest for a bearing taken on its own (the
     // traction solve: the balls orbit about the inertial axis, so a pedestal deflection would
     // put them on an orbit eccentric to the rings).
-    let (yp0, zp0) = if m.centred {
+    let (yp0, zp0) = if centred {
         (0.0, 0.0)
     } else {
         (inputs.fy / m.k_py, inputs.fz / m.k_pz)
@@ -121,5 +95,5 @@ pub fn initial_state(
         y[b + BOM + 1] = -wr * sb * er[1];
         y[b + BOM + 2] = -wr * sb * er[2];
     }
-    Ok(())
+    Ok(l1_orbit)
 }

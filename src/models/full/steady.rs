@@ -38,10 +38,22 @@
 // The balls advance in lockstep through index-parallel per-ball arrays.
 #![allow(clippy::needless_range_loop)]
 
-use super::layout::*;
-use super::FullModel;
+use crate::models::balls::ball_contact::ContactOut;
+use crate::models::balls::layout::*;
+use crate::models::balls::BallCore;
 use crate::models::Model;
 use std::fmt;
+
+/// A model whose balls' steady rotation can be solved: its balls have the full model's free
+/// spin (three angular-velocity states each). The full model is one.
+pub trait SteadyBalls: Model {
+    /// The ball-level core (layout, inputs, ball constants).
+    fn balls(&self) -> &BallCore;
+    /// Each ball's orbital rate under L1's outer-race control [rad/s] (the starting guess).
+    fn l1_orbit(&self) -> &[f64];
+    /// Both contacts of ball j at state y (inner, outer), traction included.
+    fn ball_contacts(&self, y: &[f64], j: usize) -> (ContactOut, ContactOut);
+}
 
 /// How the balls' orbital rates are tied (see the module notes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -171,13 +183,13 @@ struct Work {
     rhs: usize,
 }
 
-fn spin_idx(m: &FullModel, j: usize) -> [usize; 3] {
-    let b = m.lay.ball(j);
+fn spin_idx<M: SteadyBalls>(m: &M, j: usize) -> [usize; 3] {
+    let b = m.balls().lay.ball(j);
     [b + BOM, b + BOM + 1, b + BOM + 2]
 }
 
 /// Spin residuals ω̇ − θ̇ e_x × ω of every ball and their orbital accelerations θ̈ (one RHS).
-fn residuals(m: &mut FullModel, y: &[f64], w: &mut Work, out: Out) {
+fn residuals<M: SteadyBalls>(m: &mut M, y: &[f64], w: &mut Work, out: Out) {
     m.rhs(0.0, y, &mut w.d);
     w.rhs += 1;
     let target = match out {
@@ -185,7 +197,7 @@ fn residuals(m: &mut FullModel, y: &[f64], w: &mut Work, out: Out) {
         Out::Trial => &mut w.rt,
     };
     for (j, rj) in target.iter_mut().enumerate() {
-        let b = m.lay.ball(j);
+        let b = m.balls().lay.ball(j);
         let th = y[b + BW];
         // θ̇ e_x × ω = θ̇ (0, −ω_z, ω_y).
         *rj = [
@@ -208,13 +220,13 @@ fn norm3(v: &[f64; 3]) -> f64 {
 
 /// The spin Jacobian ∂r/∂ω of every ball at `y` (residuals in `w.r`), one column for every
 /// ball per right-hand side.
-fn jacobian(m: &mut FullModel, y: &mut [f64], w: &mut Work) {
+fn jacobian<M: SteadyBalls>(m: &mut M, y: &mut [f64], w: &mut Work) {
     let z = w.r.len();
     w.base.copy_from_slice(&w.r);
     for k in 0..3 {
         for j in 0..z {
             let i = spin_idx(m, j)[k];
-            w.h[j] = 1e-7 * (y[i].abs() + y[m.lay.ball(j) + BW].abs()).max(1.0);
+            w.h[j] = 1e-7 * (y[i].abs() + y[m.balls().lay.ball(j) + BW].abs()).max(1.0);
             y[i] += w.h[j];
         }
         residuals(m, y, w, Out::Trial);
@@ -235,8 +247,8 @@ fn jacobian(m: &mut FullModel, y: &mut [f64], w: &mut Work) {
 /// A step is kept only if it lowers the ball's residual (2-norm); otherwise it is undone and
 /// Δτ cut by 4, so a ball whose Newton step fails falls back on its own damped rotation. The
 /// Jacobian is formed again only after a kept step.
-fn solve_spins(
-    m: &mut FullModel,
+fn solve_spins<M: SteadyBalls>(
+    m: &mut M,
     y: &mut [f64],
     active: &[bool],
     w: &mut Work,
@@ -291,7 +303,7 @@ fn solve_spins(
             }
             if let Some(mut s) = step {
                 // No step longer than a tenth of the spin scale.
-                let cap = 0.1 * w.scale[j] / m.inputs.shaft_speed;
+                let cap = 0.1 * w.scale[j] / m.balls().inputs.shaft_speed;
                 let len = norm3(&s);
                 if len > cap {
                     s.iter_mut().for_each(|v| *v *= cap / len);
@@ -330,7 +342,7 @@ fn solve_spins(
     // One clean evaluation at the final rates.
     residuals(m, y, w, Out::Base);
     for j in 0..z {
-        orbit[j] = w.d[m.lay.ball(j) + BW];
+        orbit[j] = w.d[m.balls().lay.ball(j) + BW];
         w.unsettled[j] = false;
     }
     let open: Vec<usize> = (0..z).filter(|&j| active[j] && !converged(w, j)).collect();
@@ -348,8 +360,14 @@ fn solve_spins(
 /// from its rolling speed can settle into a spin cycle instead): their orbital acceleration is
 /// its mean over the second half of [`FLOW_REVS`] shaft revolutions of their own rotation,
 /// followed by linearly implicit Euler steps. `w.spread[j]` gets half its range there.
-fn average_flow(m: &mut FullModel, y: &mut [f64], w: &mut Work, orbit: &mut [f64], open: &[usize]) {
-    let dt = FLOW_REVS * std::f64::consts::TAU / m.inputs.shaft_speed / FLOW_STEPS as f64;
+fn average_flow<M: SteadyBalls>(
+    m: &mut M,
+    y: &mut [f64],
+    w: &mut Work,
+    orbit: &mut [f64],
+    open: &[usize],
+) {
+    let dt = FLOW_REVS * std::f64::consts::TAU / m.balls().inputs.shaft_speed / FLOW_STEPS as f64;
     let mut sum = vec![0.0; orbit.len()];
     let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); orbit.len()];
     for step in 0..FLOW_STEPS {
@@ -370,7 +388,7 @@ fn average_flow(m: &mut FullModel, y: &mut [f64], w: &mut Work, orbit: &mut [f64
         residuals(m, y, w, Out::Base);
         if step >= FLOW_STEPS / 2 {
             for &j in open {
-                let g = w.d[m.lay.ball(j) + BW];
+                let g = w.d[m.balls().lay.ball(j) + BW];
                 sum[j] += g;
                 range[j] = (range[j].0.min(g), range[j].1.max(g));
             }
@@ -521,16 +539,16 @@ struct Solved {
 }
 
 impl Solved {
-    fn save(&mut self, m: &FullModel, y: &[f64]) {
+    fn save<M: SteadyBalls>(&mut self, m: &M, y: &[f64]) {
         for j in 0..self.rate.len() {
-            self.rate[j] = y[m.lay.ball(j) + BW];
+            self.rate[j] = y[m.balls().lay.ball(j) + BW];
             self.spin[j] = spin_idx(m, j).map(|i| y[i]);
         }
     }
 
-    fn restore(&self, m: &FullModel, y: &mut [f64]) {
+    fn restore<M: SteadyBalls>(&self, m: &M, y: &mut [f64]) {
         for j in 0..self.rate.len() {
-            y[m.lay.ball(j) + BW] = self.rate[j];
+            y[m.balls().lay.ball(j) + BW] = self.rate[j];
             for (k, i) in spin_idx(m, j).into_iter().enumerate() {
                 y[i] = self.spin[j][k];
             }
@@ -545,8 +563,8 @@ impl Solved {
 /// `average`, a ball that still does not settle is taken at the target with its orbital
 /// acceleration averaged over its own motion ([`average_flow`]); without, Err(ball).
 #[allow(clippy::too_many_arguments)]
-fn move_to(
-    m: &mut FullModel,
+fn move_to<M: SteadyBalls>(
+    m: &mut M,
     y: &mut [f64],
     active: &[bool],
     w: &mut Work,
@@ -561,13 +579,13 @@ fn move_to(
     for attempt in 1.. {
         for j in (0..active.len()).filter(|&j| active[j]) {
             let from = solved.rate[j];
-            y[m.lay.ball(j) + BW] = from + f * (target[j] - from);
+            y[m.balls().lay.ball(j) + BW] = from + f * (target[j] - from);
         }
         let exhausted = f <= 0.125 || attempt >= MOVE_ATTEMPTS;
         let last_try = average && exhausted;
         if last_try {
             for j in (0..active.len()).filter(|&j| active[j]) {
-                y[m.lay.ball(j) + BW] = target[j];
+                y[m.balls().lay.ball(j) + BW] = target[j];
             }
         }
         match solve_spins(m, y, active, w, accel, last_try) {
@@ -599,15 +617,15 @@ fn move_to(
 /// default each ball's own rate when free, their mean weighted by the inner contact load when
 /// caged). Balls that do not touch both races keep their rates (caged: they take the common
 /// one).
-pub fn steady_rotation(
-    m: &mut FullModel,
+pub fn steady_rotation<M: SteadyBalls>(
+    m: &mut M,
     y: &mut [f64],
     orbit: Orbit,
     guess: Option<f64>,
 ) -> Result<SteadyReport, SteadyError> {
-    let z = m.z;
-    let omega = m.inputs.shaft_speed;
-    let lay = m.lay;
+    let z = m.balls().z;
+    let omega = m.balls().inputs.shaft_speed;
+    let lay = m.balls().lay;
     let q_inner: Vec<f64> = (0..z)
         .map(|j| {
             let (ci, co) = m.ball_contacts(y, j);
@@ -644,8 +662,8 @@ pub fn steady_rotation(
     // Orbital inertia m r² of each ball (the caged balance's weights).
     let inertia: Vec<f64> = (0..z)
         .map(|j| {
-            let r = m.pitch_radius + y[lay.ball(j) + BR];
-            m.ball_mass * r * r
+            let r = m.balls().pitch_radius + y[lay.ball(j) + BR];
+            m.balls().ball_mass * r * r
         })
         .collect();
     let spin_error = |w: &Work, y: &[f64], j: usize| SteadyError::Spin {
@@ -657,7 +675,7 @@ pub fn steady_rotation(
     // The spins at the balls' own outer-race-control rates first (where L1's spins nearly
     // balance): the base of every move.
     for j in (0..z).filter(|&j| active[j]) {
-        y[lay.ball(j) + BW] = m.l1_orbit[j];
+        y[lay.ball(j) + BW] = m.l1_orbit()[j];
     }
     let mut solved = Solved {
         rate: vec![0.0; z],

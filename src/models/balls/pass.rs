@@ -1,10 +1,10 @@
 //! The contacts of one RHS evaluation of a per-ball model (full or reduced), in stages: every
-//! ball's kinematics and normal contacts ([`contact::evaluate_normal`]), then the strip
+//! ball's kinematics and normal contacts ([`ball_contact::evaluate_normal`]), then the strip
 //! traction of all loaded contacts in one [`TractionBatch`], which lets the independent
 //! contacts overlap. The models then read each ball's frame and finished contacts. The buffers
 //! are sized once per model; an evaluation never allocates.
 
-use super::contact::{
+use super::ball_contact::{
     self, BallKin, ContactOut, GroovePos, RaceConst, RingPose, SlipField, Strips, TractionBatch, V3,
 };
 use crate::contact::traction::TractionCurve;
@@ -16,7 +16,7 @@ pub type BallFrame = (BallKin, V3, V3, f64, f64);
 /// The slip field and frame (n, c1, c2) of a loaded contact, where traction is wanted.
 pub type Loaded = (SlipField, [V3; 3]);
 
-/// One contact from [`contact::evaluate_normal`]: the contact and, where loaded and traction
+/// One contact from [`ball_contact::evaluate_normal`]: the contact and, where loaded and traction
 /// is wanted, its slip field and frame.
 pub type Normal = (ContactOut, Option<Loaded>);
 
@@ -50,7 +50,7 @@ impl ContactPass {
 
     /// Evaluates the contacts of balls `0..z` with the (inner, outer) rings `rings` and race
     /// constants `races`: `frame(j)` gives ball j's frame; then every ball's place in both
-    /// grooves ([`contact::groove_pos`]), for all balls at once; then `normals(j, kin, w, slip,
+    /// grooves ([`ball_contact::groove_pos`]), for all balls at once; then `normals(j, kin, w, slip,
     /// grooves, out)` writes ball j's (inner, outer) normal contacts into `out` and returns the
     /// slip fields of the loaded ones when `slip` (traction on). The strip traction of every
     /// loaded contact follows in one batch.
@@ -78,8 +78,8 @@ impl ContactPass {
         }
         for (g, f) in self.grooves[..z].iter_mut().zip(&self.frames[..z]) {
             *g = [
-                contact::groove_pos(f.0.p, rings[0], races[0]),
-                contact::groove_pos(f.0.p, rings[1], races[1]),
+                ball_contact::groove_pos(f.0.p, rings[0], races[0]),
+                ball_contact::groove_pos(f.0.p, rings[1], races[1]),
             ];
         }
         for j in 0..z {
@@ -101,7 +101,7 @@ impl ContactPass {
                 } else {
                     &mut pair.1
                 };
-                contact::apply_traction(c, fr, sums);
+                ball_contact::apply_traction(c, fr, sums);
             });
         }
     }

@@ -1,4 +1,5 @@
-//! State layout of the full model (spec §1.2), with deflection-scale states as deviations
+//! State layout of the ball-level models: the full model's (spec §1.2) and the reduced model's
+//! ([`Layout::reduced`]), which shares its offsets. The full model's, with deflection-scale states as deviations
 //! (solvers.md): ball radius relative to the pitch radius, ball azimuth relative to a reference
 //! cage angle ψ that turns at a constant rate.
 //!
@@ -32,42 +33,72 @@ pub const PZ: usize = 1;
 pub const PVY: usize = 2;
 pub const PVZ: usize = 3;
 
-/// Index arithmetic for a bearing with `z` balls.
+/// States of the reduced model's ball block: the full model's x, r, θ, ẋ, ṙ, θ̇ and one spin
+/// rate ω_s at `BOM`.
+pub const REDUCED_PER_BALL: usize = 7;
+/// States of the full model's inner-ring block (translation and tilt).
+pub const RING_STATES: usize = 10;
+/// States of the reduced model's inner-ring block (translation only).
+pub const REDUCED_RING_STATES: usize = 6;
+
+/// Index arithmetic for a bearing with `z` balls, `per_ball` states per ball and `ring_len`
+/// states in the inner-ring block (the full model's [`Layout::full`], the reduced model's
+/// [`Layout::reduced`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Layout {
     pub z: usize,
+    pub per_ball: usize,
+    pub ring_len: usize,
 }
 
 impl Layout {
+    /// The full model's layout (see the module documentation).
+    pub fn full(z: usize) -> Self {
+        Self {
+            z,
+            per_ball: PER_BALL,
+            ring_len: RING_STATES,
+        }
+    }
+    /// The reduced model's layout: per ball j (7 states from `7 j`) x, r, θ, ẋ, ṙ, θ̇, ω_s;
+    /// the inner ring (6): x, y, z, ẋ, ẏ, ż; then the pedestal and the two angles as in the
+    /// full model.
+    pub fn reduced(z: usize) -> Self {
+        Self {
+            z,
+            per_ball: REDUCED_PER_BALL,
+            ring_len: REDUCED_RING_STATES,
+        }
+    }
     /// First state of ball j.
     #[inline(always)]
     pub fn ball(&self, j: usize) -> usize {
-        PER_BALL * j
+        self.per_ball * j
     }
     /// First state of the inner ring.
     #[inline(always)]
     pub fn ring(&self) -> usize {
-        PER_BALL * self.z
+        self.per_ball * self.z
     }
     /// First state of the pedestal.
     #[inline(always)]
     pub fn pedestal(&self) -> usize {
-        PER_BALL * self.z + 10
+        self.per_ball * self.z + self.ring_len
     }
     /// Reference cage angle ψ.
     #[inline(always)]
     pub fn psi(&self) -> usize {
-        PER_BALL * self.z + 14
+        self.pedestal() + 4
     }
     /// Shaft angle φ.
     #[inline(always)]
     pub fn phi(&self) -> usize {
-        PER_BALL * self.z + 15
+        self.pedestal() + 5
     }
     /// Number of states.
     #[inline(always)]
     pub fn dim(&self) -> usize {
-        PER_BALL * self.z + 16
+        self.pedestal() + 6
     }
 }
 

@@ -1,8 +1,8 @@
-//! One ball–race contact of the full model: geometry with changing contact angle (spec §2.2),
+//! One ball–race contact of the ball-level models (full and reduced): geometry with changing contact angle (spec §2.2),
 //! Hertz force with contact damping (C6), the spall's three effects (§4.4–4.6) and strip
 //! traction (§3.1–3.4). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
-use crate::config::StripRule;
+use crate::config::{StripRule, MAX_STRIPS};
 use crate::contact::traction::TractionCurve;
 use crate::defect::Defect;
 
@@ -37,9 +37,6 @@ pub fn add(a: V3, b: V3) -> V3 {
 pub fn scale(a: V3, s: f64) -> V3 {
     [a[0] * s, a[1] * s, a[2] * s]
 }
-
-/// Maximum number of traction strips.
-pub const MAX_STRIPS: usize = 32;
 
 /// Pose and motion of a ring (spec §1.1: small tilts, non-spinning frame, spin rate separate).
 #[derive(Debug, Clone, Copy)]

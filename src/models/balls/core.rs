@@ -1,0 +1,642 @@
+//! The part of a ball-level model (full L4, reduced L3) that does not depend on how the balls
+//! spin: [`BallCore`] holds the bearing's constants, the inputs, the spall and the frozen
+//! modes, computes the ring poses, each ball's kinematics and contacts, the event functions
+//! and the mode update, and fills the outputs. A model contains one and delegates to it; it
+//! keeps only its equations of motion and what is its own (the full model's ring tilt and
+//! traction options, the reduced model's fixed spin axis).
+
+use super::ball_contact::{
+    self, dot, BallKin, ContactOut, DefectView, GroovePos, Law, RaceConst, RingPose, V3,
+};
+use super::layout::{
+    Layout, BOM, BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RBY, RBZ, RV, RWY, RWZ, RX,
+};
+use super::pass::{BallFrame, ContactPass, Loaded, Normal};
+use super::switches::{contact_event, Switches};
+use crate::defect::{Defect, DefectSpec};
+use crate::geometry::{Bearing, Race};
+use crate::models::{out, RingStates, SimError};
+use crate::operating::OperatingPoint;
+use crate::scene::Pulse;
+use std::f64::consts::TAU;
+
+/// How a ball's angular velocity follows from its states.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BallSpin {
+    /// Three states ω_x, ω_y, ω_z at offset `BOM` of the ball's block (the full model).
+    Free,
+    /// One spin rate ω_s at offset `BOM` about the axis `cos β e_x − sin β e_r(θ)` with the
+    /// fixed attitude (cos β, sin β): ω = θ̇ e_x + ω_s ê_s (the reduced model).
+    Fixed { cos: f64, sin: f64 },
+}
+
+/// Per-race constants from the bearing (spec §2.1, §2.3, C7).
+pub fn race_const(b: &Bearing, race: Race) -> RaceConst {
+    let (xg, rg) = b.groove_centre(race);
+    let f = b.f(race);
+    let e = (f - 0.5) * b.d;
+    // groove_centre moves the inner circle by the play; keep the touch distance e.
+    RaceConst {
+        xg,
+        rg,
+        e: match race {
+            Race::Inner => e - b.clearance,
+            Race::Outer => e,
+        }
+        .max(1e-9),
+        k: b.k(race),
+        k_cbrt: b.k(race).cbrt(),
+        a_star: b.hertz(race).semi_axis_factors().0,
+        rs: 2.0 * f * b.d / (2.0 * f + 1.0),
+        sign: match race {
+            Race::Inner => -1.0,
+            Race::Outer => 1.0,
+        },
+    }
+}
+
+/// A representative ball load for the spall's blend length "b": the mean load of a ball carrying
+/// the axial load or the peak load of the radial load zone (Stribeck), at least 10 N.
+pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
+    let z = bearing.z as f64;
+    let axial = inputs.fx.abs() / (z * bearing.alpha0.sin().max(0.1));
+    let radial = 5.0 * inputs.fy.hypot(inputs.fz) / z;
+    axial.max(radial).max(10.0)
+}
+
+/// Ball 0's start azimuth: 0 (where L1 puts it), or an offset when that puts a ball within
+/// θ_e + 0.02 rad of the spall (§7 step 4).
+pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
+    let Some(d) = defect else { return 0.0 };
+    let clear = d.half_angle() + 0.02;
+    let spacing = TAU / z as f64;
+    let theta0 = match d.ring() {
+        Race::Outer | Race::Inner => d.theta0(),
+    };
+    [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
+        .into_iter()
+        .find(|&s| {
+            (0..z).all(|j| crate::defect::wrap(s + spacing * j as f64 - theta0).abs() > clear)
+        })
+        .unwrap_or(0.5 * spacing)
+}
+
+/// What the ball-level models share (see the module documentation).
+pub struct BallCore {
+    pub(crate) lay: Layout,
+    pub(crate) z: usize,
+    pub(crate) spin: BallSpin,
+    /// The inner ring tilts (states `RBY` … `RWZ` of its block).
+    pub(crate) tilt: bool,
+    pub(crate) ball_mass: f64,
+    pub(crate) ball_inertia: f64,
+    pub(crate) ball_radius: f64,
+    pub(crate) pitch_radius: f64,
+    pub(crate) inner: RaceConst,
+    pub(crate) outer: RaceConst,
+    pub(crate) c_br: f64,
+    pub(crate) m_ir: f64,
+    pub(crate) m_p: f64,
+    pub(crate) k_py: f64,
+    pub(crate) k_pz: f64,
+    pub(crate) c_py: f64,
+    pub(crate) c_pz: f64,
+    pub(crate) pulse: Option<Pulse>,
+    pub(crate) defect: Option<Defect>,
+    /// Semi-major-axis factor of the spall-edge contact.
+    pub(crate) defect_a_star: f64,
+    pub(crate) inputs: OperatingPoint,
+    /// Reference cage speed ratio ψ̇/Ω.
+    pub(crate) cage_ratio: f64,
+    /// Azimuth of ball 0 at ψ = 0 [rad].
+    pub(crate) theta_start: f64,
+    /// Why the start is not the one the model normally takes ([`crate::models::Model::start_note`]).
+    pub(crate) start_note: Option<String>,
+    /// Frozen spall halves, blend sides and contact modes, and their switches.
+    pub(crate) sw: Switches,
+    /// Normal forces of the last RHS evaluation (inner, outer) [N].
+    pub(crate) q_inner: Vec<f64>,
+    pub(crate) q_outer: Vec<f64>,
+    /// Initial state.
+    pub(crate) y0: Vec<f64>,
+    /// Scratch derivative for outputs.
+    pub(crate) scratch: Vec<f64>,
+    /// Force of the bearing on the inner ring (last RHS) [N].
+    pub(crate) ring_force: V3,
+    /// Coupling mode "motion": the ring translation is prescribed (zero translational
+    /// acceleration; the simulation writes the journal's position and velocity into the states).
+    pub(crate) prescribed: bool,
+    /// A located ring's held axial displacement \[m\] (its axial acceleration is zero).
+    pub(crate) held_axial: Option<f64>,
+    /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
+    pub(crate) pass: ContactPass,
+}
+
+impl BallCore {
+    /// The core for `bearing` at `inputs` with state layout `lay`, the spall of `defect` (its
+    /// blend length from [`reference_ball_load`]), ball 0 placed clear of it
+    /// ([`choose_theta_start`]), the cage ratio of outer-race control at α0 until the model
+    /// sets its own, and the initial state zero.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+        lay: Layout,
+        spin: BallSpin,
+        tilt: bool,
+        defect: Option<&DefectSpec>,
+        pulse: Option<Pulse>,
+        held_axial: Option<f64>,
+    ) -> Result<Self, SimError> {
+        let defect = match defect {
+            Some(spec) => Some(Defect::new(
+                spec,
+                bearing,
+                reference_ball_load(bearing, inputs),
+            )?),
+            None => None,
+        };
+        Ok(Self::with_defect(
+            bearing, inputs, lay, spin, tilt, defect, pulse, held_axial,
+        ))
+    }
+
+    /// [`BallCore::new`] with the spall already built.
+    #[allow(clippy::too_many_arguments)]
+    pub fn with_defect(
+        bearing: &Bearing,
+        inputs: &OperatingPoint,
+        lay: Layout,
+        spin: BallSpin,
+        tilt: bool,
+        defect: Option<Defect>,
+        pulse: Option<Pulse>,
+        held_axial: Option<f64>,
+    ) -> Self {
+        let file = &bearing.file;
+        let z = bearing.z;
+        let defect_a_star = defect
+            .as_ref()
+            .map_or(0.0, |d| d.corner_hertz().semi_axis_factors().0);
+        let theta_start = choose_theta_start(z, defect.as_ref());
+        Self {
+            lay,
+            z,
+            spin,
+            tilt,
+            ball_mass: bearing.ball_mass,
+            ball_inertia: bearing.ball_inertia,
+            ball_radius: bearing.ball_radius(),
+            pitch_radius: 0.5 * bearing.dm,
+            inner: race_const(bearing, Race::Inner),
+            outer: race_const(bearing, Race::Outer),
+            c_br: file.contact.c_br,
+            m_ir: file.inner_ring.mass,
+            m_p: file.pedestal.mass,
+            k_py: file.pedestal.k_y,
+            k_pz: file.pedestal.k_z,
+            c_py: file.pedestal.c_y,
+            c_pz: file.pedestal.c_z,
+            pulse,
+            defect,
+            defect_a_star,
+            inputs: *inputs,
+            cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
+            theta_start,
+            start_note: None,
+            sw: Switches::new(z),
+            q_inner: vec![0.0; z],
+            q_outer: vec![0.0; z],
+            y0: vec![0.0; lay.dim()],
+            scratch: vec![0.0; lay.dim()],
+            ring_force: [0.0; 3],
+            prescribed: false,
+            held_axial,
+            pass: ContactPass::new(z),
+        }
+    }
+
+    /// The state layout.
+    pub fn layout(&self) -> Layout {
+        self.lay
+    }
+
+    /// The frozen modes and their switches.
+    pub fn switches(&self) -> &Switches {
+        &self.sw
+    }
+
+    /// The spall, if any.
+    pub fn defect(&self) -> Option<&Defect> {
+        self.defect.as_ref()
+    }
+
+    /// Normal forces of the last evaluation: (inner, outer) per ball \[N\].
+    pub fn contact_forces(&self) -> (&[f64], &[f64]) {
+        (&self.q_inner, &self.q_outer)
+    }
+
+    /// The axial displacement a located inner ring is held at (None: the axial load acts).
+    pub fn held_axial(&self) -> Option<f64> {
+        self.held_axial
+    }
+
+    /// True when ball j is inside the spall zone |θ_bd| < θ_e (as of the last mode update).
+    pub fn in_defect_zone(&self, j: usize) -> bool {
+        j < self.z && self.sw.side(j) != 0.0
+    }
+
+    /// Pose of the inner ring at state y (tilted if the model has the tilt states).
+    #[inline(always)]
+    pub fn inner_pose(&self, y: &[f64]) -> RingPose {
+        let r = self.lay.ring();
+        let (beta, beta_rate) = if self.tilt {
+            ([0.0, y[r + RBY], y[r + RBZ]], [0.0, y[r + RWY], y[r + RWZ]])
+        } else {
+            ([0.0; 3], [0.0; 3])
+        };
+        RingPose {
+            p: [y[r + RX], y[r + RX + 1], y[r + RX + 2]],
+            v: [y[r + RV], y[r + RV + 1], y[r + RV + 2]],
+            beta,
+            beta_rate,
+            spin: self.inputs.shaft_speed,
+        }
+    }
+
+    /// Pose of the outer ring (the pedestal) at state y.
+    #[inline(always)]
+    pub fn outer_pose(&self, y: &[f64]) -> RingPose {
+        let p = self.lay.pedestal();
+        RingPose {
+            p: [0.0, y[p + PY], y[p + PZ]],
+            v: [0.0, y[p + PVY], y[p + PVZ]],
+            beta: [0.0; 3],
+            beta_rate: [0.0; 3],
+            spin: 0.0,
+        }
+    }
+
+    /// Ball j's kinematics and its cylindrical triad (e_r, e_θ), radius and orbital rate.
+    #[inline(always)]
+    pub fn ball_kin(&self, y: &[f64], j: usize) -> BallFrame {
+        let b = self.lay.ball(j);
+        let theta =
+            y[self.lay.psi()] + self.theta_start + TAU * j as f64 / self.z as f64 + y[b + BTH];
+        let (s, c) = theta.sin_cos();
+        let er = [0.0, -s, c];
+        let et = [0.0, -c, -s];
+        let r = self.pitch_radius + y[b + BR];
+        let w = y[b + BW];
+        let (vx, vr) = (y[b + BVX], y[b + BVR]);
+        let omega = match self.spin {
+            BallSpin::Free => [y[b + BOM], y[b + BOM + 1], y[b + BOM + 2]],
+            BallSpin::Fixed { cos: cb, sin: sb } => {
+                let ws = y[b + BOM];
+                [w + ws * cb, -ws * sb * er[1], -ws * sb * er[2]]
+            }
+        };
+        let kin = BallKin {
+            p: [y[b + BX], r * er[1], r * er[2]],
+            v: [vx, vr * er[1] + r * w * et[1], vr * er[2] + r * w * et[2]],
+            omega,
+        };
+        (kin, er, et, r, w)
+    }
+
+    /// Ball-to-spall angle θ_bd of ball j and its rate (uses the defective ring's frame).
+    pub fn theta_bd(&self, d: &Defect, y: &[f64], j: usize) -> (f64, f64) {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let (pose, rate) = match d.ring() {
+            Race::Inner => (self.inner_pose(y), w - self.inputs.shaft_speed),
+            Race::Outer => (self.outer_pose(y), w),
+        };
+        (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
+    }
+
+    /// The spall as seen by ball j on `race` in the frozen interval (orbital rate `w`).
+    #[inline(always)]
+    pub fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+        let d = self.defect.as_ref()?;
+        if d.ring() != race || self.sw.side(j) == 0.0 {
+            return None;
+        }
+        // θ_bd turns with the ball, less the shaft for an inner-race spall.
+        let rate = match race {
+            Race::Inner => w - self.inputs.shaft_speed,
+            Race::Outer => w,
+        };
+        Some(DefectView {
+            defect: d,
+            side: self.sw.side(j),
+            phi: y[self.lay.phi()],
+            theta_bd_rate: rate,
+            a_star: self.defect_a_star,
+            blend: self.sw.blend(j),
+        })
+    }
+
+    /// Both normal contacts of ball j (inner, outer) under the frozen laws, with the slip fields
+    /// of the loaded ones when `slip` (traction on): the first stage of
+    /// [`ball_contact::evaluate_law`] one ball at a time ([`BallCore::normal_contacts_into`] for
+    /// a [`ContactPass`]).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn normal_contacts(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        inner: &RingPose,
+        outer: &RingPose,
+        slip: bool,
+    ) -> [Normal; 2] {
+        let grooves = [
+            ball_contact::groove_pos(kin.p, inner, &self.inner),
+            ball_contact::groove_pos(kin.p, outer, &self.outer),
+        ];
+        let mut out = Default::default();
+        let [li, lo] =
+            self.normal_contacts_into(y, j, kin, w, inner, outer, slip, &grooves, &mut out);
+        [(out.0, li), (out.1, lo)]
+    }
+
+    /// [`BallCore::normal_contacts`] from the ball's place in both grooves
+    /// ([`ball_contact::groove_pos`], inner and outer), writing the two contacts into `out`
+    /// (inner, outer) and returning the slip fields and frames of the loaded ones.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn normal_contacts_into(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        inner: &RingPose,
+        outer: &RingPose,
+        slip: bool,
+        grooves: &[GroovePos; 2],
+        out: &mut (ContactOut, ContactOut),
+    ) -> [Option<Loaded>; 2] {
+        let sw = &self.sw;
+        let normal =
+            |k: usize, pose: &RingPose, race: &RaceConst, ring: Race, c: &mut ContactOut| {
+                ball_contact::evaluate_normal_at(
+                    &grooves[k],
+                    kin,
+                    pose,
+                    race,
+                    self.ball_radius,
+                    self.c_br,
+                    self.spall_view(y, j, ring, w),
+                    sw.law(j, k),
+                    slip,
+                    c,
+                )
+            };
+        [
+            normal(0, inner, &self.inner, Race::Inner, &mut out.0),
+            normal(1, outer, &self.outer, Race::Outer, &mut out.1),
+        ]
+    }
+
+    /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped
+    /// force K δ′|δ′|^{1/2} + c δ̇′ under the frozen spall half and blend side. Positive exactly
+    /// where the clamped law has a positive force; continuous, so the loss of a contact (Q
+    /// reaching 0) and its return (δ′ reaching 0 with the damping jump c δ̇′, or Q rising
+    /// through 0) are its roots. Also the unclamped forces.
+    #[inline(always)]
+    pub fn contact_events(
+        &self,
+        y: &[f64],
+        j: usize,
+        inner: &RingPose,
+        outer: &RingPose,
+    ) -> [(f64, f64); 2] {
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
+            let c = ball_contact::evaluate_law(
+                &kin,
+                pose,
+                race,
+                self.ball_radius,
+                self.c_br,
+                None,
+                self.spall_view(y, j, ring, w),
+                Law::Closed,
+            );
+            (contact_event(&c), c.q_raw)
+        };
+        [
+            ev(inner, &self.inner, Race::Inner),
+            ev(outer, &self.outer, Race::Outer),
+        ]
+    }
+
+    /// Re-derives the frozen modes at state y (at time t): spall halves and blend sides, then
+    /// the contact modes under the new halves. Fills the switches' buffers in place (taken out
+    /// and put back, no allocation).
+    pub fn update_mode(&mut self, t: f64, y: &[f64]) {
+        let z = self.z;
+        if let Some(d) = self.defect.as_ref() {
+            let mut angles = std::mem::take(&mut self.sw.angles);
+            for (j, a) in angles.iter_mut().enumerate().take(z) {
+                *a = self.theta_bd(d, y, j);
+            }
+            self.sw.angles = angles;
+            self.sw.update_spall(t, d);
+        }
+        let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
+        let mut events = std::mem::take(&mut self.sw.contact_events);
+        for (j, e) in events.iter_mut().enumerate().take(z) {
+            *e = self.contact_events(y, j, &inner, &outer);
+        }
+        self.sw.contact_events = events;
+        self.sw.update_contacts(t);
+    }
+
+    /// The event functions ([`super::switches`] lists the indices) at state y.
+    pub fn events(&self, y: &[f64], g: &mut [f64]) {
+        let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
+        for j in 0..self.z {
+            let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+            g[2 * j] = gi;
+            g[2 * j + 1] = go;
+        }
+        let Some(d) = self.defect.as_ref() else {
+            return;
+        };
+        for j in 0..self.z {
+            let (tbd, _) = self.theta_bd(d, y, j);
+            self.sw.spall_events(d, j, tbd, g);
+        }
+    }
+
+    /// Number of event functions.
+    pub fn n_events(&self) -> usize {
+        self.sw.n_events(self.defect.is_some())
+    }
+
+    /// The next kink of the pulse after t, if not after `t_max` (a stop).
+    pub fn next_stop(&self, t: f64, t_max: f64) -> Option<f64> {
+        self.pulse.as_ref()?.next_kink(t).filter(|&tp| tp <= t_max)
+    }
+
+    /// Whether any ball still carries load: both its contacts with a positive force under the
+    /// clamped law (the contact event functions positive).
+    pub fn diagnose(&self, y: &[f64]) -> Option<String> {
+        let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
+        let carrying = (0..self.z)
+            .filter(|&j| {
+                let [(gi, _), (go, _)] = self.contact_events(y, j, &inner, &outer);
+                gi > 0.0 && go > 0.0
+            })
+            .count();
+        (carrying == 0).then(|| {
+            format!(
+                "contact is lost at every ball (none of the {} balls presses on both races)",
+                self.z
+            )
+        })
+    }
+
+    /// The frozen modes and their switch memory (nothing else changes in an advance).
+    pub fn checkpoint(&self, b: &mut Vec<f64>) {
+        b.clear();
+        self.sw.checkpoint(b);
+    }
+
+    /// Puts back what [`BallCore::checkpoint`] wrote.
+    pub fn rollback(&mut self, b: &[f64]) -> Result<(), String> {
+        self.sw.rollback(b)
+    }
+
+    /// Fills the outputs from the state y, its derivative `dydt` (for the pedestal
+    /// acceleration), the ring force and the contact forces of the last evaluation, and the
+    /// model's friction torque.
+    pub fn outputs(&self, y: &[f64], dydt: &[f64], friction_torque: f64, o: &mut [f64]) {
+        let p = self.lay.pedestal();
+        let r = self.lay.ring();
+        o[out::PEDESTAL_A_Y] = dydt[p + PVY];
+        o[out::PEDESTAL_A_Z] = dydt[p + PVZ];
+        o[out::PEDESTAL_Y] = y[p + PY];
+        o[out::PEDESTAL_Z] = y[p + PZ];
+        o[out::PEDESTAL_V_Y] = y[p + PVY];
+        o[out::PEDESTAL_V_Z] = y[p + PVZ];
+        o[out::RING_X] = y[r + RX];
+        o[out::RING_Y] = y[r + RX + 1];
+        o[out::RING_Z] = y[r + RX + 2];
+        o[out::BEARING_F_X] = self.ring_force[0];
+        o[out::BEARING_F_Y] = self.ring_force[1];
+        o[out::BEARING_F_Z] = self.ring_force[2];
+        o[out::FRICTION_TORQUE] = friction_torque;
+        o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
+        if !out::has_ball_block(o, self.z) {
+            return;
+        }
+        for j in 0..self.z {
+            o[out::CONTACT_START + j] = self.q_inner[j];
+            o[out::CONTACT_START + self.z + j] = self.q_outer[j];
+            o[out::orbit_speed(self.z, j)] = y[self.lay.ball(j) + BW];
+        }
+        out::set_separation_flags(o, self.z);
+    }
+
+    /// The reference cage speed [rad/s].
+    pub fn cage_speed(&self) -> f64 {
+        self.cage_ratio * self.inputs.shaft_speed
+    }
+
+    /// The inner ring's translation states.
+    pub fn ring_states(&self) -> RingStates {
+        let r = self.lay.ring();
+        RingStates {
+            pos: [r + RX, r + RX + 1, r + RX + 2],
+            vel: [r + RV, r + RV + 1, r + RV + 2],
+        }
+    }
+
+    /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
+    pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
+        (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+
+    /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\] (energy scale).
+    pub fn hertz_potential(&self, y: &[f64]) -> f64 {
+        let inner = self.inner_pose(y);
+        let outer = self.outer_pose(y);
+        let mut e = 0.0;
+        for j in 0..self.z {
+            let (kin, _, _, _, _) = self.ball_kin(y, j);
+            for (pose, race) in [(&inner, &self.inner), (&outer, &self.outer)] {
+                let c = ball_contact::evaluate(&kin, pose, race, self.ball_radius, 0.0, None, None);
+                if c.delta > 0.0 {
+                    e += 0.4 * race.k * c.delta * c.delta * c.delta.sqrt();
+                }
+            }
+        }
+        e
+    }
+
+    /// The translational part of the equations of motion common to both models, for ball j
+    /// at state y with the total contact force `f` on it: ẋ, ṙ, θ − ψ, and the cylindrical
+    /// accelerations (centrifugal and Coriolis terms included), written into `dydt`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn ball_translation(
+        &self,
+        y: &[f64],
+        j: usize,
+        f: V3,
+        er: V3,
+        et: V3,
+        r: f64,
+        w: f64,
+        psi_rate: f64,
+        dydt: &mut [f64],
+    ) {
+        let b = self.lay.ball(j);
+        let m = self.ball_mass;
+        let vr = y[b + BVR];
+        dydt[b + BX] = y[b + BVX];
+        dydt[b + BR] = vr;
+        dydt[b + BTH] = w - psi_rate;
+        dydt[b + BVX] = f[0] / m;
+        dydt[b + BVR] = dot(f, er) / m + r * w * w;
+        dydt[b + BW] = (dot(f, et) / m - 2.0 * vr * w) / r;
+    }
+
+    /// The inner ring's translation and the pedestal's equations of motion (and ψ̇, φ̇) from the
+    /// force of the balls on the inner ring `f_ring` and on the outer ring `f_outer`.
+    #[inline(always)]
+    pub fn rings(
+        &self,
+        t: f64,
+        y: &[f64],
+        f_ring: V3,
+        f_outer: V3,
+        psi_rate: f64,
+        dydt: &mut [f64],
+    ) {
+        let r = self.lay.ring();
+        let ext = [self.inputs.fx, self.inputs.fy, self.inputs.fz];
+        for k in 0..3 {
+            dydt[r + RX + k] = y[r + RV + k];
+            dydt[r + RV + k] = if self.prescribed || (k == 0 && self.held_axial.is_some()) {
+                0.0
+            } else {
+                (ext[k] + f_ring[k]) / self.m_ir
+            };
+        }
+        let p = self.lay.pedestal();
+        let pulse = self.pulse.as_ref().map_or(0.0, |pl| pl.force(t));
+        dydt[p + PY] = y[p + PVY];
+        dydt[p + PZ] = y[p + PVZ];
+        dydt[p + PVY] = (f_outer[1] - self.k_py * y[p + PY] - self.c_py * y[p + PVY]) / self.m_p;
+        dydt[p + PVZ] =
+            (f_outer[2] - self.k_pz * y[p + PZ] - self.c_pz * y[p + PVZ] - pulse) / self.m_p;
+        dydt[self.lay.psi()] = psi_rate;
+        dydt[self.lay.phi()] = self.inputs.shaft_speed;
+    }
+}

@@ -1,0 +1,311 @@
+//! The frozen discrete modes of a ball-level model (full and reduced levels) and their switches
+//! (held by the [`BallCore`](super::core::BallCore)).
+//!
+//! The clamped contact law, the C9 compliance blend and the spall halves are not smooth in the
+//! state; a model that owns a [`Switches`] evaluates a frozen law inside each step
+//! ([`Switches::law`], [`Switches::blend`], [`Switches::side`]) and locates the switches as
+//! state events. Event indices, per ball j of z: 2j, 2j + 1 the inner and outer contact
+//! (min(δ′, Q/S)); with a spall 2z + 2j the zone edge, 2z + 2j + 1 the spall centre and
+//! 4z + j the blend boundary.
+//!
+//! A model fills [`Switches::angles`] (θ_bd and its rate per ball) and, after
+//! [`Switches::update_spall`], [`Switches::contact_events`] (the contact functions under the new
+//! halves) before [`Switches::update_contacts`]; nothing here allocates after construction.
+
+use super::ball_contact::{ContactOut, Law};
+use crate::defect::Defect;
+
+/// Scale of the force part of the contact event function min(δ′, Q/S) [N/m]: only the sign and
+/// the continuity of the function matter (the same value as the lumped level's).
+pub const EVENT_FORCE_SCALE: f64 = 1e8;
+
+/// How far beyond its root \[m\] a stage must find a contact's event function before the step
+/// is suspected of a short loss or touch (located roots sit within ~1e-13 m at rtol 1e-6).
+pub const EVENT_ROOT_TOL: f64 = 1e-10;
+
+/// Frozen modes and event bookkeeping of z balls.
+#[derive(Debug, Clone, Default)]
+pub struct Switches {
+    z: usize,
+    /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
+    sides: Vec<f64>,
+    /// Balls whose half changed in the last mode update (their contact functions jump there).
+    sides_changed: Vec<bool>,
+    /// Frozen side of the edge-constant blend per ball (true: within ℓ_b of an edge, C9);
+    /// its boundary is a state event (index 4z + j) like the contact switches.
+    in_blend: Vec<bool>,
+    /// Frozen contact modes per ball, (inner, outer): true = in contact (the unclamped force
+    /// law), false = open (no normal force). Set by the mode update once `modes_set`; before
+    /// that (the initial state) the clamped law is used.
+    closed: Vec<[bool; 2]>,
+    modes_set: bool,
+    /// Events that fired since the last mode update: those switches flip.
+    fired: Vec<bool>,
+    /// Time of each switch's last flip: a driver that updates the mode once per fired event
+    /// (several events at one located time) must not re-derive an already flipped switch
+    /// from the sign of its function, which sits within round-off of 0 there.
+    flipped_at: Vec<f64>,
+    /// The stage time of the current step attempt at which a contact's frozen mode was most
+    /// clearly invalid (closed with min(δ′, Q/S) < −[`EVENT_ROOT_TOL`], open with it above),
+    /// and by how much: a short loss or touch inside one step has two roots that the sign test
+    /// at the step end misses, so the integrator also tests this time.
+    suspect: Option<(f64, f64)>,
+    /// Per ball: θ_bd and its rate at the state of the mode update (filled by the model).
+    pub angles: Vec<(f64, f64)>,
+    /// Per ball: the contact event functions and unclamped forces (inner, outer) at the state
+    /// of the mode update under the updated halves (filled by the model).
+    pub contact_events: Vec<[(f64, f64); 2]>,
+}
+
+/// The contact event function min(δ′, Q/S) of one evaluation (Q unclamped).
+#[inline(always)]
+pub fn contact_event(c: &ContactOut) -> f64 {
+    c.delta.min(c.q_raw / EVENT_FORCE_SCALE)
+}
+
+impl Switches {
+    /// Modes for z balls: all outside the spall, contacts under the clamped law until the
+    /// first mode update.
+    pub fn new(z: usize) -> Self {
+        Self {
+            z,
+            sides: vec![0.0; z],
+            sides_changed: vec![false; z],
+            in_blend: vec![false; z],
+            closed: vec![[true; 2]; z],
+            modes_set: false,
+            fired: vec![false; 5 * z],
+            flipped_at: vec![f64::NAN; 5 * z],
+            suspect: None,
+            angles: vec![(0.0, 0.0); z],
+            contact_events: vec![[(0.0, 0.0); 2]; z],
+        }
+    }
+
+    /// Number of event functions: the contacts, and with a spall the edges, centres and blends.
+    pub fn n_events(&self, spall: bool) -> usize {
+        if spall {
+            5 * self.z
+        } else {
+            2 * self.z
+        }
+    }
+
+    /// Frozen spall half of ball j (0 outside the zone).
+    #[inline(always)]
+    pub fn side(&self, j: usize) -> f64 {
+        self.sides[j]
+    }
+
+    /// Frozen blend side of ball j (`None` before the first mode update: by the position).
+    #[inline(always)]
+    pub fn blend(&self, j: usize) -> Option<bool> {
+        self.modes_set.then(|| self.in_blend[j])
+    }
+
+    /// The normal-force law of ball j's contact `k` (0 inner, 1 outer) in the frozen mode.
+    #[inline(always)]
+    pub fn law(&self, j: usize, k: usize) -> Law {
+        if !self.modes_set {
+            Law::Clamped
+        } else if self.closed[j][k] {
+            Law::Closed
+        } else {
+            Law::Open
+        }
+    }
+
+    /// Records a stage evaluation of ball j's contacts at time t: the stage where a frozen
+    /// mode is most clearly invalid becomes the step's suspect time.
+    #[inline(always)]
+    pub fn note_stage(&mut self, t: f64, j: usize, ci: &ContactOut, co: &ContactOut) {
+        if !self.modes_set {
+            return;
+        }
+        for (k, c) in [ci, co].into_iter().enumerate() {
+            let g = contact_event(c);
+            let excess = if self.closed[j][k] { -g } else { g };
+            if excess > EVENT_ROOT_TOL && self.suspect.is_none_or(|(_, e)| excess > e) {
+                self.suspect = Some((t, excess));
+            }
+        }
+    }
+
+    /// Start of a step attempt: forget the suspect time.
+    pub fn begin_step(&mut self) {
+        self.suspect = None;
+    }
+
+    /// The suspect time of the step just accepted, if inside (t_old, t_new).
+    pub fn suspect(&self, t_old: f64, t_new: f64) -> Option<f64> {
+        self.suspect
+            .map(|(t, _)| t)
+            .filter(|&t| t > t_old && t < t_new)
+    }
+
+    /// Appends the frozen modes and the switch memory to `b` (a model's
+    /// [`crate::models::Model::checkpoint`]); [`Switches::CHECKPOINT_PER_BALL`] values per ball
+    /// and 4 more. No allocation once `b` has its size.
+    pub fn checkpoint(&self, b: &mut Vec<f64>) {
+        let flag = |on: bool| f64::from(u8::from(on));
+        let (has, t, e) = self.suspect.map_or((0.0, 0.0, 0.0), |(t, e)| (1.0, t, e));
+        b.extend_from_slice(&[flag(self.modes_set), has, t, e]);
+        b.extend_from_slice(&self.sides);
+        b.extend(self.sides_changed.iter().map(|&v| flag(v)));
+        b.extend(self.in_blend.iter().map(|&v| flag(v)));
+        b.extend(self.closed.iter().flat_map(|c| [flag(c[0]), flag(c[1])]));
+        b.extend(self.fired.iter().map(|&v| flag(v)));
+        b.extend_from_slice(&self.flipped_at);
+    }
+
+    /// Values per ball in [`Switches::checkpoint`] (sides, their changes, blends, two contacts,
+    /// and five events' flags and flip times).
+    pub const CHECKPOINT_PER_BALL: usize = 15;
+
+    /// Puts back what [`Switches::checkpoint`] wrote (exactly `4 + 15 z` values).
+    pub fn rollback(&mut self, b: &[f64]) -> Result<(), String> {
+        let z = self.z;
+        if b.len() != 4 + Self::CHECKPOINT_PER_BALL * z {
+            return Err(format!(
+                "mode checkpoint has {} values, got {}",
+                4 + Self::CHECKPOINT_PER_BALL * z,
+                b.len()
+            ));
+        }
+        self.modes_set = b[0] != 0.0;
+        self.suspect = (b[1] != 0.0).then_some((b[2], b[3]));
+        let (sides, b) = b[4..].split_at(z);
+        let (changed, b) = b.split_at(z);
+        let (blend, b) = b.split_at(z);
+        let (closed, b) = b.split_at(2 * z);
+        let (fired, flipped) = b.split_at(5 * z);
+        self.sides.copy_from_slice(sides);
+        for (v, &x) in self.sides_changed.iter_mut().zip(changed) {
+            *v = x != 0.0;
+        }
+        for (v, &x) in self.in_blend.iter_mut().zip(blend) {
+            *v = x != 0.0;
+        }
+        for (c, x) in self.closed.iter_mut().zip(closed.chunks_exact(2)) {
+            *c = [x[0] != 0.0, x[1] != 0.0];
+        }
+        for (v, &x) in self.fired.iter_mut().zip(fired) {
+            *v = x != 0.0;
+        }
+        self.flipped_at.copy_from_slice(flipped);
+        Ok(())
+    }
+
+    /// Event `index` fired at the located time.
+    pub fn event_fired(&mut self, index: usize) {
+        if let Some(f) = self.fired.get_mut(index) {
+            *f = true;
+        }
+    }
+
+    /// Spall event functions of ball j at θ_bd = `tbd` (index 2z + 2j, 2z + 2j + 1, 4z + j):
+    /// θ_e − |θ_bd| (edge crossings); while the ball is in the zone θ_bd clipped to ±0.5 rad
+    /// (the centre, where the ball changes corners; 1 outside the zone, where the wrap of θ_bd
+    /// at ±π would fire a spurious event once per orbit of every ball); the blend boundary
+    /// ([`Defect::blend_margin`]).
+    #[inline(always)]
+    pub fn spall_events(&self, d: &Defect, j: usize, tbd: f64, g: &mut [f64]) {
+        let z2 = 2 * self.z;
+        g[z2 + 2 * j] = d.zone_margin(tbd);
+        g[z2 + 2 * j + 1] = if self.sides[j] != 0.0 {
+            tbd.clamp(-0.5, 0.5)
+        } else {
+            1.0
+        };
+        g[2 * z2 + j] = d.blend_margin(tbd);
+    }
+
+    /// Re-derives the frozen spall halves and blend sides from [`Switches::angles`] (at time
+    /// t). A ball whose centre event just fired changes halves and one whose edge event fired
+    /// enters (on the side of θ_bd) or leaves the zone: at the located state θ_bd sits within
+    /// the location tolerance of the boundary on either side (the state is re-integrated by the
+    /// method, not taken from the interpolant), so its sign alone could keep the old half for
+    /// the rest of the pass. Every other ball takes its half from θ_bd (a position a hair ahead
+    /// along the motion decides at a boundary). Blend sides likewise: a fired blend event
+    /// flips, others follow the sign of the blend function.
+    pub fn update_spall(&mut self, t: f64, d: &Defect) {
+        let te = d.half_angle();
+        let z2 = 2 * self.z;
+        let hair = |(tbd, rate): (f64, f64)| {
+            tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0))
+        };
+        for j in 0..self.z {
+            let (tbd, rate) = self.angles[j];
+            let (edge, centre) = (z2 + 2 * j, z2 + 2 * j + 1);
+            let fired = |i: usize| self.modes_set && self.fired[i];
+            let kept = |i: usize| self.modes_set && self.flipped_at[i] == t;
+            let before = self.sides[j];
+            let (side, flipped) = if fired(centre) && before != 0.0 {
+                (-before, Some(centre))
+            } else if fired(edge) {
+                let side = if before != 0.0 {
+                    0.0
+                } else if tbd < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                (side, Some(edge))
+            } else if kept(centre) || kept(edge) {
+                (before, None)
+            } else {
+                let a = hair((tbd, rate));
+                let side = if a.is_nan() || a.abs() >= te {
+                    0.0
+                } else if a < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                (side, None)
+            };
+            if let Some(i) = flipped {
+                self.flipped_at[i] = t;
+            }
+            self.sides[j] = side;
+            self.sides_changed[j] = side != before;
+        }
+        let z4 = 4 * self.z;
+        for j in 0..self.z {
+            let i = z4 + j;
+            if self.modes_set && self.fired[i] {
+                self.in_blend[j] = !self.in_blend[j];
+                self.flipped_at[i] = t;
+            } else if !(self.modes_set && self.flipped_at[i] == t) {
+                self.in_blend[j] = d.blend_margin(hair(self.angles[j])) < 0.0;
+            }
+        }
+    }
+
+    /// Re-derives the frozen contact modes from [`Switches::contact_events`] (at time t) and
+    /// ends the mode update: a contact whose event just fired flips (at the located state its
+    /// function sits within the location accuracy of 0, on either side); every other one
+    /// follows the sign of its event function (on an exact 0 the sign of the unclamped force
+    /// decides), and so do both contacts of a ball that changed spall halves at this update (a
+    /// contact event located at the same time as the spall centre fired under the old half;
+    /// with the new one the function jumps).
+    pub fn update_contacts(&mut self, t: f64) {
+        for j in 0..self.z {
+            // A ball that changed halves at this update has new contact functions: only
+            // their signs tell the modes.
+            let flip = self.modes_set && !self.sides_changed[j];
+            for k in 0..2 {
+                let (g, q) = self.contact_events[j][k];
+                let i = 2 * j + k;
+                if flip && self.fired[i] {
+                    self.closed[j][k] = !self.closed[j][k];
+                    self.flipped_at[i] = t;
+                } else if !(flip && self.flipped_at[i] == t) {
+                    self.closed[j][k] = g > 0.0 || (g == 0.0 && q > 0.0);
+                }
+            }
+        }
+        self.fired.iter_mut().for_each(|f| *f = false);
+        self.modes_set = true;
+    }
+}

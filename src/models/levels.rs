@@ -1,0 +1,156 @@
+//! The registry of fidelity levels: one row per level in [`LEVELS`] with everything the library
+//! knows about it (scene and CLI name, the FMU's integer code, the ladder label, one line on
+//! what it computes, and the constructor). [`Fidelity`]'s names and codes and [`build`] read
+//! this table.
+//!
+//! Adding a level: write its model in one file under `models/` (a [`Model`]), add its variant
+//! to [`Fidelity`] (the key a scene names it by) and its row here.
+
+use super::model::{Model, SimError};
+use super::{full, kinematic, lumped, quasi_static_level, reduced};
+use crate::geometry::Bearing;
+use crate::operating::OperatingPoint;
+use crate::scene::{Fidelity, Scene};
+
+/// Builds a level's model for a scene at the start's inputs.
+pub type Constructor = fn(&Scene, &Bearing, &OperatingPoint) -> Result<Box<dyn Model>, SimError>;
+
+/// One fidelity level.
+#[derive(Clone, Copy)]
+pub struct Level {
+    /// The scene's key for the level.
+    pub fidelity: Fidelity,
+    /// Name in scene files, on the command line and in snapshots (the serde name of
+    /// [`Fidelity`]).
+    pub name: &'static str,
+    /// The FMU's integer code (the level number of the ladder).
+    pub code: i32,
+    /// Label on the fidelity ladder ("L0" … "L4").
+    pub label: &'static str,
+    /// What the level computes, in one line.
+    pub summary: &'static str,
+    /// Builds the level's model.
+    pub build: Constructor,
+}
+
+/// Every level, in the order of the ladder.
+pub const LEVELS: &[Level] = &[
+    Level {
+        fidelity: Fidelity::Kinematic,
+        name: "kinematic",
+        code: 0,
+        label: "L0",
+        summary: "Kinematic signal generator: impulse trains at the fault frequencies of the \
+                  traction's cage speed (L1 with the balls' steady spin, the caged balance of \
+                  their orbital torques); no dynamics",
+        build: |s, b, i| Ok(Box::new(kinematic::KinematicModel::new(s, b, i)?)),
+    },
+    Level {
+        fidelity: Fidelity::QuasiStatic,
+        name: "quasi_static",
+        code: 1,
+        label: "L1",
+        summary: "Quasi-static Jones–Harris load distribution and bearing stiffness at the \
+                  current inputs; no dynamics",
+        build: |s, b, i| {
+            Ok(Box::new(quasi_static_level::QuasiStaticModel::new(
+                s, b, i,
+            )?))
+        },
+    },
+    Level {
+        fidelity: Fidelity::Lumped,
+        name: "lumped",
+        code: 2,
+        label: "L2",
+        summary: "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, \
+                  Hertz contacts and the spall; the default",
+        build: |s, b, i| Ok(Box::new(lumped::LumpedModel::new(s, b, i)?)),
+    },
+    Level {
+        fidelity: Fidelity::Reduced,
+        name: "reduced",
+        code: 3,
+        label: "L3",
+        summary: "Reduced per-ball dynamics: every ball with its own orbit (x, r, θ) and one \
+                  spin rate about a fixed attitude axis, inner ring translations, pedestal; the \
+                  full model's Hertz contacts, spall and strip traction (4 strips); ball flight \
+                  and impacts with a fixed spin axis",
+        build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
+    },
+    Level {
+        fidelity: Fidelity::Full,
+        name: "full",
+        code: 4,
+        label: "L4",
+        summary: "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
+        build: |s, b, i| {
+            let options = full::FullOptions {
+                traction: s.full.traction,
+                lock_tilt: s.full.lock_tilt,
+            };
+            Ok(Box::new(full::FullModel::with_options(s, b, i, options)?))
+        },
+    },
+];
+
+/// The row of level `f`.
+pub fn level(f: Fidelity) -> &'static Level {
+    LEVELS
+        .iter()
+        .find(|l| l.fidelity == f)
+        .expect("every Fidelity has its row in models::levels::LEVELS")
+}
+
+/// Builds the model of the scene's fidelity level.
+pub fn build(
+    scene: &Scene,
+    bearing: &Bearing,
+    inputs: &OperatingPoint,
+) -> Result<Box<dyn Model>, SimError> {
+    (level(scene.fidelity).build)(scene, bearing, inputs)
+}
+
+impl Fidelity {
+    /// The FMU's integer code (the level number L0..L4).
+    pub fn code(self) -> i32 {
+        level(self).code
+    }
+
+    /// The level of an FMU integer code.
+    pub fn from_code(code: i32) -> Option<Self> {
+        LEVELS.iter().find(|l| l.code == code).map(|l| l.fidelity)
+    }
+
+    /// The level's name in scene files and on the command line.
+    pub fn name(self) -> &'static str {
+        level(self).name
+    }
+
+    /// The level of a name.
+    pub fn from_name(s: &str) -> Option<Self> {
+        LEVELS.iter().find(|l| l.name == s).map(|l| l.fidelity)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_row_names_its_level_as_scene_files_do_and_codes_are_unique() {
+        for (k, l) in LEVELS.iter().enumerate() {
+            let parsed: Fidelity = serde_json::from_str(&format!("\"{}\"", l.name)).unwrap();
+            assert_eq!(parsed, l.fidelity, "row {k}: {}", l.name);
+            assert_eq!(
+                serde_json::to_string(&l.fidelity).unwrap(),
+                format!("\"{}\"", l.name)
+            );
+            assert_eq!(LEVELS.iter().filter(|m| m.code == l.code).count(), 1);
+            assert_eq!(
+                LEVELS.iter().filter(|m| m.fidelity == l.fidelity).count(),
+                1
+            );
+        }
+    }
+}
