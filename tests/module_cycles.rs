@@ -931,13 +931,6 @@ fn workspace_roots(ws: &Path) -> Vec<PathBuf> {
     roots.into_iter().collect()
 }
 
-/// Folders whose cycles are printed but do not fail the test, each with why. Keep this empty
-/// but for code that is being replaced: src/fmi/ is split into the generic FMI crate and the
-/// BallBearing FMU crate (issue 18 item 1), which drops its one cycle (`fmi/mod.rs` exports
-/// `ballbearing::BallBearing`, whose file uses `fmi::guid` from `fmi/mod.rs`); remove the entry
-/// when that lands.
-const BEING_REPLACED: &[&str] = &["src/fmi/"];
-
 #[test]
 fn no_module_level_import_cycles() {
     let ws = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -953,19 +946,7 @@ fn no_module_level_import_cycles() {
     for root in &roots {
         files += Crate::load(root, &read).files.len();
         for cycle in crate_cycles(root, &read) {
-            let files: Vec<&str> = cycle
-                .lines()
-                .filter_map(|l| l.trim().split(" uses ").next())
-                .filter(|f| f.ends_with(".rs"))
-                .collect();
-            if files
-                .iter()
-                .all(|f| BEING_REPLACED.iter().any(|d| f.starts_with(d)))
-            {
-                eprintln!("known cycle in code being replaced (BEING_REPLACED):\n{cycle}");
-            } else {
-                problems.push(cycle);
-            }
+            problems.push(cycle);
         }
     }
     assert!(

@@ -92,7 +92,7 @@ impl BallBearing {
     /// A model for `bearing` (what fmi2Instantiate builds after reading the resources).
     pub fn new(bearing: &BearingFile) -> Self {
         let entries = table(bearing);
-        let guid = crate::guid(bearing);
+        let guid = crate::description::guid(bearing);
         let cfg = Config::default_for(bearing);
         let inputs = cfg.scene.operating;
         let n_out = entries

@@ -84,8 +84,8 @@ pub fn documentation_html(
     availability: &[(Fidelity, Result<(), String>)],
 ) -> String {
     let t = table(bearing);
-    let guid = crate::guid(bearing);
-    let info = crate::model_info(bearing);
+    let guid = crate::description::guid(bearing);
+    let info = crate::description::model_info(bearing);
     let mut h = String::new();
     h.push_str("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
     h.push_str("<title>BallBearing FMU</title>\n<style>body{font-family:sans-serif;max-width:70em;margin:2em auto;line-height:1.4}table{border-collapse:collapse}td,th{border:1px solid #aaa;padding:2px 6px;text-align:left;vertical-align:top}code{background:#f3f3f3}</style>\n</head>\n<body>\n");

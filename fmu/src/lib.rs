@@ -4,7 +4,8 @@
 //! - [`variables`]: the BallBearing variable table (one row per variable: the one source of
 //!   truth for the runtime, modelDescription.xml and the documentation);
 //! - [`ballbearing`]: the [`fmi2::FmuModel`] of the bearing (scene + simulation);
-//! - [`docs`]: documentation/index.html from the table.
+//! - [`docs`]: documentation/index.html from the table;
+//! - [`description`]: identifier, default experiment, modelDescription.xml and the GUID.
 //!
 //! The shared library is generic: the bearing is read at `fmi2Instantiate` from
 //! `resources/bearing.toml`, and the GUID is a hash of the model description generated for
@@ -13,63 +14,13 @@
 //! [`Simulation`]: raceway::simulation::Simulation
 
 pub mod ballbearing;
+pub mod description;
 pub mod docs;
 pub mod variables;
 
-use fmi2::xml;
-use raceway::config::BearingFile;
+pub use description::{
+    guid, model_description_xml, model_info, DEFAULT_START_TIME, DEFAULT_STEP_SIZE,
+    DEFAULT_STOP_TIME, DEFAULT_TOLERANCE, MODEL_IDENTIFIER,
+};
 
 fmi2::export_fmi2!(ballbearing::BallBearing);
-
-/// `modelIdentifier` of the FMU.
-pub const MODEL_IDENTIFIER: &str = "BallBearing";
-
-/// Default experiment (also used by fmu-build's reference run).
-pub const DEFAULT_START_TIME: f64 = 0.0;
-pub const DEFAULT_STOP_TIME: f64 = 0.1;
-pub const DEFAULT_TOLERANCE: f64 = 1e-6;
-pub const DEFAULT_STEP_SIZE: f64 = 1e-4;
-
-/// The model-description facts that are not variables.
-pub fn model_info(bearing: &BearingFile) -> xml::ModelInfo {
-    let name = if bearing.name.is_empty() {
-        "custom".to_string()
-    } else {
-        bearing.name.clone()
-    };
-    xml::ModelInfo {
-        model_name: MODEL_IDENTIFIER.into(),
-        model_identifier: MODEL_IDENTIFIER.into(),
-        description: format!(
-            "Angular-contact ball bearing with a localized raceway spall (Niu et al. 2014), bearing '{name}' with {} balls",
-            bearing.bearing.z
-        ),
-        author: "raceway developers".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
-        license: env!("CARGO_PKG_LICENSE").into(),
-        generation_tool: format!("raceway {}", env!("CARGO_PKG_VERSION")),
-        start_time: DEFAULT_START_TIME,
-        stop_time: DEFAULT_STOP_TIME,
-        tolerance: DEFAULT_TOLERANCE,
-        step_size: DEFAULT_STEP_SIZE,
-        provides_directional_derivative: true,
-    }
-}
-
-fn description_and_guid(bearing: &BearingFile) -> (String, String) {
-    let vars: Vec<fmi2::Variable> = variables::table(bearing)
-        .into_iter()
-        .map(|e| e.var)
-        .collect();
-    xml::model_description(&model_info(bearing), &vars)
-}
-
-/// The `modelDescription.xml` of the FMU built for `bearing`.
-pub fn model_description_xml(bearing: &BearingFile) -> String {
-    description_and_guid(bearing).0
-}
-
-/// The GUID of the FMU built for `bearing` (a hash of its model description).
-pub fn guid(bearing: &BearingFile) -> String {
-    description_and_guid(bearing).1
-}
