@@ -15,7 +15,7 @@ bin="$CARGO_TARGET_DIR/release/validate_full"
 # The same with the inner-ring tilt held (FullOptions::lock_tilt): see docs/validation.md.
 "$bin" "$duration" docs/research/validation-full-sec3.5-lock-tilt.md 20 outer lock_tilt
 "$bin" "$duration" docs/research/validation-full-sec3.5-inner-lock-tilt.md 20 inner lock_tilt
-# Table-2 impact test (C14), tilt free and held: fel, feh per Fa.
+# Table-2 impact test (docs/model.md#c14), tilt free and held: fel, feh per Fa.
 rm -f docs/research/validation-full-table2.md
 for fa in 3000 4000 5000; do
   for tilt in free lock_tilt; do

@@ -1,4 +1,4 @@
-//! Bearing description files (TOML, spec §8.5) and the presets shipped with raceway.
+//! Bearing description files (TOML, docs/scenes.md#bearing-files) and the presets shipped with raceway.
 //!
 //! A file has the sections `[bearing]`, `[material]`, `[contact]`, `[traction]`,
 //! `[inner_ring]`, `[pedestal]` and `[defect]`. Only `[bearing]` is required; the other
@@ -79,7 +79,7 @@ impl Default for Material {
     }
 }
 
-/// How the Hertz constant is computed (spec §2.3, C5).
+/// How the Hertz constant is computed (docs/model.md#hertz, #c5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum HertzMethod {
@@ -102,11 +102,11 @@ pub struct ContactSection {
     /// Optional override of the outer Hertz constant [N/m^1.5]; computed when absent.
     #[serde(rename = "K_outer", default, skip_serializing_if = "Option::is_none")]
     pub k_outer: Option<f64>,
-    /// Strips along the contact ellipse's major axis (C7; default 8: with equal strips the
+    /// Strips along the contact ellipse's major axis (docs/model.md#c7; default 8: with equal strips the
     /// quadrature error of the traction force stays below 1 % of κm·Q in 99 % of the contact
-    /// states of the S2 scene, 1.3 % at worst, see `examples/strip_study.rs`).
+    /// states of the S2 scene, 1.3 % at worst, see `studies/strip_study.rs`).
     pub n_strips: u32,
-    /// Quadrature of the traction over the major axis (C7).
+    /// Quadrature of the traction over the major axis (docs/model.md#c7).
     #[serde(default)]
     pub strip_rule: StripRule,
 }
@@ -115,7 +115,7 @@ pub struct ContactSection {
 /// models have this many entries).
 pub const MAX_STRIPS: usize = 32;
 
-/// Quadrature rule of the strip traction over the contact ellipse's major axis (spec §3.1, C7).
+/// Quadrature rule of the strip traction over the contact ellipse's major axis (docs/model.md#strips, #c7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum StripRule {
@@ -139,18 +139,18 @@ impl Default for ContactSection {
     }
 }
 
-/// Shape of the traction curve (spec §3.3).
+/// Shape of the traction curve (docs/model.md#traction).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum TractionLaw {
-    /// κ(u) = (A + B u) e^(−C u) + D (C8, default).
+    /// κ(u) = (A + B u) e^(−C u) + D (docs/model.md#c8, default).
     #[default]
     Adore,
     /// Piecewise linear, C⁰ only: for comparison.
     Piecewise,
 }
 
-/// `[traction]`: the lubricant traction curve from four physical numbers (C8).
+/// `[traction]`: the lubricant traction curve from four physical numbers (docs/model.md#c8).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSection {
@@ -175,7 +175,7 @@ impl Default for TractionSection {
     }
 }
 
-/// `[inner_ring]`: mass and inertias (C12).
+/// `[inner_ring]`: mass and inertias (docs/model.md#c12).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InnerRing {
@@ -196,7 +196,7 @@ impl Default for InnerRing {
     }
 }
 
-/// `[pedestal]`: the 2-DOF support including the outer ring (C3, C12).
+/// `[pedestal]`: the 2-DOF support including the outer ring (docs/model.md#c3, #c12).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pedestal {
@@ -219,7 +219,7 @@ impl Default for Pedestal {
     }
 }
 
-/// Defect model mode (spec §4.4 / §4.7).
+/// Defect model mode (docs/model.md#spall-drop / #spall-point-mode).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum DefectMode {
@@ -230,7 +230,7 @@ pub enum DefectMode {
     Point,
 }
 
-/// Length over which the compliance is blended past a defect edge (C9).
+/// Length over which the compliance is blended past a defect edge (docs/model.md#c9).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum BlendLength {

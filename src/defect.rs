@@ -1,20 +1,20 @@
 //! Localized raceway defect (spall): added deflection, force direction and Hertz change
-//! (spec §4, paper eqs. 13–20, choices C9 and C10).
+//! (docs/model.md#spall, paper eqs. 13–20, docs/model.md#c9 and #c10).
 //!
-//! The spall is a transverse band across the whole groove (C9): width `w_d` along the track,
+//! The spall is a transverse band across the whole groove (docs/model.md#c9): width `w_d` along the track,
 //! depth `h_d`, a quadratic floor `d(y) = h_d [1 − (2y/w_d)²]` and two sharp corners at
 //! `y = ±w_d/2`. [`DefectSpec`] is what a scene file gives; [`Defect`] is the precomputed form
 //! that the dynamic models query at run time with [`Defect::probe`] (allocation-free, a few
 //! `sqrt`s).
 //!
 //! Conventions:
-//! - angles follow C1 (θ about +x); the ball-to-defect angle `θ_bd = wrap(θ_br − θ_d0 [− φ])`
-//!   is positive when the ball is ahead of the defect centre in +θ (C10);
+//! - angles follow C1 (docs/model.md#c1) (θ about +x); the ball-to-defect angle `θ_bd = wrap(θ_br − θ_d0 [− φ])`
+//!   is positive when the ball is ahead of the defect centre in +θ (docs/model.md#c10);
 //! - the along-track coordinate `y_b` (ball) and `y_q` (contact point) are arc lengths from the
 //!   defect centre, positive in +θ;
 //! - the drop `g ≥ 0` is how far the ball centre can move toward the defective race, so the
 //!   overlap there becomes `δ′ = (δ − g) cos θ_dd` (eq. 13);
-//! - the C9 blend makes K depend on y_b; the contact potential (2/5)K(y_b)δ′^{5/2} then also
+//! - the C9 (docs/model.md#c9) blend makes K depend on y_b; the contact potential (2/5)K(y_b)δ′^{5/2} then also
 //!   pushes along the track ([`DefectContact::dk_dy`]), which the full model applies so that a
 //!   pass over the spall does not create energy. The blend (default ℓ_b = b) and the paper's
 //!   abrupt change (ℓ_b = 0, which creates (2/5)(K_groove − K′)δ^{5/2} at each exit) give
@@ -30,7 +30,7 @@ use crate::geometry::{Bearing, Race};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
-/// Number of points of the precomputed drop table over |y_b| ≤ w_d/2 (spec §4.4).
+/// Number of points of the precomputed drop table over |y_b| ≤ w_d/2 (docs/model.md#spall-drop).
 pub const TABLE_POINTS: usize = 2001;
 
 /// Width and depth above this are not a bearing spall (a sanity bound; the bearing-dependent
@@ -40,11 +40,11 @@ pub const MAX_SIZE: f64 = 0.1;
 /// Grid points of the coarse scan for the floor minimum at set-up.
 const SCAN_POINTS: usize = 400;
 
-/// How far past an edge, in blend lengths ℓ_b, a frozen in-zone law continues the C9 blend
+/// How far past an edge, in blend lengths ℓ_b, a frozen in-zone law continues the C9 (docs/model.md#c9) blend
 /// linearly (a step that overshoots the located edge by more sees the groove side's limit).
 pub const FROZEN_OVERSHOOT: f64 = 0.2;
 
-/// Maps an angle to (−π, π] (spec §0.1), also for large arguments such as φ = Ωt.
+/// Maps an angle to (−π, π] (docs/model.md#conventions), also for large arguments such as φ = Ωt.
 /// NaN stays NaN.
 #[inline]
 pub fn wrap(x: f64) -> f64 {
@@ -59,7 +59,7 @@ pub fn wrap(x: f64) -> f64 {
 }
 
 /// A spall as a scene gives it: ring, width and depth \[m\], and centre angle θ_d0 \[rad\]
-/// (C1 convention; for the inner ring at shaft angle φ = 0).
+/// (C1 (docs/model.md#c1) convention; for the inner ring at shaft angle φ = 0).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DefectSpec {
@@ -133,19 +133,19 @@ pub struct DefectContact {
     /// Which feature carries the ball.
     pub kind: ContactKind,
     /// Hertz constant to use [N/m^1.5]: the edge constant K′ of `kind`, blended in compliance
-    /// with the groove constant over ℓ_b past each edge (C9).
+    /// with the groove constant over ℓ_b past each edge (docs/model.md#c9).
     pub k_edge: f64,
     /// The edge constant K′ of `kind` without blending [N/m^1.5].
     pub k_unblended: f64,
     /// d(k_edge)/dy_b \[N/m^2.5\]: nonzero inside the blend length ℓ_b of an edge. The contact
     /// potential (2/5)K(y_b)δ′^{5/2} then also pushes along the track with
-    /// −(2/5)δ′^{5/2} dK/dy_b; without that force the blend would create energy (C9 note).
+    /// −(2/5)δ′^{5/2} dK/dy_b; without that force the blend would create energy (C9 (docs/model.md#c9) note).
     pub dk_dy: f64,
 }
 
 impl DefectContact {
     /// Overlap on the tilted normal `δ′ = (δ − g) cos θ_dd` from the intact-groove overlap δ
-    /// (eq. 13, spec §4.4); ≤ 0 means the contact is open.
+    /// (eq. 13, docs/model.md#spall-drop); ≤ 0 means the contact is open.
     #[inline]
     pub fn deflection(&self, delta: f64) -> f64 {
         (delta - self.g) * self.theta_dd.cos()
@@ -235,7 +235,7 @@ pub struct Defect {
 }
 
 impl Defect {
-    /// Precomputes a spall on `bearing` (spec §4).
+    /// Precomputes a spall on `bearing` (docs/model.md#spall).
     ///
     /// The bearing's `[defect]` section gives the mode (finite/point), the edge radius r_e and
     /// the blend length ℓ_b: `"b"` is the semi-minor axis of the defective race's contact
@@ -341,7 +341,7 @@ impl Defect {
         };
         let e_prime = bearing.e_prime;
 
-        // §4.2: half angle on the track (eq. 15); upper sign outer, lower sign inner.
+        // docs/model.md#spall-half-angle: half angle on the track (eq. 15); upper sign outer, lower sign inner.
         let cos_b = bearing.alpha0.cos();
         let sign = match spec.ring {
             Race::Outer => 1.0,
@@ -352,7 +352,7 @@ impl Defect {
         let half_width = 0.5 * spec.width;
         let theta_e = (r_d1 / r_d2) * (half_width / r_d1).asin();
 
-        // §4.6: edge (corner) constant, ρ_II = (+1/r_e rolling, 0 transverse).
+        // docs/model.md#spall-edge-stiffness: edge (corner) constant, ρ_II = (+1/r_e rolling, 0 transverse).
         let corner = HertzContact::new(
             2.0 / d_ball + 1.0 / edge_radius,
             2.0 / d_ball,
@@ -563,7 +563,7 @@ impl Defect {
         (1.0 + slope * slope).powf(1.5) / k2
     }
 
-    /// Ball-to-defect angle (eq. 14, C10) from the ball azimuth θ_br in the ring frame and the
+    /// Ball-to-defect angle (eq. 14, docs/model.md#c10) from the ball azimuth θ_br in the ring frame and the
     /// shaft angle φ: `wrap(θ_br − θ_d0 − φ)` for an inner-ring defect (it spins with the
     /// shaft), `wrap(θ_br − θ_d0)` for an outer-ring defect (φ ignored) \[rad\].
     #[inline]
@@ -574,7 +574,7 @@ impl Defect {
         }
     }
 
-    /// Along-track coordinate of the ball, `y_b = r_d1 sin(θ_bd r_d2/r_d1)` \[m\] (spec §4.3).
+    /// Along-track coordinate of the ball, `y_b = r_d1 sin(θ_bd r_d2/r_d1)` \[m\] (docs/model.md#ball-to-defect).
     #[inline]
     pub fn along_track(&self, theta_bd: f64) -> f64 {
         self.r_d1 * (theta_bd * self.r_d2 / self.r_d1).sin()
@@ -587,7 +587,7 @@ impl Defect {
     }
 
     /// Signed distance to the zone boundary in angle, θ_e − |θ_bd| \[rad\]: positive inside the
-    /// defect zone. Its root is the edge-crossing event (spec §9.2).
+    /// defect zone. Its root is the edge-crossing event (docs/model.md#step-budget).
     #[inline]
     pub fn zone_margin(&self, theta_bd: f64) -> f64 {
         self.theta_e - theta_bd.abs()
@@ -619,7 +619,7 @@ impl Defect {
         self.contact_with_blend(y_b, None)
     }
 
-    /// [`Defect::contact_at`] with the blend region frozen: `Some(true)` evaluates the C9
+    /// [`Defect::contact_at`] with the blend region frozen: `Some(true)` evaluates the C9 (docs/model.md#c9)
     /// compliance blend (continued linearly past ℓ_b), `Some(false)` the unblended edge
     /// constant, `None` decides by the position (|y_b| > w_d/2 − ℓ_b: blend). The blend's
     /// boundary is a kink of K and a jump of dK/dy_b; a model that locates it as a state event
@@ -716,7 +716,7 @@ impl Defect {
     /// The Hertz constant at ball position `y_b` for a race whose intact-groove constant is
     /// `k_groove` [N/m^1.5]: `k_groove` outside the defect; inside, the compliance K^(−2/3) runs
     /// linearly from the groove value at each edge to the edge constant K′ of the current
-    /// contact after ℓ_b of travel (spec §4.6, C9); ℓ_b = 0 switches abruptly.
+    /// contact after ℓ_b of travel (docs/model.md#spall-edge-stiffness, #c9); ℓ_b = 0 switches abruptly.
     pub fn hertz_constant(&self, y_b: f64, k_groove: f64) -> f64 {
         match self.contact_at(y_b) {
             None => k_groove,
@@ -837,7 +837,7 @@ impl Profile {
         self.depth_at(y) + self.r - (self.r * self.r - x * x).max(0.0).sqrt()
     }
 
-    /// Rolling-ball filter at y_b (spec §4.4): (g, y_q, kind) by a scan and golden-section
+    /// Rolling-ball filter at y_b (docs/model.md#spall-drop): (g, y_q, kind) by a scan and golden-section
     /// refinement over the reachable part of the spall; the corners win ties.
     fn rolling_ball(&self, y_b: f64) -> (f64, f64, ContactKind) {
         let hw = self.half_width;

@@ -1,4 +1,4 @@
-//! Derived bearing geometry shared by every fidelity level (spec §2.1, §2.3).
+//! Derived bearing geometry shared by every fidelity level (docs/model.md#geometry, #hertz).
 //!
 //! [`Bearing`] is built once from a validated [`BearingFile`]: it holds the geometry in SI units,
 //! the groove curvature-centre circles, the ball mass and inertia, and the Hertz constants of the
@@ -26,7 +26,7 @@ impl Race {
 }
 
 /// Principal curvatures of a race at the contact point, (rolling direction, transverse) [1/m]
-/// (spec §2.3; convex positive, concave negative).
+/// (docs/model.md#hertz; convex positive, concave negative).
 pub fn race_curvatures(race: Race, d: f64, dm: f64, alpha: f64, f: f64) -> (f64, f64) {
     let gamma = d * alpha.cos() / dm;
     match race {
@@ -163,9 +163,9 @@ impl Bearing {
     }
 
     /// Groove curvature-centre circle of a race in the ring frame: (axial offset x_g, radius R_g)
-    /// \[m\] (spec §2.1). With play s0 the inner circle moves *toward* the outer one along the
+    /// \[m\] (docs/model.md#geometry). With play s0 the inner circle moves *toward* the outer one along the
     /// contact line, so the unloaded groove-centre distance is B·D − s0: the balls are free until
-    /// the rings have moved s0. (The spec says "outward", which would make s0 an interference.)
+    /// the rings have moved s0. (Moving it "outward", as first written, would make s0 an interference.)
     pub fn groove_centre(&self, race: Race) -> (f64, f64) {
         let (s, c) = self.alpha0.sin_cos();
         match race {

@@ -1,4 +1,4 @@
-//! L0: kinematic fault frequencies (spec §6 L0).
+//! L0: kinematic fault frequencies (docs/model.md#l0).
 //!
 //! Two flavours:
 //! - pure rolling at one contact angle α (the textbook formulas, [`fault_frequencies`]);
@@ -30,7 +30,7 @@ pub struct FaultFrequencies {
 }
 
 /// Pure-rolling kinematic frequencies at one contact angle `alpha` \[rad\] for a shaft speed
-/// `speed_hz` \[Hz\] (spec §6 L0):
+/// `speed_hz` \[Hz\] (docs/model.md#l0):
 /// `FTF = (fs/2)(1 − γ)`, `BPFO = z·FTF`, `BPFI = (z fs/2)(1 + γ)`,
 /// `BSF = (dm/2D) fs (1 − γ²)`, with `γ = D cos α / dm`.
 pub fn fault_frequencies(b: &Bearing, speed_hz: f64, alpha: f64) -> FaultFrequencies {
@@ -53,7 +53,7 @@ fn from_ftf_bsf(b: &Bearing, speed_hz: f64, ftf: f64, bsf: f64) -> FaultFrequenc
     }
 }
 
-/// Cage frequency when both rings turn, `f_c = [f_i(1−γ) + f_o(1+γ)]/2` \[Hz\] (spec §6 L0).
+/// Cage frequency when both rings turn, `f_c = [f_i(1−γ) + f_o(1+γ)]/2` \[Hz\] (docs/model.md#l0).
 pub fn cage_frequency_two_rings(b: &Bearing, inner_hz: f64, outer_hz: f64, alpha: f64) -> f64 {
     let gamma = b.gamma(alpha);
     0.5 * (inner_hz * (1.0 - gamma) + outer_hz * (1.0 + gamma))
@@ -79,7 +79,7 @@ impl RaceControl {
 }
 
 /// Outer-race control kinematics for loaded contact angles `alpha_i`, `alpha_o` \[rad\]
-/// (spec §6 L0, Jones):
+/// (docs/model.md#l0, Jones):
 /// 1. `tan β = sin α_o/(cos α_o + D/dm)`;
 /// 2. `g = (D/2) sin α_o cos(α_i − β)/sin(α_o − β)`, `h = dm/2 − (D/2) cos α_i`;
 /// 3. `ω_c/Ω = h/(g + h)`;

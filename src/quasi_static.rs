@@ -1,8 +1,8 @@
 //! L1: Jones–Harris quasi-static load distribution with centrifugal force and gyroscopic
-//! friction under outer-race control (spec §6 L1).
+//! friction under outer-race control (docs/model.md#l1).
 //!
 //! # Model
-//! Ball j sits at azimuth `θ_j = 2πj/z` (convention C1: `e_r(θ) = (0, −sin θ, cos θ)`, so a
+//! Ball j sits at azimuth `θ_j = 2πj/z` (convention C1 (docs/model.md#c1): `e_r(θ) = (0, −sin θ, cos θ)`, so a
 //! radial load `F_z = −F_r` centres the load zone at θ = π). In the ball's (x, r) plane its
 //! centre `X = (X1, X2)` is measured from the outer groove centre. The inner groove centre is at
 //! `A_j = A_0 + (δ_a, δ_y e_r,y(θ_j) + δ_z e_r,z(θ_j))`, where `A_0` is the unloaded offset
@@ -49,7 +49,7 @@ use std::fmt;
 pub const MAX_DEFLECTION_OVER_D: f64 = 0.01;
 /// Largest loaded contact angle magnitude accepted \[deg\] ("reaching 90°").
 pub const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
-/// Finite-difference step of the stiffness matrix's fallback (spec §6 L1) \[m\].
+/// Finite-difference step of the stiffness matrix's fallback (docs/model.md#l1) \[m\].
 pub const STIFFNESS_STEP: f64 = 1e-8;
 /// Convergence tolerance on ring displacements \[m\].
 pub const TOL_DISPLACEMENT: f64 = 1e-10;

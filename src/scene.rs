@@ -16,7 +16,7 @@
 //! ring = "outer"
 //! width = 1.0e-3
 //! depth = 0.2e-3
-//! theta0 = 3.1416                 # rad, C1 convention (π = load-zone centre)
+//! theta0 = 3.1416                 # rad, C1 (docs/model.md#c1) convention (π = load-zone centre)
 //!
 //! [solver]
 //! method = "dop853"
@@ -28,7 +28,7 @@
 //! skip = 0.02                     # transient excluded from spectra
 //! ```
 //!
-//! Optional tables: `[pulse]` (impact test, C14), `[lumped]` (resonator, slip jitter, seed, and
+//! Optional tables: `[pulse]` (impact test, docs/model.md#c14), `[lumped]` (resonator, slip jitter, seed, and
 //! `cage_speed = "traction" | "outer_race_control"` for the kinematic, quasi-static and lumped
 //! levels),
 //! `[full]` (traction on/off, inner-ring tilt held) and `[coupling]` (`mode = "force"`, the
@@ -144,7 +144,7 @@ pub struct SolverSettings {
     /// β of the PI step-size controller, in [0, 0.2]; 0 (default) is the I-controller. β = 0.08
     /// keeps the reduced and full levels on the reference trajectory at loose tolerances
     /// (rtol 1e-4: 0 of 5 trajectories left it at the full level, 4 of 5 with β = 0) for
-    /// about 25 % more RHS evaluations at equal rtol (docs/step-control-strays.md).
+    /// about 25 % more RHS evaluations at equal rtol (docs/research/step-control-strays.md).
     #[serde(default)]
     pub pi_beta: f64,
 }
@@ -189,7 +189,7 @@ pub struct OutputSettings {
     /// Output sample rate \[Hz\].
     #[serde(default = "default_sample_rate")]
     pub sample_rate: f64,
-    /// Initial transient excluded from spectra \[s\] (spec §7: 20 ms).
+    /// Initial transient excluded from spectra \[s\] (docs/model.md#initial-state: 20 ms).
     #[serde(default = "default_skip")]
     pub skip: f64,
 }
@@ -214,7 +214,7 @@ impl Default for OutputSettings {
     }
 }
 
-/// The impact-test pulse (C14): a triangle on the pedestal.
+/// The impact-test pulse (docs/model.md#c14): a triangle on the pedestal.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pulse {
@@ -251,7 +251,7 @@ impl Pulse {
     }
 }
 
-/// A high-frequency resonator on the pedestal in z (L2 option, spec §6 L2).
+/// A high-frequency resonator on the pedestal in z (L2 option, docs/model.md#l2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Resonator {
@@ -291,7 +291,7 @@ pub enum CageSpeed {
     /// ([`crate::models::traction_cage_speed`]). Default.
     #[default]
     Traction,
-    /// L1's outer-race control (spec §6 L0/L2, the textbook kinematics at the loaded angles).
+    /// L1's outer-race control (docs/model.md#l0, #l2, the textbook kinematics at the loaded angles).
     OuterRaceControl,
 }
 
@@ -321,7 +321,7 @@ pub struct FullSettings {
     /// Strip traction on (default) or frictionless contacts.
     #[serde(default = "yes")]
     pub traction: bool,
-    /// Hold the inner-ring tilt at zero, as L1 does. Off by default (spec C4 keeps the tilt);
+    /// Hold the inner-ring tilt at zero, as L1 does. Off by default (original C4 (docs/model.md#c4) keeps the tilt);
     /// on, the spectra match the paper's (docs/validation.md: the free single-row ring rocks
     /// about its pressure centre at about 1.3 kHz).
     #[serde(default)]

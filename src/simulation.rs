@@ -282,7 +282,7 @@ fn method_of(m: MethodName) -> Method {
 }
 
 impl Simulation {
-    /// Builds the model of the scene's fidelity and its initial state (from L1, spec §7).
+    /// Builds the model of the scene's fidelity and its initial state (from L1, docs/model.md#initial-state).
     pub fn new(scene: &Scene) -> Result<Self, SimError> {
         scene.validate()?;
         let bearing = Bearing::new(&scene.bearing)?;
@@ -341,7 +341,7 @@ impl Simulation {
         }
         if scene.coupling == CouplingMode::Motion {
             // The journal starts where the loads of the scene put the ring (the L1 start,
-            // spec §7), at rest.
+            // docs/model.md#initial-state), at rest.
             let mut o = vec![0.0; n_out];
             sim.model.outputs(0.0, &y0, &mut o);
             let x = [o[out::RING_X], o[out::RING_Y], o[out::RING_Z]];
@@ -507,7 +507,7 @@ impl Simulation {
         Ok(jac)
     }
 
-    /// Absolute tolerances: rtol × each state's nominal value (spec `solvers.md`).
+    /// Absolute tolerances: rtol × each state's nominal value (docs/model.md#tolerances).
     fn atol(model: &dyn Model, rtol: f64) -> Vec<f64> {
         let mut nominal = vec![0.0; model.dim()];
         model.nominal(&mut nominal);
@@ -676,7 +676,7 @@ impl Simulation {
 
     /// Changes the integrator's step-size controller (safety, factor limits, PI β, restart after
     /// discontinuities; see [`crate::solver::Integrator::set_step_control`]). For studies of
-    /// the controller (`examples/controller_study.rs`); scenes use the defaults.
+    /// the controller (`studies/controller_study.rs`); scenes use the defaults.
     pub fn set_step_control(&mut self, c: &Options) -> Result<(), SimError> {
         self.integrator
             .set_step_control(c)

@@ -53,8 +53,8 @@ fn orbit_speed_is_the_cage_speed_at_the_kinematic_levels() {
         let mut sc = scene(level, 9900.0, 4000.0, 1000.0);
         sc.lumped.cage_speed = cage;
         let rows = run(&sc, 2e-3, 1e-4);
-        // L1 (outer-race control, loaded angles) at 9900 rpm: FTF 70.42 Hz (spec §8.2). With
-        // the traction: the paper's BPFO 980.4 Hz ± 0.3 % (spec §8.3) over z = 14, 70.03 Hz.
+        // L1 (outer-race control, loaded angles) at 9900 rpm: FTF 70.42 Hz (docs/model.md#ref-quasi-static). With
+        // the traction: the paper's BPFO 980.4 Hz ± 0.3 % (docs/model.md#ref-dynamic) over z = 14, 70.03 Hz.
         // The kinematic balls all orbit at it.
         let (ftf, tol) = match cage {
             CageSpeed::OuterRaceControl => (70.42, 2e-3),
@@ -108,7 +108,7 @@ fn lumped_orbit_speed_carries_the_slip_jitter_rate() {
 fn dynamic_orbit_speeds_average_to_the_cage_speed() {
     // L3 (healthy, 9900 rpm): the balls' own orbital speeds fluctuate through the load zone; their
     // mean over the balls is the cage speed output, and over time it lies between pure rolling
-    // (69.537 Hz) and outer-race control (70.42 Hz), spec §8.1–8.2.
+    // (69.537 Hz) and outer-race control (70.42 Hz), docs/model.md#ref-kinematics, #ref-quasi-static.
     let rows = run(
         &scene(Fidelity::Reduced, 9900.0, 4000.0, 1000.0),
         8e-3,

@@ -1,4 +1,4 @@
-//! Spall model against spec §4 and §10 item 6 (independent numpy/scipy values and closed forms).
+//! Spall model against docs/model.md#spall and #verification (independent numpy/scipy values and closed forms).
 
 use raceway::config::{BearingFile, BlendLength, DefectMode};
 use raceway::contact::hertz::{HertzContact, HertzSolution};
@@ -57,7 +57,7 @@ fn half_angle_table_of_spec_4_2() {
             "inner {w} mm: {}",
             i.half_angle()
         );
-        // θ_e ≈ w_d/(2 r_d2): the spec says "to 1e-4 relative", which holds for 1 mm only;
+        // θ_e ≈ w_d/(2 r_d2): to about 1e-4 relative for 1 mm only (docs/model.md#spall-half-angle);
         // the asin term makes it (w_d/2)²/(6 r_d1²) ≈ 3.2e-4 for 3 mm on the inner race.
         for d in [&o, &i] {
             let x = 0.5 * w * MM / d.r_d1();
@@ -73,10 +73,10 @@ fn track_radii_of_spec_4_2() {
     let i = defect(Race::Inner, 2.0 * MM, 0.5 * MM);
     assert!((o.r_d2() - 40.50 * MM).abs() < 0.005 * MM, "{}", o.r_d2());
     assert!((i.r_d2() - 29.50 * MM).abs() < 0.005 * MM, "{}", i.r_d2());
-    // The spec prints 46.77 / 34.07 mm; its own formula gives 46.7645 / 34.0645 mm.
+    // Tabulated as 46.77 / 34.07 mm; the formula gives 46.7645 / 34.0645 mm.
     assert!((o.r_d1() - 46.77 * MM).abs() < 0.01 * MM, "{}", o.r_d1());
     assert!((i.r_d1() - 34.07 * MM).abs() < 0.01 * MM, "{}", i.r_d1());
-    // r_d1 = r_d2 / cos β (spec note), β = α0 = 30°.
+    // r_d1 = r_d2 / cos β (docs/model.md#spall-half-angle), β = α0 = 30°.
     let c = 30f64.to_radians().cos();
     assert!((o.r_d1() - o.r_d2() / c).abs() < 1e-15);
     assert!((i.r_d1() - i.r_d2() / c).abs() < 1e-15);
@@ -257,7 +257,7 @@ fn depth_has_no_effect_beyond_the_geometric_limit() {
 
 #[test]
 fn exact_floor_threshold_is_slightly_above_the_geometric_limit() {
-    // The spec says the floor "can win only when h_d < R − √(R² − w²/4)" (79.2 µm for 2 mm).
+    // docs/model.md#spall-drop: the floor "can win only when h_d < R − √(R² − w²/4)" (79.2 µm for 2 mm).
     // At y_b = 0 the floor beats the corner as long as the floor slope at the corner, 4h/w, is
     // below the ball's, (w/2)/√(R² − w²/4): h_d < (w²/8)/√(R² − w²/4) = 79.7 µm.
     let r: f64 = 0.5 * 12.7 * MM;
@@ -316,7 +316,7 @@ fn edge_hertz_constant_against_spec_table() {
         );
     }
     let d = defect(Race::Outer, 2.0 * MM, 0.5 * MM);
-    // 0.17·K_o (spec §4.6).
+    // 0.17·K_o (docs/model.md#spall-edge-stiffness).
     assert!((d.k_corner() / table1().k_outer - 0.17).abs() < 0.005);
     // Major axis transverse (the edge is flat across the track).
     assert!(d.corner_hertz().major_along_second);
@@ -360,7 +360,7 @@ fn compliance_blend_over_the_semi_minor_axis() {
     );
 }
 
-/// At a spall edge the C9 blend gives K its groove value but not its slope: inside, the blend's
+/// At a spall edge the C9 (docs/model.md#c9) blend gives K its groove value but not its slope: inside, the blend's
 /// along-track force −(2/5)δ′^{5/2} dK/dy_b acts with dK/dy_b = (3/2) c_g^{−5/2} (c_e − c_g)/ℓ_b
 /// (c = K^{−2/3}); outside there is none. The models locate the edge as a state event, so the
 /// frozen in-zone law (blend frozen on) must continue smoothly past the edge instead of
@@ -442,7 +442,7 @@ fn deflection_helpers() {
     let c = d.contact_at(0.5 * MM).unwrap();
     let delta = 100.0 * UM;
     assert!((c.deflection(delta) - (delta - c.g) * c.theta_dd.cos()).abs() < 1e-18);
-    // Running load ~7 µm overlap: the ball loses contact in the spall (spec §4.4).
+    // Running load ~7 µm overlap: the ball loses contact in the spall (docs/model.md#spall-drop).
     assert!(d.contact_at(0.0).unwrap().deflection(7.0 * UM) < 0.0);
     let rate = c.deflection_rate(0.01, 2.0);
     assert!((rate - (0.01 - c.dg_dy * 2.0) * c.theta_dd.cos()).abs() < 1e-15);

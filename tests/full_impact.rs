@@ -1,9 +1,9 @@
-//! Paper Table 2 at the full level (issue #4, spec §8.3, C14): the impact test (a 1000 N,
+//! Paper Table 2 at the full level (issue #4, docs/model.md#ref-dynamic, #c14): the impact test (a 1000 N,
 //! 100 µs triangular pulse on the pedestal of the healthy Table-1 bearing at 9900 rpm,
 //! Fr 1000 N) with the inner-ring tilt held, as `docs/validation.md` compares it. fel and feh
 //! are the peaks of the pedestal-acceleration pulse response (the run minus the same run
 //! without the pulse, zero-padded to 1 s, rectangular window, as `tests/lumped.rs` and
-//! `studies/validate_full.rs` measure them). They guard the C12 masses, which are calibrated
+//! `studies/validate_full.rs` measure them). They guard the C12 (docs/model.md#c12) masses, which are calibrated
 //! on this test (`docs/research/spec-departures.md`): the paper's fel within 2 %, feh within 10 % and
 //! rising with Fa.
 

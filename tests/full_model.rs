@@ -1,5 +1,5 @@
-//! L4 full model (spec §1–§5, §7) through its own integrator and through `Simulation`:
-//! energy conservation without traction and damping (§10 item 4), static equilibrium at zero
+//! L4 full model (docs/model.md#frames, #geometry, #strips, #spall, #eom, #initial-state) through its own integrator and through `Simulation`:
+//! energy conservation without traction and damping (docs/model.md#verification), static equilibrium at zero
 //! speed against L1, and the dynamic cage speed between pure rolling and outer-race control.
 
 use raceway::geometry::Bearing;
@@ -177,7 +177,7 @@ fn cage_speed_between_pure_rolling_and_outer_race_control() {
     .unwrap();
     let mean = speeds.iter().sum::<f64>() / speeds.len() as f64 / TAU;
     eprintln!("mean cage speed {mean:.3} Hz");
-    // Pure rolling at α0 69.537 Hz, outer-race control 70.42 Hz (spec §8.1, §8.2).
+    // Pure rolling at α0 69.537 Hz, outer-race control 70.42 Hz (docs/model.md#ref-kinematics, #ref-quasi-static).
     assert!(mean > 69.54 && mean < 70.42, "cage speed {mean} Hz");
 }
 

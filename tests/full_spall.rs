@@ -1,4 +1,4 @@
-//! L4 with a spall (spec §4, §4.8): one ball crossing the paper's Sec. 3.1 outer-race spall
+//! L4 with a spall (docs/model.md#spall, #spall-pass): one ball crossing the paper's Sec. 3.1 outer-race spall
 //! (2.0 × 0.5 mm, Fa 3000 N, 10 000 rpm) loses its outer contact at entry, flies free of both
 //! races, hits the trailing edge with a force well above the running load and then bounces
 //! between the races; an inner-ring spall turning with the shaft; point mode; Sec. 3.5 BPFO.
@@ -46,7 +46,7 @@ fn outer_spall_entry_flight_and_trailing_edge_impact() {
     let scene = sec31_scene(Race::Outer, 0.0);
     let dt = 0.5e-6;
     let (t, qi, qo) = run(&scene, 0.9e-3, dt);
-    // Running load: L1 gives Q_o = 417.6 N at this operating point (spec §8.2).
+    // Running load: L1 gives Q_o = 417.6 N at this operating point (docs/model.md#ref-quasi-static).
     let running = 417.6;
     // The first ball that crosses: its outer force falls below 5 % of the running load.
     let (j, k_entry) = (0..14)
@@ -120,7 +120,7 @@ fn first_drop(q: &[Vec<f64>], running: f64) -> Option<(usize, usize)> {
 fn inner_spall_turns_with_the_shaft_and_is_hit() {
     // The spall at θ_d0 = 0 on the inner ring turns at Ω = 1047 rad/s while the balls orbit at
     // ≈ 449 rad/s: it meets a ball (which moves backwards relative to it) within
-    // 2π/14/598 ≈ 0.75 ms. Running inner load 368.3 N (spec §8.2).
+    // 2π/14/598 ≈ 0.75 ms. Running inner load 368.3 N (docs/model.md#ref-quasi-static).
     let scene = sec31_scene(Race::Inner, 0.0);
     let dt = 0.5e-6;
     let (t, qi, qo) = run(&scene, 1.0e-3, dt);
@@ -157,7 +157,7 @@ fn point_mode_spall_also_opens_the_contact() {
 fn sec35_outer_bpfo_from_impact_spacing() {
     // Paper Sec. 3.5 (Fa 4000 N, Fr 1000 N, 9900 rpm, outer spall 1.0 × 0.2 mm at θ_d0 = π):
     // BPFO from the mean interval between impacts must lie between pure rolling (973.5 Hz) and
-    // outer-race control (985.9 Hz), spec §8.3 (target 980.4 Hz; the long run in
+    // outer-race control (985.9 Hz), docs/model.md#ref-dynamic (target 980.4 Hz; the long run in
     // docs/validation.md uses ≥ 100 impacts, this CI run about 40).
     let p =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/sec3.5-outer.toml");
@@ -222,7 +222,7 @@ impl raceway::solver::EventSystem for Driver<'_> {
 /// Conservation law across one ball pass (traction, contact and pedestal damping off): the
 /// total energy after the ball has left the spall equals the energy before it entered. The
 /// deep-groove variant in the unloaded zone (only the centrifugal force presses the ball out)
-/// is the cleanest pass. Without the along-track force of the blended edge stiffness (C9) the
+/// is the cleanest pass. Without the along-track force of the blended edge stiffness (docs/model.md#c9) the
 /// pass created 26.6 mJ (the stiffness rose 6× under a ≈ 20 µm overlap at the trailing edge);
 /// with it the residual is ≈ 1.4 mJ (first-order overlap geometry).
 #[test]

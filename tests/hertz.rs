@@ -1,4 +1,4 @@
-//! Hertz point contact against the spec §2.3 table (independent numpy/scipy computation).
+//! Hertz point contact against docs/model.md#hertz table (independent numpy/scipy computation).
 
 use raceway::contact::hertz::{HertzContact, HertzSolution};
 use raceway::geometry::{race_curvatures, Bearing, Race};
@@ -38,7 +38,7 @@ fn table1_exact_constants_and_ellipticity() {
     // Harris' δ* at 30°.
     assert!((b.hertz_inner.harris_delta_star() - 0.5712).abs() < 5e-4);
     assert!((b.hertz_outer.harris_delta_star() - 0.6552).abs() < 5e-4);
-    // Weak dependence on α (C5).
+    // Weak dependence on α (docs/model.md#c5).
     for (deg, ki, ko) in [(33.0, 3.611e10, 3.406e10), (36.0, 3.614e10, 3.403e10)] {
         let i = contact(&b, Race::Inner, deg, HertzSolution::Exact);
         let o = contact(&b, Race::Outer, deg, HertzSolution::Exact);
@@ -62,8 +62,8 @@ fn table1_semi_axes_and_peak_pressure() {
     let (a, bb) = b.hertz_inner.semi_axes(673.0);
     assert!((a - 1.50e-3).abs() < 0.005e-3, "a_i = {a}");
     assert!((bb - 0.141e-3).abs() < 0.0005e-3, "b_i = {bb}");
-    // The spec prints 1.51 GPa, but its own a and b give 3Q/(2πab) = 1.519 GPa at 673 N:
-    // the printed value is truncated, so check p0 against the closed form of the spec's a, b.
+    // docs/model.md#ref-hertz prints 1.51 GPa, but its own a and b give 3Q/(2πab) = 1.519 GPa at 673 N:
+    // the printed value is truncated, so check p0 against the closed form of those a, b.
     let p0_from_spec_axes = 3.0 * 673.0 / (2.0 * std::f64::consts::PI * 1.50e-3 * 0.141e-3);
     assert!(rel(b.hertz_inner.peak_pressure(673.0), p0_from_spec_axes) < 0.005);
     assert!((b.hertz_inner.peak_pressure(673.0) - 1.51e9).abs() < 0.01e9);

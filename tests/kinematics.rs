@@ -1,4 +1,4 @@
-//! L0 kinematics against spec §8.1 (independent numpy values), published CWRU/IMS fault
+//! L0 kinematics against docs/model.md#ref-kinematics (independent numpy values), published CWRU/IMS fault
 //! frequencies, and a direct solve of the three rolling-without-slip equations.
 
 use raceway::geometry::Bearing;
@@ -21,7 +21,7 @@ fn close(got: f64, want: f64, tol: f64, what: &str) {
 fn table1_9900rpm_matches_spec_8_1() {
     let b = table1();
     let fs = 9900.0 / 60.0;
-    // (α deg, FTF, BPFO, BPFI, BSF) from spec §8.1
+    // (α deg, FTF, BPFO, BPFI, BSF) from docs/model.md#ref-kinematics
     let rows = [
         (30.0, 69.537, 973.52, 1336.48, 443.50),
         (32.0, 69.807, 977.29, 1332.71, 443.96),
@@ -30,7 +30,7 @@ fn table1_9900rpm_matches_spec_8_1() {
     for (deg, ftf, bpfo, bpfi, bsf) in rows {
         let f = fault_frequencies(&b, fs, f64::to_radians(deg));
         close(f.shaft, 165.0, 1e-12, "fs");
-        // FTF is given to 3 decimals in the spec: rounding half-unit
+        // FTF is given to 3 decimals in docs/model.md#ref-kinematics: rounding half-unit
         close(f.ftf, ftf, 0.0005 + 1e-9, &format!("FTF at {deg}°"));
         close(f.bpfo, bpfo, 0.01, &format!("BPFO at {deg}°"));
         close(f.bpfi, bpfi, 0.01, &format!("BPFI at {deg}°"));

@@ -75,7 +75,7 @@ fn kinematic_impulse_train_sits_at_the_l1_fault_frequencies() {
 }
 
 /// With the default traction cage speed the kinematic impulse train sits at the paper's fault
-/// frequencies (spec §8.3: BPFO 980.4 Hz, BPFI 1329 Hz, each ± 0.3 %), which L1's outer-race
+/// frequencies (docs/model.md#ref-dynamic: BPFO 980.4 Hz, BPFI 1329 Hz, each ± 0.3 %), which L1's outer-race
 /// control misses (985.9 / 1324.1 Hz).
 #[test]
 fn kinematic_impulse_train_sits_at_the_paper_fault_frequencies_with_traction() {

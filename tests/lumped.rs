@@ -1,5 +1,5 @@
 //! The L2 lumped model through `Simulation`: the spall's signature at the fault frequencies the
-//! model's cage speed implies, the impact test's fel/feh (spec §8.3), consistency with L1, and the
+//! model's cage speed implies, the impact test's fel/feh (docs/model.md#ref-dynamic), consistency with L1, and the
 //! stepping contract (communication-step invariance, save/restore, failure as a value).
 
 use raceway::geometry::Bearing;
@@ -52,7 +52,7 @@ fn outer_spall_envelope_peak_at_the_models_bpfo() {
     let z = 14.0;
     let bpfo = z * model_cage_hz(&sc);
     // The cage speed from L1 lies between pure rolling (973.52) and outer-race control (985.91,
-    // spec §8.2): L1 solves with outer-race control, so it sits on that bound.
+    // docs/model.md#ref-quasi-static): L1 solves with outer-race control, so it sits on that bound.
     assert!(bpfo > 973.52 && bpfo < 985.92, "model BPFO {bpfo}");
     let fs = 51200.0;
     let (_, rows) = run(&sc, 0.32, fs, 0.02);
@@ -414,7 +414,7 @@ fn slip_jitter_is_seeded_reproducible_and_smears_the_fault_harmonics() {
 
 #[test]
 fn sensor_resonator_adds_its_mode_to_the_pedestal_response() {
-    // Impact test with the "sensor" resonator of spec §6 L2 (16 kHz, ζ 0.05, 0.05 kg). Far
+    // Impact test with the "sensor" resonator of docs/model.md#l2 (16 kHz, ζ 0.05, 0.05 kg). Far
     // above feh the inner ring decouples, so the resonator rides on the pedestal (+ half the
     // balls, 0.829 kg): f = 16 kHz·√(1 + 0.05/0.829) = 16.48 kHz, a little lower where the ring
     // still takes part.

@@ -88,7 +88,7 @@ fn every_level_runs_a_located_ring_under_a_pure_radial_load() {
         (Fidelity::Full, 4e-3),
     ] {
         let mut scene = located_scene(level, 0.0, 3000.0, Some(2e-6));
-        // The tilt held (decision D1; with the ring's own tilt inertia free, it rocks).
+        // The tilt held (decision D1 (docs/model.md#d1); with the ring's own tilt inertia free, it rocks).
         scene.full.lock_tilt = true;
         let mut sim = Simulation::new(&scene).unwrap();
         let (mut fx, mut n) = (0.0, 0);

@@ -1,4 +1,4 @@
-//! L1 quasi-static solution against spec §8.2 (independent numpy values) and an independent
+//! L1 quasi-static solution against docs/model.md#ref-quasi-static (independent numpy values) and an independent
 //! closed-form pure-axial solution, plus equilibrium, deep-groove and failure cases.
 
 use raceway::geometry::Bearing;
@@ -202,7 +202,7 @@ fn row3_combined_9900rpm() {
     );
     rel_close(f.ftf, 70.42, 5e-3, "FTF outer control");
     // The cage speed is the mean of the loaded balls' ω_c weighted by their inner loads (the
-    // spec's 985.9 / 1324.1 Hz are the plain mean, which jumps when a ball enters the load
+    // 985.9 / 1324.1 Hz of docs/model.md#ref-quasi-static are the plain mean, which jumps when a ball enters the load
     // zone): recomputed here from the balls.
     let (qsum, wsum) = q
         .balls
@@ -219,7 +219,7 @@ fn row3_combined_9900rpm() {
     );
     assert!((f.bpfo - 985.3).abs() < 0.5, "BPFO {}", f.bpfo);
     assert!((f.bpfi - 1324.7).abs() < 0.5, "BPFI {}", f.bpfi);
-    // spec: "F_c = 57.3 N per ball and gyroscopic friction 11.7 N": the values of the most
+    // docs/model.md#ref-quasi-static gives F_c = 57.3 N per ball and gyroscopic friction 11.7 N: the values of the most
     // loaded ball, at θ = π (they range 57.31..58.21 N and 11.54..11.70 N over the balls)
     let (fc0, fc1) = minmax(q.balls.iter().map(|b| b.centrifugal));
     let (fg0, fg1) = minmax(q.balls.iter().map(|b| b.gyro_force));

@@ -1,5 +1,5 @@
-//! L3 reduced per-ball model (spec §6 L3): energy conservation without traction and damping
-//! (§10 item 4 applied to L3), static equilibrium at zero speed against L1, the dynamic cage
+//! L3 reduced per-ball model (docs/model.md#l3): energy conservation without traction and damping
+//! (docs/model.md#verification applied to L3), static equilibrium at zero speed against L1, the dynamic cage
 //! speed between pure rolling and outer-race control (also after a speed step), the paper's
 //! Sec. 3.5 BPFO from impact spacing, the Sec. 3.1 flight through a wide outer spall and an
 //! inner-ring spall turning with the shaft.
@@ -92,7 +92,7 @@ fn axial_push_left_after_2ms(options: ReducedOptions, push: f64) -> f64 {
 }
 
 /// Why L3 takes its traction over strips (studies/divergence.rs): with the rolling traction
-/// of spec §6 L3 alone (`strips = 0`), nothing but the normal contacts acts on a ball's motion
+/// of docs/model.md#l3 alone (`strips = 0`), nothing but the normal contacts acts on a ball's motion
 /// across the groove (along c1 in its axial–radial plane), so that motion rings on: about 40 %
 /// of an axial push is left after 2 ms, and long runs over a spall separate at about 180/s
 /// whatever the tolerance. L4's strip traction damps it (0.9 % left at 1.5…2 ms,
@@ -184,7 +184,7 @@ fn balls_started_from_l1_stay_put_at_zero_speed() {
                 b.q_outer
             );
         }
-        // Pure axial: the closed form Q = 530.86 N (spec §8.2).
+        // Pure axial: the closed form Q = 530.86 N (docs/model.md#ref-quasi-static).
         if fr == 0.0 {
             assert!(qi.iter().all(|q| (q / 530.86 - 1.0).abs() < 0.01), "{qi:?}");
         }
@@ -208,7 +208,7 @@ fn cage_speed_between_pure_rolling_and_outer_race_control() {
     .unwrap();
     let mean = speeds.iter().sum::<f64>() / speeds.len() as f64 / TAU;
     eprintln!("mean cage speed {mean:.3} Hz");
-    // Pure rolling at α0 69.537 Hz (L0), outer-race control 70.42 Hz (L1), spec §8.1, §8.2.
+    // Pure rolling at α0 69.537 Hz (L0), outer-race control 70.42 Hz (L1), docs/model.md#ref-kinematics, #ref-quasi-static.
     assert!(mean > 69.537 && mean < 70.42, "cage speed {mean} Hz");
 }
 
@@ -232,7 +232,7 @@ fn run(scene: &Scene, t_end: f64, dt: f64) -> (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<
 fn sec35_outer_bpfo_from_impact_spacing() {
     // Paper Sec. 3.5 (Fa 4000 N, Fr 1000 N, 9900 rpm, outer spall 1.0 × 0.2 mm at θ_d0 = π):
     // the BPFO from the mean interval between impacts lies between pure rolling (973.5 Hz) and
-    // outer-race control (985.9 Hz), spec §8.3.
+    // outer-race control (985.9 Hz), docs/model.md#ref-dynamic.
     let p =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/sec3.5-outer.toml");
     let mut sc = Scene::load(&p).unwrap();
@@ -287,7 +287,7 @@ fn sec35_outer_bpfo_from_impact_spacing() {
 #[test]
 fn sec31_ball_flies_through_the_spall_and_hits_the_trailing_edge() {
     // Paper Sec. 3.1: Fa 3000 N, 10 000 rpm, outer spall 2.0 × 0.5 mm. Running load: L1 gives
-    // Q_o = 417.6 N (spec §8.2).
+    // Q_o = 417.6 N (docs/model.md#ref-quasi-static).
     let mut sc = scene(10_000.0, 3000.0, 0.0);
     sc.defect = Some(DefectSpec {
         ring: Race::Outer,
@@ -370,7 +370,7 @@ fn inner_spall_turns_with_the_shaft_and_is_hit() {
     // Sec. 3.1 conditions with the spall on the inner ring at θ_d0 = 0: it turns at Ω while the
     // balls orbit at ≈ 0.43 Ω, so it meets a ball within 2π/14/(0.57 Ω) ≈ 0.75 ms; the ball loses
     // its inner contact and is hit by the edge with a multiple of the running inner load
-    // (368.3 N, spec §8.2), while its outer contact is not the spalled one.
+    // (368.3 N, docs/model.md#ref-quasi-static), while its outer contact is not the spalled one.
     let mut sc = scene(10_000.0, 3000.0, 0.0);
     sc.defect = Some(DefectSpec {
         ring: Race::Inner,

@@ -1,4 +1,4 @@
-//! Where methods fail (spec `solvers.md`, T1–T9), at the lumped level (L2) and, where it applies,
+//! Where methods fail (docs/model.md#where-methods-fail, T1–T9), at the lumped level (L2) and, where it applies,
 //! the kinematic level. Each test states its pass criterion. T7 (co-simulation step sweep against
 //! a rotor) lives in `tests/stability_cosim.rs`; the FMU stall (fmi2Discard) in
 //! `fmu/tests/fmi_ballbearing.rs`.
@@ -115,7 +115,7 @@ fn stays_bounded(scene: &Scene, method: Method, h: f64, steps: usize) -> bool {
 /// T1: fixed-step blow-up threshold. Criterion: h_crit = reach(arg λ)/|λ| minimised over the
 /// eigenvalues of the finite-difference Jacobian at the initial (equilibrium) state; the run is
 /// bounded at 0.9·h_crit and blows up at 1.1·h_crit, for RK4 and DOP853. The highest mode of L2
-/// is the inner ring on the bearing (feh, spec §9.1: ≈ 4.5–6 kHz): checked against that too.
+/// is the inner ring on the bearing (feh, docs/model.md#stiffness: ≈ 4.5–6 kHz): checked against that too.
 #[test]
 fn t1_fixed_step_blow_up_threshold_matches_the_jacobian_prediction() {
     let scene = healthy_scene();
@@ -166,7 +166,7 @@ fn simulate(scene: &Scene, t_end: f64) -> (Result<(), SimError>, f64, u64, Vec<V
     )
 }
 
-/// Static pedestal deflection −Fr/k_p [m] (spec §7).
+/// Static pedestal deflection −Fr/k_p [m] (docs/model.md#initial-state).
 fn static_zp(scene: &Scene) -> f64 {
     scene.operating.fz / scene.bearing.pedestal.k_z
 }
@@ -330,7 +330,7 @@ fn t5_start_from_rest_and_low_speed() {
 /// T6: contact loss at light load and high speed. Criterion: with Fa 100 N, Fr 1000 N at
 /// 20 000 rpm some balls lose contact (Q = 0 at some time), the run finishes with physical
 /// outputs, and the mean pedestal displacement is −Fr/k_p within 5 % (force balance). L2 has no
-/// centrifugal force (spec §6 L2), so centrifugal unloading is left to L3/L4.
+/// centrifugal force (docs/model.md#l2), so centrifugal unloading is left to L3/L4.
 #[test]
 fn t6_contact_loss_at_light_load_and_high_speed() {
     let mut s = default_scene();
@@ -453,7 +453,7 @@ fn t8_long_run_spectra_converge_and_nothing_drifts() {
     // `lumped.cage_speed`), computed here independently of the simulation.
     let wc = models::traction_cage_speed(&bearing, &inputs, Some(&l1), None).unwrap();
     let bpfo = bearing.z as f64 * wc / std::f64::consts::TAU;
-    // L2 has no centrifugal or gyroscopic ball forces (spec §6 L2): its static ring displacement
+    // L2 has no centrifugal or gyroscopic ball forces (docs/model.md#l2): its static ring displacement
     // is L1's at zero speed under the same loads.
     let l1 = models::solve_l1(
         &bearing,

@@ -1,4 +1,4 @@
-//! T7 (spec solvers.md, "Co-simulation stability"): a bearing `Simulation` in coupling mode
+//! T7 (docs/model.md#coupling-stability): a bearing `Simulation` in coupling mode
 //! "motion" coupled to a 1-DOF rotor by a master loop; the observed stability boundary of the
 //! constant-force (zero-order-hold) Jacobi coupling against ωH = 4ζ, and the interface-Jacobian
 //! (linearly implicit) coupling stable far beyond it.

@@ -1,5 +1,5 @@
-//! Strip rules of the traction quadrature over the contact ellipse's major axis (spec §3.1,
-//! C7): load weights, exactness of the Gauss rule for the Hertz line load 1 − s², and the
+//! Strip rules of the traction quadrature over the contact ellipse's major axis (docs/model.md#strips,
+//! C7 (docs/model.md#c7)): load weights, exactness of the Gauss rule for the Hertz line load 1 − s², and the
 //! strip sums against closed forms and a fine reference.
 
 use raceway::config::TractionSection;
@@ -80,7 +80,7 @@ fn curve() -> TractionCurve {
 #[test]
 fn uniform_slip_gives_q_kappa_for_every_rule() {
     // No rotation of ball against race: the slip is the same at every strip, so the force is
-    // −Q κ(|u|) u/|u| (§3.4) whatever the weights, as long as they sum to 1.
+    // −Q κ(|u|) u/|u| (docs/model.md#forces) whatever the weights, as long as they sum to 1.
     let c = curve();
     let sf = SlipField {
         q: 700.0,
@@ -161,7 +161,7 @@ fn strip_sums_converge_on_a_spinning_contact() {
 
 #[test]
 fn strip_sums_equal_the_plain_sum_over_strips() {
-    // The kernel pairs mirrored strips; check it against the plain per-strip sum of §3.4
+    // The kernel pairs mirrored strips; check it against the plain per-strip sum of docs/model.md#forces
     // (F_k = −Q w_k κ(|u_k|) u_k/|u_k|, moments ξ_k f2, ζ_k f1, ζ_k f2) for odd and even n.
     let c = curve();
     let sf = SlipField {

@@ -300,7 +300,7 @@ fn a_results_file_of_another_sweep_is_refused() {
 
 /// The paper's impact force at L4 (`impact_q_zone`): one pass per ball crossing of the outer
 /// spall, counted against the kinematic pass rate, and the per-pass maximum inside the zone is
-/// a multiple of the running load (spec §8.2: Q_o = 417.6 N for Fa 3000 N at 10 000 rpm) but not
+/// a multiple of the running load (docs/model.md#ref-quasi-static: Q_o = 417.6 N for Fa 3000 N at 10 000 rpm) but not
 /// above the run's largest outer-race force. A level without ball positions records no pass.
 #[test]
 fn impact_in_the_spall_zone_counts_every_pass() {
@@ -351,7 +351,7 @@ harmonics = 1
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// `defect.blend_length` sets the C9 edge-stiffness blend of the run's bearing (0 = abrupt).
+/// `defect.blend_length` sets the C9 (docs/model.md#c9) edge-stiffness blend of the run's bearing (0 = abrupt).
 #[test]
 fn blend_length_key_reaches_the_scene() {
     let sw = parse(

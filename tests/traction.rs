@@ -1,4 +1,4 @@
-//! Traction law against spec §3.3 / §10 item 7 (independent numpy/scipy values, C8).
+//! Traction law against docs/model.md#traction / #verification (independent numpy/scipy values, docs/model.md#c8).
 
 use raceway::config::{TractionLaw, TractionSection};
 use raceway::contact::traction::TractionCurve;

@@ -1,5 +1,5 @@
-//! `raceway bench`: speed against accuracy for every available level and method (spec
-//! `solvers.md`, "Measuring speed against accuracy"). Not part of CI.
+//! `raceway bench`: speed against accuracy for every available level and method (
+//! docs/model.md#measuring). Not part of CI.
 //!
 //! Scenes (all on the default scene's Table-1 bearing, Fa 4000 N, Fr 1000 N, 9900 rpm):
 //! S1 healthy, S2 outer-race spall 1.0 × 0.2 mm at the load-zone centre, S3 inner-race spall

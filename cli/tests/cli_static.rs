@@ -92,7 +92,7 @@ fn static_json_table1_9900rpm() {
     assert!((num(f, "bpfo") - 985.3).abs() < 0.5);
     assert!((num(f, "bpfi") - 1324.7).abs() < 0.5);
     // The steady rotation under the traction: BPFO = 14 FTF within the paper's 980.4 Hz ± 0.3 %
-    // (spec §8.3), where outer-race control is 0.6 % off.
+    // (docs/model.md#ref-dynamic), where outer-race control is 0.6 % off.
     let w = num(&v, "traction_cage_speed");
     rel_close(
         14.0 * w / std::f64::consts::TAU,

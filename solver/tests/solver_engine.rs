@@ -161,7 +161,7 @@ fn fixed_step_stability_threshold() {
         if let Some(x) = expected {
             assert!((reach - x).abs() < 1e-9, "{m}: {reach}");
         } else {
-            // Hairer's DOP853 reaches about 6 on the imaginary axis (solvers.md).
+            // Hairer's DOP853 reaches about 6 on the imaginary axis (docs/model.md#methods).
             assert!((5.5..6.5).contains(&reach), "{m}: {reach}");
         }
         let h_crit = reach / w;

@@ -1,4 +1,4 @@
-//! Hertz point contact between two elastic bodies of the same steel (spec §2.3).
+//! Hertz point contact between two elastic bodies of the same steel (docs/model.md#hertz).
 //!
 //! Given the curvature sums in the two principal planes, [`HertzContact`] gives the load–deflection
 //! constant `K` in `Q = K δ^{3/2}`, the contact-ellipse semi-axes and the peak pressure, either from

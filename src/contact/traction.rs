@@ -1,5 +1,5 @@
-//! Lubricant traction law: traction coefficient κ as a function of the slip speed u (spec §3.3,
-//! choice C8).
+//! Lubricant traction law: traction coefficient κ as a function of the slip speed u (docs/model.md#traction,
+//! docs/model.md#c8).
 //!
 //! The default law is Gupta/ADORE-type,
 //!
@@ -25,7 +25,7 @@ const SERIES_LIMIT: f64 = 1e-3;
 
 /// The traction curve κ(u) of one lubricated contact, precomputed from a `[traction]` section.
 ///
-/// The same curve is used at both races (C8). All methods take the slip *speed* u ≥ 0 \[m/s\];
+/// The same curve is used at both races (docs/model.md#c8). All methods take the slip *speed* u ≥ 0 \[m/s\];
 /// a negative argument is treated as |u|.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TractionCurve {
@@ -144,7 +144,7 @@ impl TractionCurve {
     ///
     /// With κ0 > 0 the exact law has a finite traction at zero slip in an undefined direction
     /// (κ/u → ∞); the κ0 part is then regularised as `κ0/√(u² + u_reg²)`, u_reg = 0.01·u_m,
-    /// so that the force stays finite and continuous. κ0 = 0 (the default, C8) is exact.
+    /// so that the force stays finite and continuous. κ0 = 0 (the default, docs/model.md#c8) is exact.
     #[inline]
     pub fn kappa_over_u(&self, u: f64) -> f64 {
         let u = u.abs();
@@ -178,7 +178,7 @@ impl TractionCurve {
     }
 
     /// Initial slope dκ/du at u = 0⁺ \[s/m\]: B − C·A (ADORE; 0.486 s/m by default) or κm/u_m
-    /// (piecewise). It sets the slip relaxation rate (spec §9.1).
+    /// (piecewise). It sets the slip relaxation rate (docs/model.md#stiffness).
     pub fn dkappa_du0(&self) -> f64 {
         match self.law {
             TractionLaw::Adore => self.b - self.c * self.a,
@@ -187,7 +187,7 @@ impl TractionCurve {
     }
 
     /// Traction force components on the body whose slip is `(u1, u2)` \[m/s\] under normal load
-    /// `q` \[N\]: `−q κ(|u|) u/|u|` (spec §3.4), i.e. opposite to the slip. Zero slip gives zero
+    /// `q` \[N\]: `−q κ(|u|) u/|u|` (docs/model.md#forces), i.e. opposite to the slip. Zero slip gives zero
     /// force (no division by zero).
     #[inline]
     pub fn force(&self, u1: f64, u2: f64, q: f64) -> (f64, f64) {

@@ -1,4 +1,4 @@
-//! L0s: the kinematic signal generator (spec §6, "L0s").
+//! L0s: the kinematic signal generator (docs/model.md#l0 "L0s").
 //!
 //! States: the cage angle θ_c and the shaft angle φ (constant rates between input changes, so
 //! every explicit Runge–Kutta method integrates them exactly and takes few steps). The cage speed

@@ -1,11 +1,11 @@
-//! L2: the lumped radial/axial model after Sawalhi & Randall (2008), spec §6 L2.
+//! L2: the lumped radial/axial model after Sawalhi & Randall (2008), docs/model.md#l2.
 //!
 //! Bodies: the inner ring with half the balls (x, y, z), the pedestal with the outer ring and the
 //! other half of the balls (y, z), and an optional high-frequency resonator on the pedestal in z.
 //! Balls are massless and move kinematically at the loaded cage speed from L1; each ball couples
 //! the rings through the series Hertz constant of its two contacts and the contact damping.
 //! A spall removes the finite-ball drop g(y_b) from the ball's approach and changes the Hertz
-//! constant of its race (spec §4).
+//! constant of its race (docs/model.md#spall).
 //!
 //! Besides the mechanical states, the cage angle θ_c and the shaft angle φ are states (so that
 //! speed changes between communication steps keep the balls and an inner-ring spall continuous).
@@ -229,7 +229,7 @@ impl LumpedModel {
     }
 
     /// Ball 0's start azimuth: 0, or half a spacing when that puts a ball near the spall
-    /// (spec §7: no ball within θ_e + 0.02 rad of a defect at the start).
+    /// (docs/model.md#initial-state: no ball within θ_e + 0.02 rad of a defect at the start).
     fn choose_theta_start(&self) -> f64 {
         let Some(d) = &self.defect else { return 0.0 };
         let clear = d.half_angle() + 0.02;

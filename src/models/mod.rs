@@ -4,7 +4,7 @@
 //! A model is a first-order ODE `y' = f(t, y)` with piecewise-constant inputs, plus
 //! known-time discontinuities ("stops", e.g. a ball reaching a defect edge when ball motion is
 //! prescribed) at which the integrator must land and the model may switch a frozen discrete
-//! mode (spec `solvers.md`, "Events").
+//! mode (docs/model.md#events).
 //!
 //! - [`model`](Model): the interface, with the errors ([`SimError`]; the inputs are a
 //!   [`crate::operating::OperatingPoint`]);

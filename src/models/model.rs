@@ -68,7 +68,7 @@ pub struct ReactionJacobian {
 
 /// One dynamic model of the ladder.
 ///
-/// Motion coupling (the journal's motion prescribed, spec issue 6). A level with a dynamic
+/// Motion coupling (the journal's motion prescribed, issue 6). A level with a dynamic
 /// inner ring needs only two things: [`Model::ring_states`] (where its ring translation lives in
 /// the state) and to honour [`Model::set_prescribed_ring`] in its right-hand side (ring
 /// translational accelerations zero, so that the states follow x_k + v_k (t − t_k) exactly; the
@@ -97,7 +97,7 @@ pub trait Model: Send {
         None
     }
 
-    /// The initial state at t = 0 (from L1 equilibrium, spec §7).
+    /// The initial state at t = 0 (from L1 equilibrium, docs/model.md#initial-state).
     fn initial_state(&self, y: &mut [f64]);
 
     /// New inputs, constant from time `t` on (state `y` at that time). On an error (no

@@ -1,4 +1,4 @@
-//! L1 as a level of the ladder (spec §6 L1): the outputs are the quasi-static (Jones–Harris)
+//! L1 as a level of the ladder (docs/model.md#l1): the outputs are the quasi-static (Jones–Harris)
 //! solution at the current inputs.
 //!
 //! The model integrates only the cage angle θ_c and the shaft angle φ (two states with constant

@@ -1,48 +1,43 @@
-//! L3: the reduced per-ball dynamic model (spec §6 L3).
+//! L3: the reduced per-ball dynamic model (docs/model.md#l3).
 //!
 //! Every ball keeps the full model's translational states (x, r, θ and their rates in inertial
 //! cylindrical coordinates) but only one rotational state: the spin rate ω_s about an attitude
 //! axis `ê_s = cos β e_x − sin β e_r(θ)` whose angle β is fixed (from L1). The ball's inertial
 //! angular velocity is `θ̇ e_x + ω_s ê_s`. The inner ring translates (no tilt, spin prescribed,
-//! C4); the outer ring moves with the 2-DOF pedestal (C3).
+//! C4 (docs/model.md#c4)); the outer ring moves with the 2-DOF pedestal (docs/model.md#c3).
 //!
 //! The normal contacts are the full model's ([`super::balls::ball_contact::evaluate_law`]: geometry
 //! with changing contact angles, Hertz with contact damping, the spall's three effects), with
 //! the full model's frozen modes and their events ([`super::balls::switches::Switches`]), all held by the
 //! [`BallCore`] it shares with the full model: the
-//! contact switches (closing, opening), the spall half (edges and centre) and the C9 blend
+//! contact switches (closing, opening), the spall half (edges and centre) and the C9 (docs/model.md#c9) blend
 //! boundary are located on the dense output, and a frozen law holds between them.
 //!
 //! Traction is the full model's strip traction over the contact ellipse with [`L3_STRIPS`]
 //! strips, the ball's angular velocity constrained to `θ̇ e_x + ω_s ê_s`. The spin obeys
 //! `J ω̇_s = (Σ M_c)·ê_s` with M_c the contacts' moments about the ball centre; the other
 //! components are taken up by the fixed-attitude constraint. Centrifugal and Coriolis forces
-//! come from the cylindrical equations of motion (§5.1).
+//! come from the cylindrical equations of motion (docs/model.md#eom-ball).
 //!
-//! This departs from spec §6 L3, which has one point at the ellipse centre with the rolling
+//! This departs from docs/model.md#l3, which has one point at the ellipse centre with the rolling
 //! component only, `F_t = −Q κ(|u2|) sign(u2) c2` (still available: [`ReducedOptions::strips`]
-//! = 0). Measured (examples/divergence.rs, tests/reduced_model.rs), that variant has two
-//! defects. Nothing but the normal contacts acts on a ball's motion across the groove, so that
-//! motion rings on (40 % of an axial push left after 2 ms; L4: 0.9 %): over a spall, two runs at
-//! any two tolerances separate at ≈ 180/s and the level never converges over 0.1 s (E1 0.18
-//! between two references; L4 4e-8). And without the spin and the curvature of the contact
-//! across the ellipse the cage runs 0.33 % faster than L4's (70.27 against 70.03 Hz on the
-//! §3.5 scene), which moves the fault lines by one to two bins. With 4 strips the references
-//! agree to ≈ 1e-6 over 0.1 s and the cage runs at 70.12 Hz, at ≈ 1.45× the RHS cost.
+//! = 0): with nothing but the normal contacts acting across the groove, a ball's axial motion
+//! rings on and runs over a spall do not converge with the tolerance, and without the spin and
+//! the curvature across the ellipse the cage runs fast. The measurements are in
+//! docs/research/spec-departures.md.
 //!
-//! The attitude β is not L1's outer-race control (25.8° on the §3.5 bearing) but the one the
-//! traction sets: the balls' steady rotation solved on the full model at the start
-//! ([`super::full::steady::steady_rotation`], 33.6°; L4's balls settle to 33.4° within
-//! ≈ 20 ms). With it L3's cage runs at 69.964 Hz against L4's 69.957 Hz (tilt held), and its
-//! friction torque is 0.203 against 0.202 N m (with L1's attitude: 70.121 Hz, 0.311 N m).
+//! The attitude β is not L1's outer-race control but the one the traction sets: the balls'
+//! steady rotation solved on the full model at the start
+//! ([`super::full::steady::steady_rotation`]), to which the full model's balls settle; with it
+//! the cage speed and friction torque follow the full model's (docs/research/levels-reduced.md).
 //!
-//! State layout ([`Layout::reduced`]), deviations as in the full model (solvers.md): per ball j
+//! State layout ([`Layout::reduced`]), deviations as in the full model (docs/model.md#tolerances): per ball j
 //! (7 states from `7 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_s. Then the inner
 //! ring (6 from `7 z`): x, y, z, ẋ, ẏ, ż; the pedestal (4 from `7 z + 6`): y_p, z_p, ẏ_p, ż_p;
 //! the reference cage angle ψ (`7 z + 10`) and the shaft angle φ (`7 z + 11`). 7z + 12 states
-//! (110 for z = 14; the spec's 7z + 10 plus the two bookkeeping angles the full model also has).
+//! (110 for z = 14; the 7z + 10 of docs/model.md#l3 plus the two bookkeeping angles the full model also has).
 //!
-//! The initial state is the full model's (spec §7, from L1) with the balls' steady rotation,
+//! The initial state is the full model's (docs/model.md#initial-state, from L1) with the balls' steady rotation,
 //! reduced to these states.
 
 use super::balls::ball_contact::{
@@ -63,8 +58,8 @@ use crate::operating::OperatingPoint;
 use crate::scene::Scene;
 use std::f64::consts::TAU;
 
-/// Traction strips of L3 by default ([`ReducedOptions::strips`]). Measured on the §3.5 outer
-/// scene (0.1 s, DOP853 rtol 1e-6): mean cage speed 70.267 Hz with the spec's single rolling
+/// Traction strips of L3 by default ([`ReducedOptions::strips`]). Measured on the Sec. 3.5 outer
+/// scene (0.1 s, DOP853 rtol 1e-6): mean cage speed 70.267 Hz with the original single rolling
 /// point, 69.947 with 2 strips, 70.121 with 4, 70.127 with 10; the full model 70.030 (10 strips; 70.030 with 8).
 pub const L3_STRIPS: usize = 4;
 
@@ -86,7 +81,7 @@ pub struct ReducedOptions {
     pub traction: bool,
     /// Strips of the traction over the contact ellipse (default [`L3_STRIPS`]): the full
     /// model's strip traction ([`super::balls::ball_contact::evaluate_law`]) with the ball's angular velocity
-    /// constrained to `θ̇ e_x + ω_s ê_s`. 0 is the spec's literal L3 (§6): one point at the
+    /// constrained to `θ̇ e_x + ω_s ê_s`. 0 is the original L3 (docs/model.md#l3): one point at the
     /// ellipse centre, rolling component only. That variant leaves the ball's motion across the
     /// groove undamped and the cage 0.33 % fast; see the module notes.
     pub strips: usize,
@@ -106,7 +101,7 @@ pub struct ReducedModel {
     /// What it shares with the full model (see [`BallCore`]).
     core: BallCore,
     traction: Option<TractionCurve>,
-    /// Strip layout of the traction; `None`: one point, rolling component only (spec-literal).
+    /// Strip layout of the traction; `None`: one point, rolling component only (the original L3, docs/model.md#l3).
     strips: Option<Strips>,
     /// (cos β, sin β) of the fixed attitude angle.
     attitude: (f64, f64),
@@ -183,7 +178,7 @@ impl ReducedModel {
         if z == 0 {
             return Err(SimError::Input("the bearing has no balls".into()));
         }
-        // The full model's start (spec §7: L1, pedestal and ring offsets, ball placement clear of
+        // The full model's start (docs/model.md#initial-state: L1, pedestal and ring offsets, ball placement clear of
         // the spall) and its spall; without traction it builds no strip tables.
         let full = FullModel::with_options(
             scene,
@@ -254,7 +249,7 @@ impl ReducedModel {
             let w = [yf[bf + 6] - yf[bf + BW], yf[bf + 7], yf[bf + 8]];
             let norm = dot(w, w).sqrt();
             if norm > 0.0 {
-                // ω_R < 0 for Ω > 0 (spec §6 L0): ê_s = w/ω_R = −w/|w|.
+                // ω_R < 0 for Ω > 0 (docs/model.md#l0): ê_s = w/ω_R = −w/|w|.
                 let es = scale(w, -1.0 / norm);
                 beta_sum += (-dot(es, er)).atan2(es[0]);
                 n_beta += 1;

@@ -5,7 +5,7 @@ use crate::geometry::Bearing;
 use crate::operating::OperatingPoint;
 use crate::scene::{AxialMount, Scene};
 
-/// L1 (quasi-static) solution at the given inputs; every level starts from it (spec §7). A failure
+/// L1 (quasi-static) solution at the given inputs; every level starts from it (docs/model.md#initial-state). A failure
 /// names the operating point and says why, prefixed by what needed the solution.
 pub fn solve_l1(
     bearing: &Bearing,

@@ -539,7 +539,7 @@ impl Sweep {
                 "defect.width" => defect.width = num()?,
                 "defect.depth" => defect.depth = num()?,
                 "defect.theta0" => defect.theta0 = num()?,
-                // C9 edge-stiffness blend length [m] of the bearing's [defect] table (0 = the
+                // C9 (docs/model.md#c9) edge-stiffness blend length [m] of the bearing's [defect] table (0 = the
                 // paper's abrupt change of the Hertz constant).
                 "defect.blend_length" => {
                     scene.bearing.defect.blend_length = crate::config::BlendLength::Metres(num()?)

@@ -1,4 +1,4 @@
-//! The impact test's measurement (spec §8.3, C14), shared by the lumped and full-level tests:
+//! The impact test's measurement (docs/model.md#ref-dynamic, #c14), shared by the lumped and full-level tests:
 //! the amplitude spectrum of the pedestal-acceleration pulse response.
 
 use raceway::scene::Scene;

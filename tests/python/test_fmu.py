@@ -1,4 +1,4 @@
-"""The BallBearing FMU against /work/shared/spec/fmu.md: package, fmpy, probes, libcosim."""
+"""The BallBearing FMU against docs/fmu.md: package, fmpy, probes, libcosim."""
 
 import math
 import shutil
@@ -391,7 +391,7 @@ def test_reduced_level_runs_with_per_ball_outputs(probe, dynamics):
 @pytest.mark.parametrize("code, ftf", [(0, 980.4 / 14), (1, 70.42)])
 def test_cage_speed_parameter(fmu, code, ftf):
     """lumped.cage_speed: 0 (default) the traction cage speed, whose BPFO lies within the paper's
-    980.4 Hz ± 0.3 % (spec §8.3); 1 L1's outer-race control, FTF 70.42 Hz (spec §8.2)."""
+    980.4 Hz ± 0.3 % (docs/model.md#ref-dynamic); 1 L1's outer-race control, FTF 70.42 Hz (docs/model.md#ref-quasi-static)."""
     from fmpy import simulate_fmu
 
     res = simulate_fmu(str(fmu), stop_time=2e-3, output_interval=1e-3,

@@ -2,7 +2,7 @@
 `cargo run --release -p fmu-build`) and of the co-simulation master in examples/cosim_master.py.
 
 The stability checks couple the rotor FMU to a linear bearing stand-in (F = -k x - c v) for which
-the closed-form limits are known (spec solvers.md, "Co-simulation stability")."""
+the closed-form limits are known (docs/model.md#coupling-stability)."""
 
 import shutil
 import subprocess
@@ -84,7 +84,7 @@ def test_constant_input_coupling_boundary_is_omega_h_4_zeta(rotor_fmu, zeta):
 
 
 def test_linear_extrapolation_boundary_matches_the_spec_table(rotor_fmu):
-    # solvers.md: omega H < 0.50 for zeta = 0.02 with linear extrapolation
+    # docs/model.md#coupling-stability: omega H < 0.50 for zeta = 0.02 with linear extrapolation
     below = _run(rotor_fmu, 0.02, 0.45, "extrapolate")
     above = _run(rotor_fmu, 0.02, 0.55, "extrapolate")
     assert below["ok"] and cm.growth_rate(below["t"], below["x"][:, 1]) < 0

@@ -1,6 +1,6 @@
-//! One ball–race contact of the ball-level models (full and reduced): geometry with changing contact angle (spec §2.2),
-//! Hertz force with contact damping (C6), the spall's three effects (§4.4–4.6) and strip
-//! traction (§3.1–3.4). Everything is scalar arithmetic on fixed-size arrays (no allocation).
+//! One ball–race contact of the ball-level models (full and reduced): geometry with changing contact angle (docs/model.md#contact-geometry),
+//! Hertz force with contact damping (docs/model.md#c6), the spall's three effects (docs/model.md#spall-drop, #spall-direction, #spall-edge-stiffness) and strip
+//! traction (docs/model.md#strips, #slip, #traction, #forces). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
 use crate::config::{StripRule, MAX_STRIPS};
 use crate::contact::traction::TractionCurve;
@@ -38,7 +38,7 @@ pub fn scale(a: V3, s: f64) -> V3 {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
-/// Pose and motion of a ring (spec §1.1: small tilts, non-spinning frame, spin rate separate).
+/// Pose and motion of a ring (docs/model.md#frames: small tilts, non-spinning frame, spin rate separate).
 #[derive(Debug, Clone, Copy)]
 pub struct RingPose {
     /// Centre r_r \[m\].
@@ -84,7 +84,7 @@ impl RingPose {
 /// Per-race constants of the contact law.
 #[derive(Debug, Clone, Copy)]
 pub struct RaceConst {
-    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame \[m\] (§2.1).
+    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame \[m\] (docs/model.md#geometry).
     pub xg: f64,
     pub rg: f64,
     /// (f − ½) D: distance groove centre – ball centre at first touch \[m\].
@@ -95,13 +95,13 @@ pub struct RaceConst {
     pub k_cbrt: f64,
     /// Semi-major axis factor a* (a = a* Q^{1/3}).
     pub a_star: f64,
-    /// Deformed-surface radius R_s = 2fD/(2f + 1) \[m\] (C7).
+    /// Deformed-surface radius R_s = 2fD/(2f + 1) \[m\] (docs/model.md#c7).
     pub rs: f64,
     /// Sign s_k of the contact angle (outer +1, inner −1).
     pub sign: f64,
 }
 
-/// Strip layout (C7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).
+/// Strip layout (docs/model.md#c7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).
 #[derive(Debug, Clone, Copy)]
 pub struct Strips {
     pub n: usize,
@@ -381,7 +381,7 @@ pub fn evaluate_normal(
 }
 
 /// Where a ball centre sits in a ring's groove: the start of every contact evaluation
-/// (§2.2), which depends on no spall and no law. The ball centre relative to the ring centre
+/// (docs/model.md#contact-geometry), which depends on no spall and no law. The ball centre relative to the ring centre
 /// in inertial (`rbr`) and ring-frame (`rr`) components, its distance ρ from the ring axis and
 /// the radial unit vector's ring-frame components (e_y, e_z), and its offset (b_x, b_r) from
 /// the groove-centre circle with length l and direction (n1, n3) = (b_x, b_r)/l.
@@ -528,7 +528,7 @@ pub fn evaluate_normal_at(
     out.q = q;
     out.f = scale(n, -q);
     if dk_dy != 0.0 && delta > 0.0 {
-        // Along-track force of the blended edge stiffness: −∂/∂y [(2/5) K(y) δ′^{5/2}] (C9),
+        // Along-track force of the blended edge stiffness: −∂/∂y [(2/5) K(y) δ′^{5/2}] (docs/model.md#c9),
         // through the ball centre (a potential force), reaction on the ring.
         let f_track = -0.4 * dk_dy * delta * delta * sd * track_gain;
         out.f = add(out.f, scale(c2_track, f_track));
@@ -545,7 +545,7 @@ pub fn evaluate_normal_at(
     Some((sf, [n, c1, c2]))
 }
 
-/// Slip of a loaded contact along its major axis, in contact-frame components (§3.1–3.2): the
+/// Slip of a loaded contact along its major axis, in contact-frame components (docs/model.md#strips, #slip): the
 /// input of the strip quadrature. At s = ξ/a the deformed-surface point is
 /// `ζ(ξ) = √(R_s² − ξ²) + z0` along n, and the slip of the ball against the race is
 /// `u1 = a1 + ζ b1` (transverse, c1) and `u2 = a2 + ξ s − ζ b2` (rolling direction, c2).
@@ -613,7 +613,7 @@ fn slip_field(
     }
 }
 
-/// Strip sums of one contact (§3.4): `[f1, f2, Σ ξ f2, Σ ζ f1, Σ ζ f2]`, the traction force on
+/// Strip sums of one contact (docs/model.md#forces): `[f1, f2, Σ ξ f2, Σ ζ f1, Σ ζ f2]`, the traction force on
 /// the ball in (c1, c2) components and the three moment sums.
 #[inline(always)]
 pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f64; 5] {

@@ -30,7 +30,7 @@ pub enum BallSpin {
     Fixed { cos: f64, sin: f64 },
 }
 
-/// Per-race constants from the bearing (spec §2.1, §2.3, C7).
+/// Per-race constants from the bearing (docs/model.md#geometry, #hertz, #c7).
 pub fn race_const(b: &Bearing, race: Race) -> RaceConst {
     let (xg, rg) = b.groove_centre(race);
     let f = b.f(race);
@@ -65,7 +65,7 @@ pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
 }
 
 /// Ball 0's start azimuth: 0 (where L1 puts it), or an offset when that puts a ball within
-/// θ_e + 0.02 rad of the spall (§7 step 4).
+/// θ_e + 0.02 rad of the spall (docs/model.md#initial-state step 4).
 pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
     let Some(d) = defect else { return 0.0 };
     let clear = d.half_angle() + 0.02;

@@ -1,6 +1,6 @@
-//! State layout of the ball-level models: the full model's (spec §1.2) and the reduced model's
+//! State layout of the ball-level models: the full model's (docs/model.md#state) and the reduced model's
 //! ([`Layout::reduced`]), which shares its offsets. The full model's, with deflection-scale states as deviations
-//! (solvers.md): ball radius relative to the pitch radius, ball azimuth relative to a reference
+//! (docs/model.md#integrator): ball radius relative to the pitch radius, ball azimuth relative to a reference
 //! cage angle ψ that turns at a constant rate.
 //!
 //! Per ball j (9 states from `9 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_x, ω_y, ω_z.

@@ -1,7 +1,7 @@
 //! The frozen discrete modes of a ball-level model (full and reduced levels) and their switches
 //! (held by the [`BallCore`](super::core::BallCore)).
 //!
-//! The clamped contact law, the C9 compliance blend and the spall halves are not smooth in the
+//! The clamped contact law, the C9 (docs/model.md#c9) compliance blend and the spall halves are not smooth in the
 //! state; a model that owns a [`Switches`] evaluates a frozen law inside each step
 //! ([`Switches::law`], [`Switches::blend`], [`Switches::side`]) and locates the switches as
 //! state events. Event indices, per ball j of z: 2j, 2j + 1 the inner and outer contact
@@ -31,7 +31,7 @@ pub struct Switches {
     sides: Vec<f64>,
     /// Balls whose half changed in the last mode update (their contact functions jump there).
     sides_changed: Vec<bool>,
-    /// Frozen side of the edge-constant blend per ball (true: within ℓ_b of an edge, C9);
+    /// Frozen side of the edge-constant blend per ball (true: within ℓ_b of an edge, docs/model.md#c9);
     /// its boundary is a state event (index 4z + j) like the contact switches.
     in_blend: Vec<bool>,
     /// Frozen contact modes per ball, (inner, outer): true = in contact (the unclamped force

@@ -1,4 +1,4 @@
-//! Initial state of the full model from the quasi-static solution (spec §7).
+//! Initial state of the full model from the quasi-static solution (docs/model.md#initial-state).
 
 use crate::geometry::{Bearing, Race};
 use crate::models::balls::layout::*;
@@ -33,7 +33,7 @@ pub fn initial_state(
     let lay = m.lay;
     let y = &mut m.y0;
     y.iter_mut().for_each(|v| *v = 0.0);
-    // Common cage speed: L1's mean ω_c of the loaded balls (§7 step 1).
+    // Common cage speed: L1's mean ω_c of the loaded balls (docs/model.md#initial-state step 1).
     let omega_c = if inputs.shaft_speed > 0.0 {
         qs.cage_speed
     } else {

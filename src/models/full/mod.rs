@@ -1,17 +1,17 @@
-//! L4: the full dynamic model of the paper (spec §1–§5, §7).
+//! L4: the full dynamic model of the paper (docs/model.md#frames, #geometry, #strips, #spall, #eom, #initial-state).
 //!
 //! Every ball is a rigid body with 9 states (position and velocity in inertial cylindrical
 //! coordinates, inertial angular velocity); the inner ring translates and tilts with its spin
-//! prescribed (C4); the outer ring moves with the 2-DOF pedestal (C3). Each ball touches each
-//! race through a Hertz contact whose angle follows the geometry (§2.2), with contact damping
-//! (C6) and strip traction from the slip of ball against race (§3). A spall on either race
+//! prescribed (docs/model.md#c4); the outer ring moves with the 2-DOF pedestal (docs/model.md#c3). Each ball touches each
+//! race through a Hertz contact whose angle follows the geometry (docs/model.md#contact-geometry), with contact damping
+//! (docs/model.md#c6) and strip traction from the slip of ball against race (docs/model.md#strips). A spall on either race
 //! removes the finite-ball drop from the approach, tilts the contact force and changes the
-//! Hertz constant (§4). Centrifugal and Coriolis forces come from the cylindrical equations
-//! of motion and gyroscopic moments through the contact friction moments (§5.1).
+//! Hertz constant (docs/model.md#spall). Centrifugal and Coriolis forces come from the cylindrical equations
+//! of motion and gyroscopic moments through the contact friction moments (docs/model.md#eom-ball).
 //!
 //! The parts shared with the reduced model (state layout, contacts, frozen modes, outputs) are
-//! in [`super::balls`]; here: the initial state from L1 ([`init`], §7), the balls' steady
-//! rotation ([`steady`]), the equations of motion (§5) and the [`Model`] implementation.
+//! in [`super::balls`]; here: the initial state from L1 ([`init`], docs/model.md#initial-state), the balls' steady
+//! rotation ([`steady`]), the equations of motion (docs/model.md#eom) and the [`Model`] implementation.
 
 pub mod init;
 pub mod steady;
@@ -314,7 +314,7 @@ impl FullModel {
 
     /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and
     /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts + pedestal springs
-    /// − work of the constant loads. Conserved without traction, damping and spall (§10 item 4);
+    /// − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
     /// the prescribed spin does no work.
     pub fn energy(&self, y: &[f64]) -> f64 {
         let c = &self.core;
