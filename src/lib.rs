@@ -7,8 +7,8 @@
 //! - [`geometry`]: derived geometry shared by every fidelity level;
 //! - [`contact`]: Hertz law ([`contact::hertz`]) and lubricant traction ([`contact::traction`]);
 //! - [`defect`]: the spall (added deflection, force direction, Hertz change);
-//! - [`kinematics`]: L0 fault frequencies;
-//! - [`quasi_static`]: L1 Jones–Harris load distribution and stiffness;
+//! - [`fault_frequencies`]: L0 fault frequencies;
+//! - [`load_distribution`]: L1 Jones–Harris load distribution and stiffness;
 //! - [`models`]: the dynamic models (L2 lumped, ...) as [`solver::System`]s;
 //! - [`solver`]: the explicit Runge–Kutta engine (the `raceway-solver` crate; knows nothing
 //!   about bearings);
@@ -21,12 +21,12 @@
 pub mod config;
 pub mod contact;
 pub mod defect;
+pub mod fault_frequencies;
 pub mod geometry;
-pub mod kinematics;
 pub mod limits;
+pub mod load_distribution;
 pub mod models;
 pub mod operating;
-pub mod quasi_static;
 pub mod scene;
 pub mod signal;
 pub mod simulation;

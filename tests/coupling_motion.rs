@@ -307,7 +307,7 @@ fn coupling_mode_in_scenes() {
 
 #[test]
 fn lumped_cage_speed_follows_the_reaction_when_the_speed_changes() {
-    use raceway::quasi_static::solve;
+    use raceway::load_distribution::solve;
     let sc = scene(Fidelity::Lumped, false);
     let mut sim = Simulation::new(&sc).unwrap();
     // Press the journal 5 µm down (more radial load than the start's), then change the speed.

@@ -3,10 +3,10 @@
 //! speed against L1, and the dynamic cage speed between pure rolling and outer-race control.
 
 use raceway::geometry::Bearing;
+use raceway::load_distribution;
 use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static;
 use raceway::scene::{Fidelity, Scene};
 use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
@@ -131,7 +131,7 @@ fn run_static(fa: f64, fr: f64, lock_tilt: bool, duration: f64) -> (Vec<f64>, Ve
 
 fn assert_close_to_l1(fa: f64, fr: f64, qi: &[f64], qo: &[f64]) {
     let bearing = Bearing::load("niu2014-table1").unwrap();
-    let qs = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
+    let qs = load_distribution::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
     for (j, b) in qs.balls.iter().enumerate() {
         assert!(
             (qi[j] / b.q_inner - 1.0).abs() < 0.01 && (qo[j] / b.q_outer - 1.0).abs() < 0.01,

@@ -2,9 +2,9 @@
 //! checked against L1's own solve, the fault-frequency formulas and the load-zone closed form.
 
 use raceway::geometry::{Bearing, Race};
+use raceway::load_distribution;
 use raceway::models::kinematic::KinematicModel;
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static;
 use raceway::scene::{CageSpeed, Fidelity, Scene};
 use raceway::signal::{self, Window};
 use raceway::simulation::{out, Simulation};
@@ -46,7 +46,8 @@ fn accel(s: &Scene, t_end: f64, fs: f64) -> Vec<f64> {
 fn l1_cage() -> (f64, f64) {
     let s = Scene::default_scene();
     let b = Bearing::new(&s.bearing).unwrap();
-    let qs = quasi_static::solve(&b, &OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0)).unwrap();
+    let qs =
+        load_distribution::solve(&b, &OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0)).unwrap();
     (qs.cage_speed, 9900.0 * TAU / 60.0)
 }
 
@@ -126,7 +127,8 @@ fn load_zone_closed_form() {
 fn quasi_static_level_outputs_are_the_l1_solution() {
     let s = scene(Fidelity::QuasiStatic, Some(Race::Outer));
     let b = Bearing::new(&s.bearing).unwrap();
-    let qs = quasi_static::solve(&b, &OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0)).unwrap();
+    let qs =
+        load_distribution::solve(&b, &OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0)).unwrap();
     let mut sim = Simulation::new(&s).unwrap();
     let mut o = vec![0.0; sim.output_table().len()];
     sim.outputs(&mut o);

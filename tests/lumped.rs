@@ -3,8 +3,8 @@
 //! stepping contract (communication-step invariance, save/restore, failure as a value).
 
 use raceway::geometry::Bearing;
+use raceway::load_distribution;
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static;
 use raceway::scene::Scene;
 use raceway::signal::{self, Window};
 use raceway::simulation::{out, SimError, Simulation};
@@ -147,7 +147,7 @@ fn at_rest_the_ring_sits_where_l1_puts_it() {
     sc.defect = None;
     sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
     let bearing = Bearing::new(&sc.bearing).unwrap();
-    let qs = quasi_static::solve(
+    let qs = load_distribution::solve(
         &bearing,
         &OperatingPoint {
             shaft_speed: 0.0,
@@ -202,7 +202,8 @@ fn at_speed_the_ring_starts_at_the_lumped_equilibrium() {
         sc.operating.fx = fa;
         sc.operating.fz = -fr;
         let bearing = Bearing::new(&sc.bearing).unwrap();
-        let rest = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
+        let rest =
+            load_distribution::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
         let mut sim = Simulation::new(&sc).unwrap();
         let mut o = vec![0.0; sim.output_table().len()];
         sim.outputs(&mut o);

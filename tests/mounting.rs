@@ -5,8 +5,8 @@
 //! `static --axial-offset`: cli/tests/cli_static.rs).
 
 use raceway::geometry::Bearing;
+use raceway::load_distribution::{solve, solve_located};
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static::{solve, solve_located};
 use raceway::scene::{AxialMount, CouplingMode, Fidelity, Mounting, Scene};
 use raceway::simulation::{out, Simulation};
 

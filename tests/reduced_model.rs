@@ -9,10 +9,10 @@ mod bounces;
 use bounces::inner_outer_alternations;
 use raceway::defect::DefectSpec;
 use raceway::geometry::{Bearing, Race};
+use raceway::load_distribution;
 use raceway::models::reduced::{ReducedModel, ReducedOptions};
 use raceway::models::Model;
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static;
 use raceway::scene::{Fidelity, Scene};
 use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
@@ -173,7 +173,8 @@ fn balls_started_from_l1_stay_put_at_zero_speed() {
     let bearing = Bearing::load("niu2014-table1").unwrap();
     for (fa, fr) in [(4000.0, 0.0), (4000.0, 1000.0)] {
         let (qi, qo, acc, speed) = run_static(fa, fr, 2e-3);
-        let qs = quasi_static::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
+        let qs =
+            load_distribution::solve(&bearing, &OperatingPoint::from_rpm(0.0, fa, fr)).unwrap();
         for (j, b) in qs.balls.iter().enumerate() {
             assert!(
                 (qi[j] / b.q_inner - 1.0).abs() < 0.01 && (qo[j] / b.q_outer - 1.0).abs() < 0.01,

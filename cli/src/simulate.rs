@@ -1,6 +1,6 @@
 //! `raceway simulate`: run a scene and write `time` plus the FMU's output names as CSV.
 
-use raceway::kinematics;
+use raceway::fault_frequencies;
 use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::simulation::{out, Simulation};
 use std::io::{BufWriter, Write};
@@ -165,7 +165,7 @@ pub fn run(args: Args) -> Result<(), String> {
     // Metadata for `raceway spectrum`: kinematic and model fault frequencies.
     let bearing = sim.bearing();
     let fs = scene.operating.speed_rpm() / 60.0;
-    let kin = kinematics::fault_frequencies(bearing, fs, bearing.alpha0);
+    let kin = fault_frequencies::fault_frequencies(bearing, fs, bearing.alpha0);
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
     let z = bearing.z as f64;
     let stats = sim.stats();

@@ -4,8 +4,8 @@
 use raceway::config::DEFAULT_PRESET;
 use raceway::geometry::Bearing;
 use raceway::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE};
+use raceway::load_distribution::{is_loaded, solve};
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static::{is_loaded, solve};
 use serde_json::json;
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -61,7 +61,7 @@ pub fn run(args: Args) -> Result<(), String> {
     }
     let q = match args.axial_offset {
         None => solve(&b, &case),
-        Some(d) => raceway::quasi_static::solve_located(&b, &case, d),
+        Some(d) => raceway::load_distribution::solve_located(&b, &case, d),
     }
     .map_err(|e| e.to_string())?;
     // Plausibility (the simulation and the FMU apply the same limits): a contact beyond what the

@@ -2,8 +2,8 @@
 //! axially located ring against the library's solve.
 
 use raceway::geometry::Bearing;
+use raceway::load_distribution::solve_located;
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static::solve_located;
 use serde_json::Value;
 use std::process::{Command, Output};
 
@@ -72,7 +72,7 @@ fn static_json_table1_9900rpm() {
     );
     let f = &v["frequencies"];
     rel_close(num(f, "ftf"), 70.42, 5e-3, "FTF");
-    // The load-weighted mean over the loaded balls (tests/quasi_static.rs, row 3).
+    // The load-weighted mean over the loaded balls (tests/load_distribution.rs, row 3).
     let (qsum, wsum) =
         balls
             .iter()

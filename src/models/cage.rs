@@ -15,7 +15,7 @@ use crate::operating::OperatingPoint;
 pub fn kinematic_levels_cage_speed(
     bearing: &Bearing,
     inputs: &OperatingPoint,
-    qs: &crate::quasi_static::QuasiStatic,
+    qs: &crate::load_distribution::QuasiStatic,
     cage: crate::scene::CageSpeed,
     previous: Option<f64>,
 ) -> Result<f64, SimError> {
@@ -37,7 +37,7 @@ pub fn kinematic_levels_cage_speed(
 pub fn traction_cage_speed(
     bearing: &Bearing,
     inputs: &OperatingPoint,
-    l1: Option<&crate::quasi_static::QuasiStatic>,
+    l1: Option<&crate::load_distribution::QuasiStatic>,
     ratio: Option<f64>,
 ) -> Result<f64, SimError> {
     if inputs.shaft_speed <= 0.0 {

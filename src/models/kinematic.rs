@@ -33,11 +33,11 @@
 //! responses ring out with the new modes. The optional `[lumped] resonator` is not modelled at
 //! this level. A healthy scene has no events.
 //!
-//! Static outputs (see [`super::quasi_static_level`]): everything except `pedestal.a.z`,
+//! Static outputs (see [`super::quasi_static`]): everything except `pedestal.a.z`,
 //! `pedestal.v.z`, `pedestal.z` (static deflection + modal response) and the contact force of the
 //! ball inside the spall (reduced by ΔQ) is L1's static value.
 
-use super::quasi_static_level::{static_outputs, L1Table};
+use super::quasi_static::{static_outputs, L1Table};
 use super::Model;
 use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};

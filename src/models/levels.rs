@@ -7,7 +7,7 @@
 //! to [`Fidelity`] (the key a scene names it by) and its row here.
 
 use super::model::{Model, SimError};
-use super::{full, kinematic, lumped, quasi_static_level, reduced};
+use super::{full, kinematic, lumped, quasi_static, reduced};
 use crate::geometry::Bearing;
 use crate::operating::OperatingPoint;
 use crate::scene::{Fidelity, Scene};
@@ -52,11 +52,7 @@ pub const LEVELS: &[Level] = &[
         label: "L1",
         summary: "Quasi-static Jones–Harris load distribution and bearing stiffness at the \
                   current inputs; no dynamics",
-        build: |s, b, i| {
-            Ok(Box::new(quasi_static_level::QuasiStaticModel::new(
-                s, b, i,
-            )?))
-        },
+        build: |s, b, i| Ok(Box::new(quasi_static::QuasiStaticModel::new(s, b, i)?)),
     },
     Level {
         fidelity: Fidelity::Lumped,

@@ -16,9 +16,9 @@
 use super::Model;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
+use crate::load_distribution;
 use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
-use crate::quasi_static;
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
 use std::f64::consts::{PI, TAU};
 
@@ -246,7 +246,7 @@ impl LumpedModel {
         &mut self,
         bearing: &Bearing,
         inputs: &OperatingPoint,
-    ) -> Result<quasi_static::QuasiStatic, SimError> {
+    ) -> Result<load_distribution::QuasiStatic, SimError> {
         let qs = super::solve_l1_held(
             bearing,
             inputs,
@@ -570,7 +570,7 @@ impl LumpedModel {
 }
 
 /// ω_c/Ω under outer-race control at the L1 contact angles (used at zero speed).
-fn kinematic_cage_ratio(bearing: &Bearing, qs: &quasi_static::QuasiStatic) -> f64 {
+fn kinematic_cage_ratio(bearing: &Bearing, qs: &load_distribution::QuasiStatic) -> f64 {
     let loaded: Vec<_> = qs.balls.iter().filter(|b| b.q_inner > 0.0).collect();
     if loaded.is_empty() {
         return 0.5 * (1.0 - bearing.gamma(bearing.alpha0));
@@ -578,7 +578,8 @@ fn kinematic_cage_ratio(bearing: &Bearing, qs: &quasi_static::QuasiStatic) -> f6
     loaded
         .iter()
         .map(|b| {
-            crate::kinematics::outer_race_control(bearing, b.alpha_inner, b.alpha_outer).cage_ratio
+            crate::fault_frequencies::outer_race_control(bearing, b.alpha_inner, b.alpha_outer)
+                .cage_ratio
         })
         .sum::<f64>()
         / loaded.len() as f64

@@ -12,7 +12,7 @@
 //! - [`levels`]: the registry of levels (names, codes, constructors) and [`build`];
 //! - [`balls`]: what the ball-level models (reduced, full) share, in one struct they contain
 //!   ([`balls::BallCore`]);
-//! - one module per level: [`kinematic`] (L0), [`quasi_static_level`] (L1), [`lumped`] (L2),
+//! - one module per level: [`kinematic`] (L0), [`quasi_static`] (L1), [`lumped`] (L2),
 //!   [`reduced`] (L3), [`full`] (L4);
 //! - shared by the levels: the L1 start ([`solve_l1`], [`held_axial`]), the cage speed of the
 //!   levels with kinematic balls ([`traction_cage_speed`]), the quasi-static reaction to a
@@ -30,7 +30,7 @@ pub mod lumped;
 mod model;
 pub mod motion;
 pub mod out;
-pub mod quasi_static_level;
+pub mod quasi_static;
 pub mod reduced;
 mod start;
 

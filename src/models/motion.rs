@@ -1,7 +1,7 @@
 //! Motion coupling at the levels without a dynamic inner ring (L0 kinematic, L1 quasi-static):
 //! the bearing's reaction on a journal held at a prescribed displacement, from the
 //! displacement-controlled quasi-static equilibrium of every ball
-//! ([`crate::quasi_static::displacement_controlled`]) with the pedestal (outer ring) in series
+//! ([`crate::load_distribution::displacement_controlled`]) with the pedestal (outer ring) in series
 //! on its support springs.
 //!
 //! Unknowns: the pedestal's static displacement p = (p_y, p_z). With u = x − (0, p_y, p_z) the
@@ -21,8 +21,8 @@
 
 use super::ReactionJacobian;
 use crate::geometry::Bearing;
+use crate::load_distribution::{displacement_controlled, QuasiStatic};
 use crate::models::SimError;
-use crate::quasi_static::{displacement_controlled, QuasiStatic};
 
 /// One solved journal position.
 #[derive(Debug, Clone)]

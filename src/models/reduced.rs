@@ -259,7 +259,8 @@ impl ReducedModel {
         let beta = if n_beta > 0 {
             beta_sum / n_beta as f64
         } else {
-            crate::kinematics::outer_race_control(bearing, bearing.alpha0, bearing.alpha0).beta
+            crate::fault_frequencies::outer_race_control(bearing, bearing.alpha0, bearing.alpha0)
+                .beta
         };
         let (sb, cb) = beta.sin_cos();
         self.attitude = (cb, sb);

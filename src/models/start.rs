@@ -11,21 +11,21 @@ pub fn solve_l1(
     bearing: &Bearing,
     inputs: &OperatingPoint,
     purpose: &str,
-) -> Result<crate::quasi_static::QuasiStatic, SimError> {
+) -> Result<crate::load_distribution::QuasiStatic, SimError> {
     solve_l1_held(bearing, inputs, None, purpose)
 }
 
 /// [`solve_l1`] with the inner ring held axially at `held` \[m\] when given (a located ring:
-/// `inputs.fx` does not act, see [`crate::quasi_static::solve_located`]).
+/// `inputs.fx` does not act, see [`crate::load_distribution::solve_located`]).
 pub fn solve_l1_held(
     bearing: &Bearing,
     inputs: &OperatingPoint,
     held: Option<f64>,
     purpose: &str,
-) -> Result<crate::quasi_static::QuasiStatic, SimError> {
+) -> Result<crate::load_distribution::QuasiStatic, SimError> {
     match held {
-        None => crate::quasi_static::solve(bearing, inputs),
-        Some(d) => crate::quasi_static::solve_located(bearing, inputs, d),
+        None => crate::load_distribution::solve(bearing, inputs),
+        Some(d) => crate::load_distribution::solve_located(bearing, inputs, d),
     }
     .map_err(|e| {
         let held = held.map_or(String::new(), |d| {

@@ -4,10 +4,10 @@
 use super::grid::{self, PointSpec};
 use raceway::config::BearingFile;
 use raceway::defect::DefectSpec;
+use raceway::fault_frequencies::{inner_race_control_cage_ratio, outer_race_control};
 use raceway::geometry::{Bearing, Race};
-use raceway::kinematics::{inner_race_control_cage_ratio, outer_race_control};
+use raceway::load_distribution::{self, BallEquilibrium};
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static::{self, BallEquilibrium};
 use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
 use raceway::simulation::{out, Simulation};
 use serde::{Deserialize, Serialize};
@@ -283,8 +283,8 @@ fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, Stri
     let held =
         raceway::models::held_axial(scene, b, &scene.operating).map_err(|e| e.to_string())?;
     let q = match held {
-        None => quasi_static::solve(b, &case),
-        Some(d) => quasi_static::solve_located(b, &case, d),
+        None => load_distribution::solve(b, &case),
+        Some(d) => load_distribution::solve_located(b, &case, d),
     }
     .map_err(|e| e.to_string())?;
     let (mut lo, mut hi, mut n) = (f64::INFINITY, f64::NEG_INFINITY, 0);
@@ -313,7 +313,7 @@ fn l1_reference(b: &Bearing, scene: &Scene, p: &PointSpec) -> Result<L1Ref, Stri
                 shaft_speed: 0.0,
                 ..case
             };
-            quasi_static::solve_located(b, &rest, d)
+            load_distribution::solve_located(b, &rest, d)
                 .map_err(|e| e.to_string())?
                 .ring_force()[0]
         }

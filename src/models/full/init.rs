@@ -14,7 +14,7 @@ pub fn initial_state(
     m: &mut BallCore,
     centred: bool,
     bearing: &Bearing,
-    l1: Option<&crate::quasi_static::QuasiStatic>,
+    l1: Option<&crate::load_distribution::QuasiStatic>,
 ) -> Result<Vec<f64>, SimError> {
     let inputs = m.inputs;
     let solved;
@@ -45,7 +45,7 @@ pub fn initial_state(
         .iter()
         .take(m.z)
         .map(|b| {
-            if crate::quasi_static::is_loaded(b.q_inner) && inputs.shaft_speed > 0.0 {
+            if crate::load_distribution::is_loaded(b.q_inner) && inputs.shaft_speed > 0.0 {
                 b.cage_speed
             } else {
                 omega_c

@@ -25,9 +25,9 @@ use super::Model;
 use crate::contact::traction::TractionCurve;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
+use crate::load_distribution::QuasiStatic;
 use crate::models::{ReactionJacobian, SimError};
 use crate::operating::OperatingPoint;
-use crate::quasi_static::QuasiStatic;
 use crate::scene::{Pulse, Scene};
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).

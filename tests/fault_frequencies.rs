@@ -1,10 +1,10 @@
 //! L0 kinematics against docs/model.md#ref-kinematics (independent numpy values), published CWRU/IMS fault
 //! frequencies, and a direct solve of the three rolling-without-slip equations.
 
-use raceway::geometry::Bearing;
-use raceway::kinematics::{
+use raceway::fault_frequencies::{
     fault_frequencies, frequencies_from_cage, loaded_frequencies, outer_race_control,
 };
+use raceway::geometry::Bearing;
 
 fn table1() -> Bearing {
     Bearing::load("niu2014-table1").unwrap()

@@ -17,9 +17,9 @@
 
 use super::Model;
 use crate::geometry::Bearing;
+use crate::load_distribution::QuasiStatic;
 use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
-use crate::quasi_static::QuasiStatic;
 use crate::scene::{CageSpeed, Scene};
 use std::f64::consts::TAU;
 

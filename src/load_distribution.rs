@@ -12,7 +12,7 @@
 //! - ball equilibrium `Q_i e_i − Q_o e_o + F_c e_r + F_g t_o = 0`, with
 //!   `F_c = m_b r_b ω_c²` (`r_b` the actual ball-centre radius), `F_g = 2 J ω_c ω_R sin(−β)/D`
 //!   along `t_o = (−cos α_o, sin α_o)`, and ω_c, ω_R, β from the loaded outer-race-control
-//!   formulas ([`crate::kinematics::outer_race_control`]) at the ball's current α_i, α_o;
+//!   formulas ([`crate::fault_frequencies::outer_race_control`]) at the ball's current α_i, α_o;
 //! - ring equilibrium `(F_a, F_y, F_z) = Σ_j Q_i,j (e_i,x, e_i,r e_r(θ_j))`.
 //!
 //! # Solver
@@ -37,8 +37,8 @@
 //! deflection above [`MAX_DEFLECTION_OVER_D`]·D, or a loaded contact angle of magnitude above
 //! [`MAX_CONTACT_ANGLE_DEG`].
 
+use crate::fault_frequencies::{frequencies_from_cage, outer_race_control, FaultFrequencies};
 use crate::geometry::{Bearing, Race};
-use crate::kinematics::{frequencies_from_cage, outer_race_control, FaultFrequencies};
 use crate::operating::OperatingPoint;
 use serde::Serialize;
 use std::f64::consts::PI;

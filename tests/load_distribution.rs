@@ -2,8 +2,8 @@
 //! closed-form pure-axial solution, plus equilibrium, deep-groove and failure cases.
 
 use raceway::geometry::Bearing;
+use raceway::load_distribution::{pure_axial, solve, QuasiStatic, QuasiStaticError};
 use raceway::operating::OperatingPoint;
-use raceway::quasi_static::{pure_axial, solve, QuasiStatic, QuasiStaticError};
 use std::time::Instant;
 
 fn table1() -> Bearing {
@@ -462,10 +462,10 @@ fn clearance_is_play_narrowing_the_load_zone() {
     f.bearing.clearance = 10e-6;
     let loose = raceway::geometry::Bearing::new(&f).unwrap();
     let case = OperatingPoint::from_rpm(0.0, 0.0, 1000.0);
-    let qt = raceway::quasi_static::solve(&tight, &case).unwrap();
-    let ql = raceway::quasi_static::solve(&loose, &case).unwrap();
-    let loaded = |q: &raceway::quasi_static::QuasiStatic| q.loaded_balls().count();
-    let q_max = |q: &raceway::quasi_static::QuasiStatic| {
+    let qt = raceway::load_distribution::solve(&tight, &case).unwrap();
+    let ql = raceway::load_distribution::solve(&loose, &case).unwrap();
+    let loaded = |q: &raceway::load_distribution::QuasiStatic| q.loaded_balls().count();
+    let q_max = |q: &raceway::load_distribution::QuasiStatic| {
         q.balls.iter().map(|b| b.q_inner).fold(0.0, f64::max)
     };
     // Play concentrates the load on fewer balls (Stribeck: narrower zone, higher peak).
@@ -480,7 +480,7 @@ fn clearance_is_play_narrowing_the_load_zone() {
     assert!(ql.delta_radial() > qt.delta_radial() + 5e-6);
     // Unloaded, no ball touches: a clear error, not an interference fit.
     let none = OperatingPoint::from_rpm(0.0, 0.0, 0.0);
-    let e = raceway::quasi_static::solve(&loose, &none).unwrap_err();
+    let e = raceway::load_distribution::solve(&loose, &none).unwrap_err();
     assert!(e.to_string().to_lowercase().contains("no ball"), "{e}");
 }
 
