@@ -25,7 +25,7 @@
 //!   from the ball centre to the contact is `n_q = cos θ_dd n + sin θ_dd c2`.
 
 use crate::config::{BlendLength, ConfigError, DefectMode, HertzMethod};
-use crate::contact::hertz::{HertzContact, HertzSolution};
+use crate::contact::{HertzContact, HertzSolution};
 use crate::geometry::{Bearing, Race};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -914,6 +914,10 @@ mod tests {
         assert!(w > -PI && w <= PI && ((big - w) / TAU - ((big - w) / TAU).round()).abs() < 1e-9);
         assert!(wrap(-1e-300) <= PI && wrap(-1e-300) > -PI);
         assert!(wrap(f64::NAN).is_nan());
+        for x in [-10.0, -PI, 0.0, PI, 3.5, 1e5] {
+            let w = wrap(x);
+            assert!(w > -PI && w <= PI, "wrap({x}) = {w}");
+        }
     }
     #[test]
     fn mirrored_half_of_the_drop_table_equals_a_direct_solve() {

@@ -5,7 +5,7 @@
 //! inner, outer and series contacts.
 
 use crate::config::{BearingFile, ConfigError, HertzMethod};
-use crate::contact::hertz::{HertzContact, HertzSolution};
+use crate::contact::{HertzContact, HertzSolution};
 use std::f64::consts::PI;
 
 /// Which raceway.

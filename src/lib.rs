@@ -2,35 +2,62 @@
 //! (Niu, Cao, He, Li, ASME J. Manuf. Sci. Eng. 136 (2014) 041015), shipped as an FMI 2.0
 //! Co-Simulation FMU.
 //!
-//! Pipeline, one module per stage:
-//! - [`config`]: bearing description files and presets;
-//! - [`geometry`]: derived geometry shared by every fidelity level;
-//! - [`contact`]: Hertz law ([`contact::hertz`]) and lubricant traction ([`contact::traction`]);
-//! - [`defect`]: the spall (added deflection, force direction, Hertz change);
-//! - [`fault_frequencies`]: L0 fault frequencies;
-//! - [`load_distribution`]: L1 Jones–Harris load distribution and stiffness;
-//! - [`models`]: the dynamic models (L2 lumped, ...) as [`solver::System`]s;
-//! - [`solver`]: the explicit Runge–Kutta engine (the `raceway-solver` crate; knows nothing
-//!   about bearings);
-//! - [`scene`] and [`simulation`]: what to simulate and the stepping object shared by CLI and FMU;
-//! - [`signal`]: spectra, Welch PSD, envelope analysis.
+//! # Public API
 //!
-//! The FMI 2.0 Co-Simulation FMU around [`simulation::Simulation`] is the `ballbearing-fmu`
-//! crate (`fmu/`), built on the generic `fmi2` crate.
+//! The implementation modules are private; what a user needs is re-exported here, grouped by
+//! what the user does:
+//! - describe and run a simulation (crate root): a [`Scene`] (bearing, [`OperatingPoint`],
+//!   [`DefectSpec`], [`Fidelity`], solver and output settings) stepped by a [`Simulation`],
+//!   whose outputs are laid out by [`out`] and [`output_table`]; the bearing is a
+//!   [`BearingFile`] (a preset or a TOML file, errors as [`ConfigError`]) turned into the
+//!   derived [`Bearing`]; the static capacity check is [`StaticRating`] and [`peak_contact`];
+//! - the quasi-static analyses: [`fault_frequencies`] (L0 fault frequencies and race-control
+//!   cage ratios) and [`load_distribution`] (L1 Jones–Harris load distribution and stiffness);
+//! - the dynamic models: [`models`] (the [`models::Model`] trait, the level registry, one type per
+//!   level, and the state layouts for white-box tests in [`models::internals`]);
+//! - the contact laws: [`contact`] (Hertz, lubricant traction, the spall);
+//! - analysis of the outputs: [`signal`] (spectra, Welch PSD, envelope analysis) and [`sweep`]
+//!   (parameter sweeps run in parallel);
+//! - the integration engine: [`solver`] (the `raceway-solver` crate; knows nothing about
+//!   bearings).
+//!
+//! The FMI 2.0 Co-Simulation FMU around [`Simulation`] is the `ballbearing-fmu` crate (`fmu/`),
+//! built on the generic `fmi2` crate.
 
-pub mod config;
+#![warn(missing_docs)]
+
+mod config;
+mod defect;
+mod geometry;
+mod limits;
+mod operating;
+mod scene;
+mod simulation;
+
 pub mod contact;
-pub mod defect;
 pub mod fault_frequencies;
-pub mod geometry;
-pub mod limits;
 pub mod load_distribution;
 pub mod models;
-pub mod operating;
-pub mod scene;
 pub mod signal;
-pub mod simulation;
 pub mod sweep;
 
-/// The integration engine, re-exported so `raceway::solver::…` paths keep working.
+/// The integration engine (the `raceway-solver` crate): explicit Runge–Kutta methods, step
+/// control, events and dense output.
 pub use raceway_solver as solver;
+
+pub use config::{
+    BearingFile, BearingSection, BlendLength, BlendName, ConfigError, ContactSection,
+    DefectDefaults, DefectMode, HertzMethod, InnerRing, Material, Pedestal, StripRule, TractionLaw,
+    TractionSection, DEFAULT_PRESET, MAX_STRIPS, PRESETS,
+};
+pub use defect::DefectSpec;
+pub use geometry::{race_curvatures, Bearing, Race};
+pub use limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
+pub use models::{out, output_table, OutputInfo, SimError};
+pub use operating::{rpm_to_rad_s, OperatingPoint};
+pub use scene::{
+    AxialMount, BearingRef, CageSpeed, CouplingMode, Fidelity, FullSettings, LumpedOptions,
+    MethodName, Mounting, OutputSettings, Pulse, Resonator, Scene, SolverSettings, DEFAULT_SCENE,
+    MAX_PI_BETA, MIN_RTOL, RTOL_FLOOR_WHY,
+};
+pub use simulation::{Journal, Simulation, WorkStats};

@@ -2,16 +2,15 @@
 //! scene and prints, per 5 ms window, the load-weighted mean attitude angle β of the balls'
 //! spin vectors w = ω_b − θ̇ e_x (as L3 reads β from L1: β = atan2(−ê_s·e_r, ê_s·e_x) with
 //! ê_s = −w/|w|), next to the L3 attitude. `cargo run --release -p raceway-studies --bin attitude_probe -- SCENE [duration] [lock]`
-use raceway::geometry::Bearing;
-use raceway::models::balls::layout::{BOM, BTH, BW};
-use raceway::models::full::{FullModel, FullOptions};
-use raceway::models::reduced::ReducedModel;
+use raceway::models::internals::layout::{BOM, BTH, BW};
 use raceway::models::Model;
-use raceway::scene::Scene;
+use raceway::models::ReducedModel;
+use raceway::models::{FullModel, FullOptions};
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
+use raceway::{Bearing, Scene};
 use std::f64::consts::TAU;
 
-use raceway::simulation::ModelSystem as Driver;
+use raceway::models::ModelSystem as Driver;
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
@@ -51,7 +50,7 @@ fn main() {
     )
     .unwrap();
     let z = scene.bearing.bearing.z as usize;
-    let theta_start = raceway::models::balls::core::choose_theta_start(z, m.defect());
+    let theta_start = raceway::models::internals::choose_theta_start(z, m.defect());
     let mut t_next: f64 = 0.005;
     while integ.t() < duration {
         let out = integ

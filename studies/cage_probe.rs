@@ -1,8 +1,7 @@
 //! Cage speed under the strip traction against L1's outer-race control (diagnostic, not part
 //! of CI), and the cost of the solve. `cargo run --release -p raceway-studies --bin cage_probe -- [SCENE]`
-use raceway::geometry::Bearing;
 use raceway::models;
-use raceway::scene::Scene;
+use raceway::{Bearing, Scene};
 use std::time::Instant;
 
 fn main() {

@@ -16,11 +16,10 @@
 //! (reference RMS floored at 1 m/s²). The integrator knows nothing about bearings: every
 //! setting is a generic controller option of `raceway::solver::Options`.
 
-use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::signal::{envelope_spectrum, peak_near, Window};
-use raceway::simulation::{out, Simulation};
 use raceway::solver::Stats as WorkStats;
 use raceway::solver::{Method, Options};
+use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -641,7 +640,7 @@ fn strays(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
         for &rpm in &speeds {
             let mut sc = s2.clone();
             sc.fidelity = fid;
-            sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+            sc.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
             let reference = run(&sc, MethodName::Dop853, 1e-11, &all[0], dur, skip)?;
             eprintln!(
                 "{label} {rpm} rpm: reference {} RHS",
@@ -766,7 +765,7 @@ fn slopes(root: &Path) -> Result<(), Box<dyn std::error::Error>> {
         for &rpm in &speeds {
             let mut sc = s2.clone();
             sc.fidelity = fid;
-            sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+            sc.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
             let reference = run(&sc, MethodName::Dop853, 1e-11, base, dur, skip)?;
             for (k, &m) in methods.iter().enumerate() {
                 let mut sweep = Vec::new();

@@ -12,14 +12,13 @@
 //! defect (on|off), ball (report only this ball's states in the ball
 //! columns).
 
-use raceway::geometry::Bearing;
-use raceway::models::full::{FullModel, FullOptions};
-use raceway::models::reduced::{ReducedModel, ReducedOptions};
 use raceway::models::Model;
-use raceway::scene::Scene;
+use raceway::models::{FullModel, FullOptions};
+use raceway::models::{ReducedModel, ReducedOptions};
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options, StepView};
+use raceway::{Bearing, Scene};
 
-use raceway::simulation::ModelSystem as Driver;
+use raceway::models::ModelSystem as Driver;
 
 struct Run {
     states: Vec<f64>,
@@ -119,7 +118,7 @@ fn main() {
     let (mut method_a, mut method_b) = (Method::Dop853, Method::Dop853);
     let (mut eps, mut eps_state) = (0.0, None);
     let mut traction = true;
-    let mut strips = raceway::models::reduced::L3_STRIPS;
+    let mut strips = raceway::models::internals::L3_STRIPS;
     let mut watch: Option<usize> = None;
     let method = |s: &str| match s {
         "dopri5" => Method::Dopri5,

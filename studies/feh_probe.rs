@@ -3,9 +3,8 @@
 //! 20–100 ms, zero-padded to 1 s, rectangular window).
 //!
 //! `cargo run --release -p raceway-studies --bin feh_probe -- RPM FA [traction on|off] [tilt held|free] [cb N s/m]`
-use raceway::scene::{Fidelity, Scene};
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, Scene, Simulation};
 
 fn record(s: &Scene, fs: f64) -> Vec<f64> {
     let mut sim = Simulation::new(s).unwrap();
@@ -30,7 +29,7 @@ fn main() {
     ))
     .unwrap();
     s.fidelity = Fidelity::Full;
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
     s.operating.fx = fa;
     s.full.traction = traction;
     s.full.lock_tilt = held;

@@ -12,9 +12,7 @@
 
 use std::f64::consts::TAU;
 
-use raceway::scene::Fidelity;
-use raceway::scene::Scene;
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, Scene, Simulation};
 
 fn main() {
     let mut fa = 4000.0;

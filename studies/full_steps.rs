@@ -9,8 +9,7 @@
 //! `FS_STRIPS=equal:10` / `gauss:6` overrides the strip rule and count (`contact.strip_rule`,
 //! `contact.n_strips`).
 
-use raceway::scene::{Fidelity, MethodName, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 
 fn cpu_seconds() -> f64 {
     // utime + stime of this process from /proc (clock ticks of 10 ms).
@@ -42,8 +41,8 @@ fn main() {
     if let Ok(v) = std::env::var("FS_STRIPS") {
         let (rule, n) = v.split_once(':').expect("FS_STRIPS=rule:n");
         s.bearing.contact.strip_rule = match rule {
-            "gauss" => raceway::config::StripRule::Gauss,
-            _ => raceway::config::StripRule::Equal,
+            "gauss" => raceway::StripRule::Gauss,
+            _ => raceway::StripRule::Equal,
         };
         s.bearing.contact.n_strips = n.parse().expect("n_strips");
     }

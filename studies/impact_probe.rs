@@ -7,12 +7,10 @@
 //! keys: duration, skip, fs (sample rate), theta0, width, depth, rpm, fa, fr, mode (finite|point),
 //! blend (m), edge_radius (m), tilt (free|held), traction (on|off), cbr, cp (pedestal damping), summary (1: one line of medians only).
 
-use raceway::geometry::{Bearing, Race};
-use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
-use raceway::scene::Scene;
-use raceway::simulation::out;
+use raceway::models::{FullModel, FullOptions};
 use raceway::solver::{EventAction, EventSystem, Integrator, Method, Options, StepView, System};
+use raceway::{out, Bearing, Race, Scene};
 
 struct Driver<'a>(&'a mut FullModel);
 
@@ -92,19 +90,17 @@ fn main() {
             "theta0" => scene.defect.as_mut().expect("spall").theta0 = x(),
             "width" => scene.defect.as_mut().expect("spall").width = x(),
             "depth" => scene.defect.as_mut().expect("spall").depth = x(),
-            "rpm" => scene.operating.shaft_speed = raceway::operating::rpm_to_rad_s(x()),
+            "rpm" => scene.operating.shaft_speed = raceway::rpm_to_rad_s(x()),
             "fa" => scene.operating.fx = x(),
             "fr" => scene.operating.fz = -(x()),
             "cbr" => scene.bearing.contact.c_br = x(),
             "mode" => {
                 scene.bearing.defect.mode = match v {
-                    "point" => raceway::config::DefectMode::Point,
-                    _ => raceway::config::DefectMode::Finite,
+                    "point" => raceway::DefectMode::Point,
+                    _ => raceway::DefectMode::Finite,
                 }
             }
-            "blend" => {
-                scene.bearing.defect.blend_length = raceway::config::BlendLength::Metres(x())
-            }
+            "blend" => scene.bearing.defect.blend_length = raceway::BlendLength::Metres(x()),
             "edge_radius" => scene.bearing.defect.edge_radius = x(),
             "cp" => {
                 scene.bearing.pedestal.c_y = x();
@@ -141,7 +137,7 @@ fn main() {
     let atol = nominal.iter().map(|v| v * rtol).collect();
     let mut integ =
         Integrator::new(Options::new(Method::Dop853, rtol, atol), 0.0, &y0).expect("integrator");
-    let mut o = vec![0.0; raceway::simulation::output_table(z).len()];
+    let mut o = vec![0.0; raceway::output_table(z).len()];
     let mut was_in = vec![false; z];
     let mut open: Vec<Option<Pass>> = vec![None; z];
     let mut done: Vec<Pass> = Vec::new();

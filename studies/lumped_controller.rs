@@ -6,12 +6,11 @@
 //!
 //!     cargo run --release -p raceway-studies --bin lumped_controller
 
-use raceway::geometry::Bearing;
 use raceway::models::{self, Model};
-use raceway::scene::Scene;
 use raceway::solver::{
     AdvanceOutcome, EventAction, EventSystem, Integrator, Method, Options, System,
 };
+use raceway::{Bearing, Scene};
 
 struct Sys(Box<dyn Model>);
 impl System for Sys {

@@ -7,13 +7,12 @@
 //!
 //! `cargo run --release -p raceway-studies --bin modal_probe -- RPM [traction on|off] [FA]`
 use nalgebra::{Complex, DMatrix, DVector};
-use raceway::geometry::Bearing;
-use raceway::models::balls::layout::{BR, BX, PZ, RX};
-use raceway::models::full::{FullModel, FullOptions};
+use raceway::models::internals::layout::{BR, BX, PZ, RX};
 use raceway::models::Model;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::ModelSystem;
+use raceway::models::ModelSystem;
+use raceway::models::{FullModel, FullOptions};
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
+use raceway::{Bearing, Fidelity, Scene};
 use std::f64::consts::TAU;
 
 fn main() {
@@ -27,7 +26,7 @@ fn main() {
     .unwrap();
     s.fidelity = Fidelity::Full;
     s.pulse = None;
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
     s.operating.fx = fa;
     let bearing = Bearing::new(&s.bearing).unwrap();
     let inputs = s.operating;

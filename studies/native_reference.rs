@@ -7,9 +7,7 @@
 //!
 //!     cargo run --release -p raceway-studies --bin native_reference -- [h]
 
-use raceway::geometry::Bearing;
-use raceway::scene::Scene;
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Bearing, Scene, Simulation};
 
 fn main() {
     let h: f64 = std::env::args()
@@ -21,7 +19,7 @@ fn main() {
     scene.defect = None;
     let probe = Bearing::new(&scene.bearing).expect("bearing");
     scene.bearing.inner_ring.mass = m - 0.5 * probe.z as f64 * probe.ball_mass;
-    scene.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    scene.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
     scene.operating.fx = 4000.0;
     scene.operating.fy = 0.0;
     scene.operating.fz = -(1000.0 + m * g);

@@ -23,10 +23,9 @@
 //! Markdown report.
 
 use raceway::models;
-use raceway::scene::{Fidelity, Scene};
 use raceway::signal::median;
-use raceway::simulation::{out, Simulation};
 use raceway::solver::{Integrator, Method, Options, System};
+use raceway::{out, Fidelity, Scene, Simulation};
 use std::fmt::Write as _;
 use std::time::Instant;
 

@@ -7,13 +7,13 @@
 //!
 //! `cargo run --release -p raceway-studies --bin stall_probe -- [rtol] [duration] [method]`
 
-use raceway::geometry::Bearing;
-use raceway::models::reduced::{ReducedModel, PER_BALL};
+use raceway::models::internals::layout::REDUCED_PER_BALL as PER_BALL;
 use raceway::models::Model;
-use raceway::scene::Scene;
+use raceway::models::ReducedModel;
 use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
+use raceway::{Bearing, Scene};
 
-use raceway::simulation::ModelSystem as Driver;
+use raceway::models::ModelSystem as Driver;
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();

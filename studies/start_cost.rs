@@ -5,13 +5,12 @@
 //!
 //! `cargo run --release -p raceway-studies --bin start_cost -- RPM FA FR K [located]` on the Table-1 bearing
 //! (pedestal stiffness K in N/m; `located`: the ring held axially, `[mounting] axial`).
-use raceway::config::BearingFile;
-use raceway::geometry::Bearing;
-use raceway::models::full::{steady, FullModel, FullOptions};
+use raceway::models::internals::{steady_rotation, Orbit};
 use raceway::models::{self, Model};
-use raceway::operating::OperatingPoint;
-use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
-use raceway::simulation::Simulation;
+use raceway::models::{FullModel, FullOptions};
+use raceway::{
+    AxialMount, Bearing, BearingFile, Fidelity, Mounting, OperatingPoint, Scene, Simulation,
+};
 use std::time::Instant;
 
 fn scene(op: OperatingPoint, k: f64, located: bool, level: Fidelity) -> Scene {
@@ -84,11 +83,11 @@ fn main() {
     m.restart_from_l1(&b, Some(&qs)).expect("start");
     let mut y0 = vec![0.0; m.dim()];
     m.initial_state(&mut y0);
-    for orbit in [steady::Orbit::Free, steady::Orbit::Caged] {
+    for orbit in [Orbit::Free, Orbit::Caged] {
         let mut y = y0.clone();
         m.update_mode(0.0, &y);
         let t = Instant::now();
-        let r = steady::steady_rotation(&mut m, &mut y, orbit, None);
+        let r = steady_rotation(&mut m, &mut y, orbit, None);
         let took = ms(t);
         match r {
             Ok(r) => println!(

@@ -3,15 +3,14 @@
 //! pedestal displacement. Compare with `raceway static --fa FA --fr FR --speed-rpm RPM`.
 //!
 //! `cargo run --release -p raceway-studies --bin static_stiffness_probe -- RPM FA FR DF`
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, Scene, Simulation};
 
 fn mean_offset(rpm: f64, fa: f64, fr: f64) -> (f64, f64) {
     let mut s = Scene::default_scene();
     s.fidelity = Fidelity::Full;
     s.defect = None;
     s.full.lock_tilt = true;
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
     s.operating.fx = fa;
     s.operating.fz = -fr;
     let mut sim = Simulation::new(&s).unwrap();

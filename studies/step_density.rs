@@ -3,8 +3,7 @@
 //! and the balls in the spall zone.
 //! Usage: `cargo run --release -p raceway-studies --bin step_density --
 //! [full|reduced|lumped] [S1|S2] [t0] [t1] [chunk]`.
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::Simulation;
+use raceway::{Fidelity, Scene, Simulation};
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();

@@ -21,12 +21,12 @@
 //! maximum of each error over all sampled loaded contacts, and the same maxima over the
 //! contacts inside the spall.
 
-use raceway::contact::traction::TractionCurve;
-use raceway::models::balls::ball_contact::{strip_sums, SlipField, Strips};
-use raceway::models::full::FullModel;
+use raceway::contact::TractionCurve;
+use raceway::models::internals::{strip_sums, SlipField, Strips};
+use raceway::models::FullModel;
 use raceway::models::Model;
-use raceway::scene::{Fidelity, Scene};
 use raceway::solver::{EventAction, EventSystem, Integrator, Method, Options, StepView, System};
+use raceway::{Fidelity, Scene};
 
 struct Driver<'a>(&'a mut FullModel);
 
@@ -170,7 +170,7 @@ fn main() {
             _ => panic!("unknown key {k}"),
         }
     }
-    let bearing = raceway::geometry::Bearing::new(&scene.bearing).expect("bearing");
+    let bearing = raceway::Bearing::new(&scene.bearing).expect("bearing");
     let inputs = scene.operating;
     let mut m = FullModel::new(&scene, &bearing, &inputs).expect("model");
     let curve = m.traction().expect("traction on").0;

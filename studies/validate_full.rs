@@ -11,9 +11,8 @@
 //! (973.5, 985.9)), the dominant component of the raw pedestal-acceleration spectrum
 //! (5885 Hz ± 10 %) and the speed (wall s per simulated s), and writes a Markdown table.
 
-use raceway::scene::{Fidelity, Scene};
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, Scene, Simulation};
 use std::path::Path;
 use std::time::Instant;
 
@@ -48,8 +47,8 @@ fn main() {
     if let Ok(v) = std::env::var("FS_STRIPS") {
         let (rule, n) = v.split_once(':').expect("FS_STRIPS=rule:n");
         scene.bearing.contact.strip_rule = match rule {
-            "gauss" => raceway::config::StripRule::Gauss,
-            _ => raceway::config::StripRule::Equal,
+            "gauss" => raceway::StripRule::Gauss,
+            _ => raceway::StripRule::Equal,
         };
         scene.bearing.contact.n_strips = n.parse().expect("n_strips");
     }

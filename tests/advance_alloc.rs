@@ -2,8 +2,7 @@
 //! an advance takes (so that a failure leaves no trace) reuses its buffers, and so does reading
 //! the outputs. A counting global allocator watches 0.1 ms advances after a first one.
 
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::Simulation;
+use raceway::{Fidelity, Scene, Simulation};
 #[path = "common/alloc_counter.rs"]
 mod alloc_counter;
 use alloc_counter::allocations_during;

@@ -1,17 +1,15 @@
 //! Per-ball outputs of every level (issue 4 item 4): `ball.orbit_speed[j]` (the ball's θ̇) and
 //! `ball.separated[j]` (1 while the ball touches neither race), after the contact forces.
 
-use raceway::defect::DefectSpec;
-use raceway::geometry::Race;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{CageSpeed, Fidelity, Scene};
-use raceway::simulation::{out, output_table, Simulation};
+use raceway::{
+    out, output_table, CageSpeed, DefectSpec, Fidelity, OperatingPoint, Race, Scene, Simulation,
+};
 use std::f64::consts::TAU;
 
 const Z: usize = 14;
 
 fn scene(level: Fidelity, rpm: f64, fa: f64, fr: f64) -> Scene {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = level;
     s

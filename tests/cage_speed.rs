@@ -4,15 +4,12 @@
 //! theirs), continuity where balls enter or leave the load zone, and the operating points
 //! where the former solve hung or returned garbage.
 
-use raceway::geometry::Bearing;
-use raceway::models::balls::layout::BW;
-use raceway::models::full::steady::{steady_rotation, Orbit, SteadyError};
+use raceway::models::internals::layout::BW;
+use raceway::models::internals::{steady_rotation, Orbit, SteadyError};
+use raceway::{out, Bearing, Fidelity, OperatingPoint, Scene, Simulation};
 
-use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::{self, Model};
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::models::{FullModel, FullOptions};
 use std::f64::consts::TAU;
 
 fn inputs(rpm: f64, fa: f64, fr: f64) -> OperatingPoint {
@@ -136,7 +133,7 @@ fn continuation_from_a_nearby_ratio_gives_the_same_speed() {
 
 fn scene(level: Fidelity, rpm: f64, fa: f64, fr: f64) -> Scene {
     let mut s = Scene::healthy(
-        raceway::config::BearingFile::load("niu2014-table1").unwrap(),
+        raceway::BearingFile::load("niu2014-table1").unwrap(),
         OperatingPoint::from_rpm(rpm, fa, fr),
     );
     s.fidelity = level;

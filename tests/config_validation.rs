@@ -1,7 +1,7 @@
 //! Invalid bearing files: each case is the niu2014-table1 preset text with one change, and the
 //! error must name the offending field (`section.key`) both in `field` and in its Display.
 
-use raceway::config::{BearingFile, PRESETS};
+use raceway::{BearingFile, PRESETS};
 
 fn preset() -> &'static str {
     PRESETS

@@ -4,9 +4,7 @@
 #![allow(clippy::needless_range_loop)] // 3×3 index arithmetic reads best with indices
 
 use raceway::models::ReactionJacobian;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{CouplingMode, Fidelity, Scene};
-use raceway::simulation::{out, Journal, Simulation};
+use raceway::{out, CouplingMode, Fidelity, Journal, OperatingPoint, Scene, Simulation};
 
 fn scene(fidelity: Fidelity, spall: bool) -> Scene {
     let mut s = Scene::default_scene();

@@ -3,10 +3,8 @@
 //! whether the right-hand side gave non-finite values, and, where the level can tell, that
 //! contact is lost at every ball.
 
-use raceway::geometry::Bearing;
 use raceway::models::Model;
-use raceway::scene::{CouplingMode, Fidelity, Resonator, Scene};
-use raceway::simulation::{Journal, SimError, Simulation};
+use raceway::{Bearing, CouplingMode, Fidelity, Journal, Resonator, Scene, SimError, Simulation};
 
 /// A resonator at 100 THz on the lumped level's pedestal: an explicit method would need steps
 /// of about 1e-15 s, below the minimum step (1e-14 s), so the step collapses at the start, and

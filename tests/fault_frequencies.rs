@@ -4,7 +4,7 @@
 use raceway::fault_frequencies::{
     fault_frequencies, frequencies_from_cage, loaded_frequencies, outer_race_control,
 };
-use raceway::geometry::Bearing;
+use raceway::Bearing;
 
 fn table1() -> Bearing {
     Bearing::load("niu2014-table1").unwrap()

@@ -1,19 +1,16 @@
 //! The full model's right-hand side and event functions do not allocate (a counting global
 //! allocator watches them), with and without a spall, with balls inside the spall zone.
 
-use raceway::defect::DefectSpec;
-use raceway::geometry::{Bearing, Race};
-use raceway::models::full::FullModel;
+use raceway::models::FullModel;
 use raceway::models::Model;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
+use raceway::{Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene};
 #[path = "common/alloc_counter.rs"]
 mod alloc_counter;
 use alloc_counter::allocations_during;
 
 #[test]
 fn rhs_and_events_do_not_allocate() {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
     scene.fidelity = Fidelity::Full;
     for defect in [None, Some(Race::Outer), Some(Race::Inner)] {

@@ -7,8 +7,8 @@
 //! on this test (`docs/research/spec-departures.md`): the paper's fel within 2 %, feh within 10 % and
 //! rising with Fa.
 
-use raceway::scene::{Fidelity, Scene};
 use raceway::signal;
+use raceway::{Fidelity, Scene};
 use std::path::Path;
 
 #[path = "common/pulse_response.rs"]

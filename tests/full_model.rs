@@ -2,14 +2,11 @@
 //! energy conservation without traction and damping (docs/model.md#verification), static equilibrium at zero
 //! speed against L1, and the dynamic cage speed between pure rolling and outer-race control.
 
-use raceway::geometry::Bearing;
 use raceway::load_distribution;
-use raceway::models::full::{FullModel, FullOptions};
 use raceway::models::Model;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::models::{FullModel, FullOptions};
 use raceway::solver::{Integrator, Method, Options, System};
+use raceway::{out, Bearing, Fidelity, OperatingPoint, Scene, Simulation};
 use std::f64::consts::TAU;
 
 #[path = "common/pulse_response.rs"]
@@ -28,7 +25,7 @@ impl System for Sys<'_> {
 }
 
 fn healthy_scene(rpm: f64, fa: f64, fr: f64) -> Scene {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = Fidelity::Full;
     s

@@ -6,14 +6,10 @@
 #[path = "common/bounces.rs"]
 mod bounces;
 use bounces::inner_outer_alternations;
-use raceway::defect::DefectSpec;
-use raceway::geometry::Race;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, DefectSpec, Fidelity, OperatingPoint, Race, Scene, Simulation};
 
 fn sec31_scene(ring: Race, theta0: f64) -> Scene {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(10_000.0, 3000.0, 0.0));
     s.fidelity = Fidelity::Full;
     s.defect = Some(DefectSpec {
@@ -145,7 +141,7 @@ fn inner_spall_turns_with_the_shaft_and_is_hit() {
 #[test]
 fn point_mode_spall_also_opens_the_contact() {
     let mut scene = sec31_scene(Race::Outer, 0.0);
-    scene.bearing.defect.mode = raceway::config::DefectMode::Point;
+    scene.bearing.defect.mode = raceway::DefectMode::Point;
     let (_, _, qo) = run(&scene, 0.7e-3, 0.5e-6);
     assert!(
         first_drop(&qo, 417.6).is_some(),
@@ -189,7 +185,7 @@ fn sec35_outer_bpfo_from_impact_spacing() {
     assert!(bpfo > 973.5 && bpfo < 985.9, "BPFO {bpfo}");
 }
 
-struct Driver<'a>(&'a mut raceway::models::full::FullModel);
+struct Driver<'a>(&'a mut raceway::models::FullModel);
 
 impl raceway::solver::System for Driver<'_> {
     fn dim(&self) -> usize {
@@ -227,12 +223,12 @@ impl raceway::solver::EventSystem for Driver<'_> {
 /// with it the residual is ≈ 1.4 mJ (first-order overlap geometry).
 #[test]
 fn a_ball_pass_over_the_spall_conserves_energy() {
-    use raceway::models::full::{FullModel, FullOptions};
     use raceway::models::Model;
+    use raceway::models::{FullModel, FullOptions};
     use raceway::solver::{Integrator, Method, Options, StepView};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/sweeps/bearings/niu2014-deep-groove.toml");
-    let mut file = raceway::config::BearingFile::load(path.to_str().unwrap()).unwrap();
+    let mut file = raceway::BearingFile::load(path.to_str().unwrap()).unwrap();
     file.contact.c_br = 0.0;
     file.pedestal.c_y = 0.0;
     file.pedestal.c_z = 0.0;
@@ -244,7 +240,7 @@ fn a_ball_pass_over_the_spall_conserves_energy() {
         depth: 0.2e-3,
         theta0: 0.0,
     });
-    let bearing = raceway::geometry::Bearing::new(&scene.bearing).unwrap();
+    let bearing = raceway::Bearing::new(&scene.bearing).unwrap();
     let inputs = scene.operating;
     let opts = FullOptions {
         traction: false,

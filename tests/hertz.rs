@@ -1,7 +1,7 @@
 //! Hertz point contact against docs/model.md#hertz table (independent numpy/scipy computation).
 
-use raceway::contact::hertz::{HertzContact, HertzSolution};
-use raceway::geometry::{race_curvatures, Bearing, Race};
+use raceway::contact::{HertzContact, HertzSolution};
+use raceway::{race_curvatures, Bearing, Race};
 
 fn rel(a: f64, b: f64) -> f64 {
     (a / b - 1.0).abs()

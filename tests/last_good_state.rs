@@ -4,8 +4,7 @@
 //! counters — and says where the integrator stopped. The continuation is then the one of a
 //! simulation that was never asked, bit for bit.
 
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{SimError, Simulation};
+use raceway::{Fidelity, Scene, SimError, Simulation};
 
 /// Communication step of the good advances [s].
 const H: f64 = 1e-4;

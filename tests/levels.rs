@@ -1,13 +1,10 @@
 //! The cheap levels of the ladder through `Simulation`: kinematic (L0s) and quasi_static (L1),
 //! checked against L1's own solve, the fault-frequency formulas and the load-zone closed form.
 
-use raceway::geometry::{Bearing, Race};
 use raceway::load_distribution;
-use raceway::models::kinematic::KinematicModel;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{CageSpeed, Fidelity, Scene};
+use raceway::models::KinematicModel;
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Bearing, CageSpeed, Fidelity, OperatingPoint, Race, Scene, Simulation};
 use std::f64::consts::{PI, TAU};
 
 /// The default scene with L1's cage speed (outer-race control): these tests check the levels

@@ -1,8 +1,9 @@
 //! Plausibility limits (issue 17 item 4): the ISO 76 static load rating computed from the
 //! geometry, against the published catalogue ratings of the bearings the presets describe.
 
-use raceway::geometry::{Bearing, Race};
-use raceway::limits::{peak_contact, StaticRating};
+use raceway::{
+    peak_contact, Bearing, CouplingMode, Fidelity, Race, Scene, SimError, Simulation, StaticRating,
+};
 
 #[test]
 fn static_rating_matches_the_catalogue_of_the_preset_bearings() {
@@ -36,9 +37,6 @@ fn peak_contact_finds_the_most_stressed_contact() {
         }
     );
 }
-
-use raceway::scene::{CouplingMode, Fidelity, Scene};
-use raceway::simulation::{SimError, Simulation};
 
 fn scene(level: Fidelity, fa: f64, fr: f64) -> Scene {
     let mut s = Scene::default_scene();
@@ -118,7 +116,7 @@ fn a_contact_beyond_the_pressure_limit_stops_the_advance_and_the_state_stays() {
     // loads are fine, the contacts are not. The advance that reaches the blow stops with an
     // error naming the contact and its pressure, and the simulation stays at its start.
     let mut s = scene(Fidelity::Lumped, 4000.0, 1000.0);
-    s.pulse = Some(raceway::scene::Pulse {
+    s.pulse = Some(raceway::Pulse {
         peak: 2e6,
         duration: 2e-4,
         t0: 1e-3,

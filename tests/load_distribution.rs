@@ -1,9 +1,8 @@
 //! L1 quasi-static solution against docs/model.md#ref-quasi-static (independent numpy values) and an independent
 //! closed-form pure-axial solution, plus equilibrium, deep-groove and failure cases.
 
-use raceway::geometry::Bearing;
 use raceway::load_distribution::{pure_axial, solve, QuasiStatic, QuasiStaticError};
-use raceway::operating::OperatingPoint;
+use raceway::{Bearing, OperatingPoint};
 use std::time::Instant;
 
 fn table1() -> Bearing {
@@ -456,11 +455,11 @@ fn failures_are_reported_quickly_with_reasons() {
 
 #[test]
 fn clearance_is_play_narrowing_the_load_zone() {
-    use raceway::config::BearingFile;
+    use raceway::BearingFile;
     let mut f = BearingFile::load("cwru-6205-de").unwrap();
-    let tight = raceway::geometry::Bearing::new(&f).unwrap();
+    let tight = raceway::Bearing::new(&f).unwrap();
     f.bearing.clearance = 10e-6;
-    let loose = raceway::geometry::Bearing::new(&f).unwrap();
+    let loose = raceway::Bearing::new(&f).unwrap();
     let case = OperatingPoint::from_rpm(0.0, 0.0, 1000.0);
     let qt = raceway::load_distribution::solve(&tight, &case).unwrap();
     let ql = raceway::load_distribution::solve(&loose, &case).unwrap();
@@ -490,7 +489,7 @@ fn light_radial_load_at_high_speed_closes_the_centrifugal_gap() {
     // contacts, so a light radial load must move the ring a few µm before any ball carries it.
     // This failed with "no inner contact closes under this load" below about 35 N; the radial
     // displacement must grow with the load, starting at the gap.
-    let b = raceway::geometry::Bearing::load("cwru-6205-de").unwrap();
+    let b = raceway::Bearing::load("cwru-6205-de").unwrap();
     let mut last = 0.0;
     for fr in [0.5, 1.0, 10.0, 35.0, 100.0] {
         let q = solve(&b, &OperatingPoint::from_rpm(30_700.0, 0.0, fr)).unwrap();

@@ -2,12 +2,9 @@
 //! model's cage speed implies, the impact test's fel/feh (docs/model.md#ref-dynamic), consistency with L1, and the
 //! stepping contract (communication-step invariance, save/restore, failure as a value).
 
-use raceway::geometry::Bearing;
 use raceway::load_distribution;
-use raceway::operating::OperatingPoint;
-use raceway::scene::Scene;
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, SimError, Simulation};
+use raceway::{out, Bearing, OperatingPoint, Scene, SimError, Simulation};
 use std::f64::consts::TAU;
 use std::path::Path;
 
@@ -145,7 +142,7 @@ fn at_rest_the_ring_sits_where_l1_puts_it() {
     // Hertz constant): the ring displacement must agree and nothing may move.
     let mut sc = scene("default.toml");
     sc.defect = None;
-    sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
+    sc.operating.shaft_speed = raceway::rpm_to_rad_s(0.0);
     let bearing = Bearing::new(&sc.bearing).unwrap();
     let qs = load_distribution::solve(
         &bearing,
@@ -198,7 +195,7 @@ fn at_speed_the_ring_starts_at_the_lumped_equilibrium() {
     ] {
         let mut sc = scene("default.toml");
         sc.defect = None;
-        sc.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+        sc.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
         sc.operating.fx = fa;
         sc.operating.fz = -fr;
         let bearing = Bearing::new(&sc.bearing).unwrap();
@@ -420,7 +417,7 @@ fn sensor_resonator_adds_its_mode_to_the_pedestal_response() {
     // balls, 0.829 kg): f = 16 kHz·√(1 + 0.05/0.829) = 16.48 kHz, a little lower where the ring
     // still takes part.
     let mut sc = scene("impact-test-fa4000.toml");
-    sc.lumped.resonator = Some(raceway::scene::Resonator {
+    sc.lumped.resonator = Some(raceway::Resonator {
         frequency: 16000.0,
         damping_ratio: 0.05,
         mass: 0.05,

@@ -4,11 +4,10 @@
 //! level and through the scene file (the FMU's parameters: fmu/tests/mounting.rs; the CLI's
 //! `static --axial-offset`: cli/tests/cli_static.rs).
 
-use raceway::geometry::Bearing;
 use raceway::load_distribution::{solve, solve_located};
-use raceway::operating::OperatingPoint;
-use raceway::scene::{AxialMount, CouplingMode, Fidelity, Mounting, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{
+    out, AxialMount, Bearing, CouplingMode, Fidelity, Mounting, OperatingPoint, Scene, Simulation,
+};
 
 fn table1() -> Bearing {
     Bearing::load("niu2014-table1").unwrap()
@@ -54,7 +53,7 @@ fn a_pure_radial_load_is_refused_unless_the_ring_is_located() {
 
 fn located_scene(level: Fidelity, fa: f64, fr: f64, offset: Option<f64>) -> Scene {
     let mut s = Scene::healthy(
-        raceway::config::BearingFile::load("niu2014-table1").unwrap(),
+        raceway::BearingFile::load("niu2014-table1").unwrap(),
         OperatingPoint::from_rpm(6000.0, fa, fr),
     );
     s.fidelity = level;

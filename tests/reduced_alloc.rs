@@ -1,19 +1,16 @@
 //! The reduced model's right-hand side and event functions do not allocate (a counting global
 //! allocator watches them), with and without a spall, with balls inside the spall zone.
 
-use raceway::defect::DefectSpec;
-use raceway::geometry::{Bearing, Race};
-use raceway::models::reduced::ReducedModel;
 use raceway::models::Model;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
+use raceway::models::ReducedModel;
+use raceway::{Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene};
 #[path = "common/alloc_counter.rs"]
 mod alloc_counter;
 use alloc_counter::allocations_during;
 
 #[test]
 fn rhs_and_events_do_not_allocate() {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
     scene.fidelity = Fidelity::Reduced;
     for defect in [None, Some(Race::Outer), Some(Race::Inner)] {
@@ -32,7 +29,7 @@ fn rhs_and_events_do_not_allocate() {
         // Turn the reference cage angle so that balls sweep over the spall (θ_d0 = 0).
         let psi = m.layout().psi();
         let mut d = vec![0.0; n];
-        let mut o = vec![0.0; raceway::simulation::output_table(bearing.z).len()];
+        let mut o = vec![0.0; raceway::output_table(bearing.z).len()];
         let mut g = vec![0.0; m.n_events()];
         let shifts: Vec<f64> = (0..8).map(|k| -0.3 + 0.6 * k as f64 / 7.0).collect();
         let mut in_zone = 0;

@@ -7,15 +7,11 @@
 #[path = "common/bounces.rs"]
 mod bounces;
 use bounces::inner_outer_alternations;
-use raceway::defect::DefectSpec;
-use raceway::geometry::{Bearing, Race};
 use raceway::load_distribution;
-use raceway::models::reduced::{ReducedModel, ReducedOptions};
 use raceway::models::Model;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::models::{ReducedModel, ReducedOptions};
 use raceway::solver::{Integrator, Method, Options, System};
+use raceway::{out, Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene, Simulation};
 use std::f64::consts::TAU;
 
 struct Sys<'a>(&'a mut ReducedModel);
@@ -30,7 +26,7 @@ impl System for Sys<'_> {
 }
 
 fn scene(rpm: f64, fa: f64, fr: f64) -> Scene {
-    let file = raceway::config::BearingFile::load("niu2014-table1").unwrap();
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(rpm, fa, fr));
     s.fidelity = Fidelity::Reduced;
     s

@@ -1,9 +1,8 @@
 //! Fixed-rate output sampling across stops: every grid point k·dt is written exactly once, in
 //! order, even when a stop (a pulse corner, an input change) falls on it within rounding.
 
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::Simulation;
 use raceway::solver::grid_points;
+use raceway::{Fidelity, Scene, Simulation};
 
 /// Consecutive steps [a, b] and [b, c] split the grid points of [a, c] between them, with b a
 /// stop computed as a sum (t0 + 100 µs) that lands within rounding of a grid point.

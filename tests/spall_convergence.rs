@@ -6,8 +6,7 @@
 //! rtol 1e-6 was off by O(1): full E1 ≈ 0.9 against a 1e-10 reference over 0.05 s while costing
 //! twice the work; reduced E1 = 0.48 here with 79 % of the DOP853 steps rejected.
 
-use raceway::scene::{Fidelity, MethodName, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 
 fn run(level: Fidelity, method: MethodName, rtol: f64, duration: f64) -> (Vec<f64>, u64) {
     let mut s = Scene::default_scene();

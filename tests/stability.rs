@@ -4,13 +4,12 @@
 //! `fmu/tests/fmi_ballbearing.rs`.
 
 use nalgebra::DMatrix;
-use raceway::geometry::{Bearing, Race};
 use raceway::models::{self, Model};
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, MethodName, Scene};
-use raceway::signal::{envelope, envelope_spectrum, peaks, Window};
-use raceway::simulation::{out, SimError, Simulation};
+use raceway::signal::{envelope, envelope_spectrum, peak_near, Window};
 use raceway::solver::{Integrator, Method, Options, System, Tableau};
+use raceway::{
+    out, Bearing, Fidelity, MethodName, OperatingPoint, Race, Scene, SimError, Simulation,
+};
 use std::time::Instant;
 
 /// The default scene (Table-1 bearing, 9900 rpm, Fa 4000 N, Fr 1000 N, outer spall 1 × 0.2 mm).
@@ -278,7 +277,7 @@ fn t5_start_from_rest_and_low_speed() {
     let (r, _, evals_nominal, _) = simulate(&default_scene(), t_end);
     r.unwrap();
     let mut s = default_scene();
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(0.0);
     let (r, _, _, rows) = simulate(&s, t_end);
     r.unwrap();
     let zp = static_zp(&s);
@@ -296,7 +295,7 @@ fn t5_start_from_rest_and_low_speed() {
     }
     for rpm in [10.0, 100.0] {
         let mut s = default_scene();
-        s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(rpm);
+        s.operating.shaft_speed = raceway::rpm_to_rad_s(rpm);
         let (r, _, evals, rows) = simulate(&s, t_end);
         assert!(r.is_ok(), "{rpm} rpm: {r:?}");
         assert!(physical(&s, &rows), "{rpm} rpm");
@@ -306,7 +305,7 @@ fn t5_start_from_rest_and_low_speed() {
         );
     }
     let mut s = default_scene();
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(0.0);
     let mut sim = Simulation::new(&s).unwrap();
     let base = s.operating;
     let mut o = vec![0.0; sim.output_table().len()];
@@ -336,7 +335,7 @@ fn t6_contact_loss_at_light_load_and_high_speed() {
     let mut s = default_scene();
     s.operating.fx = 100.0;
     s.operating.fz = -1000.0;
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(20_000.0);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(20_000.0);
     let (r, _, _, rows) = simulate(&s, 0.03);
     assert!(r.is_ok(), "{r:?}");
     assert!(physical(&s, &rows));
@@ -478,7 +477,7 @@ fn t8_long_run_spectra_converge_and_nothing_drifts() {
         let mut amps = [0.0; 3];
         for (h, amp) in amps.iter_mut().enumerate() {
             let f = (h + 1) as f64 * bpfo;
-            let p = peaks::peak_near(&spec, f, 3.0 * df)
+            let p = peak_near(&spec, f, 3.0 * df)
                 .unwrap_or_else(|| panic!("window {k}: no peak near {f:.2} Hz"));
             assert!(
                 (p.freq - f).abs() <= df,

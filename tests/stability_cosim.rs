@@ -25,8 +25,7 @@
 //! the bearing alone: k_p = 1e13 N/m, m_p = 1000 kg, ω_p = 1e5 rad/s ≫ ω).
 #![allow(clippy::needless_range_loop)] // 3×3 index arithmetic reads best with indices
 
-use raceway::scene::{CouplingMode, Scene};
-use raceway::simulation::{out, Journal, Simulation};
+use raceway::{out, CouplingMode, Journal, Scene, Simulation};
 
 const M: f64 = 2.0;
 const ZETA_ROTOR: f64 = 0.02;
@@ -36,7 +35,7 @@ fn scene() -> Scene {
     let mut s = Scene::default_scene();
     s.coupling = CouplingMode::Motion;
     s.defect = None;
-    s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(0.0);
+    s.operating.shaft_speed = raceway::rpm_to_rad_s(0.0);
     let p = &mut s.bearing.pedestal;
     p.mass = 1000.0;
     p.k_y = 1e13;

@@ -127,8 +127,8 @@ fn observed_order_sizes_the_retry_after_two_rejections() {
 /// validated with the field named.
 #[test]
 fn scene_pi_beta_reaches_the_controller_and_is_validated() {
-    use raceway::scene::{Fidelity, Scene};
-    use raceway::simulation::Simulation;
+    use raceway::Simulation;
+    use raceway::{Fidelity, Scene};
     let rejected = |beta: f64| {
         let mut s = Scene::default_scene();
         s.fidelity = Fidelity::Lumped;

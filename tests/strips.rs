@@ -2,10 +2,9 @@
 //! C7 (docs/model.md#c7)): load weights, exactness of the Gauss rule for the Hertz line load 1 − s², and the
 //! strip sums against closed forms and a fine reference.
 
-use raceway::config::TractionSection;
-use raceway::config::MAX_STRIPS;
-use raceway::contact::traction::TractionCurve;
-use raceway::models::balls::ball_contact::{strip_sums, SlipField, Strips, TractionBatch};
+use raceway::contact::TractionCurve;
+use raceway::models::internals::{strip_sums, SlipField, Strips, TractionBatch};
+use raceway::{TractionSection, MAX_STRIPS};
 
 /// ∫_{−1}^{1} (3/4)(1 − s²) s^p ds.
 fn moment(p: usize) -> f64 {

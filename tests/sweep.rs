@@ -61,15 +61,13 @@ base = "../scenes/default.toml"
     assert_eq!(canon(3), ["outer", "0.0015", "6000.0"]);
     assert_eq!(canon(17), ["inner", "0.002", "9000.0"]);
     // Ids: FNV-1a 64 of the canonical text (fixed reference values), all distinct.
-    assert_eq!(sweep::spec::fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
-    assert_eq!(sweep::spec::fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+    assert_eq!(sweep::fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+    assert_eq!(sweep::fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
     assert_eq!(
         runs[0].id,
         format!(
             "{:016x}",
-            sweep::spec::fnv1a64(
-                b"defect.ring=outer;defect.width=0.001;operating.speed_rpm=6000.0;"
-            )
+            sweep::fnv1a64(b"defect.ring=outer;defect.width=0.001;operating.speed_rpm=6000.0;")
         )
     );
     let mut ids: Vec<&str> = runs.iter().map(|r| r.id.as_str()).collect();
@@ -81,7 +79,7 @@ base = "../scenes/default.toml"
     assert_eq!(scene.operating.speed_rpm(), 9000.0);
     let d = scene.defect.unwrap();
     assert_eq!(d.width, 2e-3);
-    assert_eq!(d.ring, raceway::geometry::Race::Inner);
+    assert_eq!(d.ring, raceway::Race::Inner);
     assert_eq!(noise, 0.0);
 }
 
@@ -371,6 +369,6 @@ base = "../scenes/default.toml"
             .defect
             .blend_length
     };
-    assert_eq!(blend(0), raceway::config::BlendLength::Metres(0.0));
-    assert_eq!(blend(1), raceway::config::BlendLength::Metres(2.0e-4));
+    assert_eq!(blend(0), raceway::BlendLength::Metres(0.0));
+    assert_eq!(blend(1), raceway::BlendLength::Metres(2.0e-4));
 }

@@ -1,7 +1,7 @@
 //! Traction law against docs/model.md#traction / #verification (independent numpy/scipy values, docs/model.md#c8).
 
-use raceway::config::{TractionLaw, TractionSection};
-use raceway::contact::traction::TractionCurve;
+use raceway::contact::TractionCurve;
+use raceway::{TractionLaw, TractionSection};
 
 fn default_curve() -> TractionCurve {
     TractionCurve::new(&TractionSection::default()).expect("C8 defaults have a root")

@@ -23,10 +23,8 @@
 //! one thread). A run that fails (step-size underflow, step budget, wall-time limit) is a row
 //! with its status, never a hang.
 
-use raceway::operating::OperatingPoint;
-use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::signal::{envelope_spectrum, peak_near, welch_psd, Spectrum, WelchConfig, Window};
-use raceway::simulation::{out, SimError, Simulation, WorkStats};
+use raceway::{out, Fidelity, MethodName, OperatingPoint, Scene, SimError, Simulation, WorkStats};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -102,14 +100,14 @@ fn scene_of(name: &str, level: Fidelity) -> Result<Scene, String> {
         "S2" | "S4" => {}
         "S3" => {
             if let Some(d) = s.defect.as_mut() {
-                d.ring = raceway::geometry::Race::Inner;
+                d.ring = raceway::Race::Inner;
                 d.theta0 = 0.0;
             }
         }
         other => return Err(format!("unknown scene {other}: expected S1, S2, S3 or S4")),
     }
     if name == "S4" {
-        s.operating.shaft_speed = raceway::operating::rpm_to_rad_s(RUNUP.0);
+        s.operating.shaft_speed = raceway::rpm_to_rad_s(RUNUP.0);
     }
     Ok(s)
 }
@@ -123,7 +121,7 @@ fn has_lines(scene: &str) -> bool {
 fn is_outer(scene: &Scene) -> bool {
     !matches!(
         scene.defect.as_ref().map(|d| d.ring),
-        Some(raceway::geometry::Race::Inner)
+        Some(raceway::Race::Inner)
     )
 }
 

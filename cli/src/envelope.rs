@@ -12,9 +12,7 @@ mod point;
 mod report;
 
 use grid::{GridPoint, PointSpec, Scales};
-use raceway::config::{DEFAULT_PRESET, PRESETS};
-use raceway::geometry::Bearing;
-use raceway::scene::Fidelity;
+use raceway::{Bearing, Fidelity, DEFAULT_PRESET, PRESETS};
 use report::{Bounds, Class, Outcome, Raw};
 use std::io::Read;
 use std::path::{Path, PathBuf};

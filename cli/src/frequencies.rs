@@ -1,8 +1,7 @@
 //! `raceway frequencies`: kinematic fault frequencies (L0) of a bearing at one shaft speed.
 
-use raceway::config::DEFAULT_PRESET;
 use raceway::fault_frequencies::fault_frequencies;
-use raceway::geometry::Bearing;
+use raceway::{Bearing, DEFAULT_PRESET};
 use std::fmt::Write as _;
 
 /// Arguments of `raceway frequencies`.

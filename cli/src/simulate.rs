@@ -1,8 +1,7 @@
 //! `raceway simulate`: run a scene and write `time` plus the FMU's output names as CSV.
 
 use raceway::fault_frequencies;
-use raceway::scene::{Fidelity, MethodName, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::time::Instant;

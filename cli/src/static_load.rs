@@ -1,11 +1,10 @@
 //! `raceway static`: quasi-static (L1) load distribution, ring displacements, stiffness and
 //! outer-race-control frequencies.
 
-use raceway::config::DEFAULT_PRESET;
-use raceway::geometry::Bearing;
-use raceway::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE};
 use raceway::load_distribution::{is_loaded, solve};
-use raceway::operating::OperatingPoint;
+use raceway::{
+    peak_contact, Bearing, OperatingPoint, StaticRating, DEFAULT_PRESET, MAX_CONTACT_PRESSURE,
+};
 use serde_json::json;
 use std::f64::consts::TAU;
 use std::fmt::Write as _;

@@ -52,8 +52,7 @@ pub fn run(args: Args) -> Result<(), String> {
     };
     let s = sweep::execute_with_progress(&sw, &out, &opts, &bar).map_err(|e| e.to_string())?;
     let results = out.join("results.csv");
-    sweep::results::write_sorted(&results, &out.join("results.sorted.csv"))
-        .map_err(|e| e.to_string())?;
+    sweep::write_sorted(&results, &out.join("results.sorted.csv")).map_err(|e| e.to_string())?;
     if !args.quiet {
         eprintln!(
             "sweep '{}': {} runs selected, {} already in {}, {} run now ({} failed) in {:.2} s wall on {} threads",

@@ -1,9 +1,8 @@
 //! The `raceway static` and `raceway frequencies` commands, run as a user would; `static` on an
 //! axially located ring against the library's solve.
 
-use raceway::geometry::Bearing;
 use raceway::load_distribution::solve_located;
-use raceway::operating::OperatingPoint;
+use raceway::{Bearing, OperatingPoint};
 use serde_json::Value;
 use std::process::{Command, Output};
 

@@ -17,7 +17,7 @@ use ballbearing_fmu::ballbearing::BEARING_RESOURCE;
 use clap::Parser;
 use fmi2::bindings::*;
 use fmi2::Variable;
-use raceway::config::{BearingFile, DEFAULT_PRESET, PRESETS};
+use raceway::{BearingFile, DEFAULT_PRESET, PRESETS};
 use std::ffi::{CStr, CString};
 use std::io::Write;
 use std::os::raw::{c_char, c_int, c_void};
@@ -668,7 +668,7 @@ fn main() {
     );
     add(
         "resources/default-scene.toml",
-        raceway::scene::DEFAULT_SCENE.as_bytes(),
+        raceway::DEFAULT_SCENE.as_bytes(),
         0o644,
     );
     for (name, text) in PRESETS {

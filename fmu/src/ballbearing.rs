@@ -5,10 +5,9 @@
 use crate::variables::{journal_get, journal_set, params, table, Access, Config, ROWS};
 use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::{FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER};
-use raceway::config::BearingFile;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{CouplingMode, Scene};
-use raceway::simulation::{out, Journal, SimError, Simulation};
+use raceway::{
+    out, BearingFile, CouplingMode, Journal, OperatingPoint, Scene, SimError, Simulation,
+};
 use std::path::Path;
 
 /// Name of the bearing description inside the FMU's `resources/`.
@@ -34,7 +33,7 @@ pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String)
         BearingFile::default_preset(),
         format!(
             "built-in preset '{}' (no {BEARING_RESOURCE} in the resources)",
-            raceway::config::DEFAULT_PRESET
+            raceway::DEFAULT_PRESET
         ),
     ))
 }
@@ -125,10 +124,10 @@ impl BallBearing {
         let mut s = self.cfg.scene.clone();
         s.defect = self.cfg.defect.spec();
         if let Some(t) = self.tolerance {
-            if !(raceway::scene::MIN_RTOL..0.1).contains(&t) {
+            if !(raceway::MIN_RTOL..0.1).contains(&t) {
                 return Err(format!(
                     "the tolerance {t:e} of fmi2SetupExperiment is outside [{:e}, 0.1) (it overrides solver.rtol)",
-                    raceway::scene::MIN_RTOL
+                    raceway::MIN_RTOL
                 ));
             }
             s.solver.rtol = t;
@@ -226,11 +225,11 @@ impl FmuModel for BallBearing {
         _stop_time: Option<f64>,
     ) -> Result<(), String> {
         if let Some(t) = tolerance {
-            if !(raceway::scene::MIN_RTOL..0.1).contains(&t) {
+            if !(raceway::MIN_RTOL..0.1).contains(&t) {
                 return Err(format!(
                     "tolerance = {t:e}: the integrator's relative tolerance must lie in [{:e}, 0.1): {}",
-                    raceway::scene::MIN_RTOL,
-                    raceway::scene::RTOL_FLOOR_WHY
+                    raceway::MIN_RTOL,
+                    raceway::RTOL_FLOOR_WHY
                 ));
             }
         }
@@ -263,8 +262,8 @@ impl FmuModel for BallBearing {
                     live.scene.solver.rtol,
                     live.scene.defect,
                     match live.scene.lumped.cage_speed {
-                        raceway::scene::CageSpeed::Traction => "the traction's caged balance",
-                        raceway::scene::CageSpeed::OuterRaceControl => "L1's outer-race control",
+                        raceway::CageSpeed::Traction => "the traction's caged balance",
+                        raceway::CageSpeed::OuterRaceControl => "L1's outer-race control",
                     },
                     live.scene.mounting
                 ),

@@ -3,7 +3,7 @@
 
 use crate::variables;
 use fmi2::xml;
-use raceway::config::BearingFile;
+use raceway::BearingFile;
 
 /// `modelIdentifier` of the FMU.
 pub const MODEL_IDENTIFIER: &str = "BallBearing";

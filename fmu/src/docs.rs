@@ -3,9 +3,7 @@
 use crate::variables::{table, Access, Config};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
-use raceway::config::BearingFile;
-use raceway::scene::Fidelity;
-use raceway::simulation::Simulation;
+use raceway::{BearingFile, Fidelity, Simulation};
 
 /// Whether each fidelity level runs in this build: (level, availability text). A level is
 /// "available" when a simulation of the default scene at that level can be built and advanced

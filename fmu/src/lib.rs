@@ -11,7 +11,7 @@
 //! `resources/bearing.toml`, and the GUID is a hash of the model description generated for
 //! that bearing, so an FMU whose XML and resources disagree refuses to instantiate.
 //!
-//! [`Simulation`]: raceway::simulation::Simulation
+//! [`Simulation`]: raceway::Simulation
 
 pub mod ballbearing;
 pub mod description;

@@ -6,17 +6,15 @@
 //!
 //! Value references: inputs 1–4, journal inputs 5–10, parameters 100–126, solver counters
 //! 900–902, written out in [`ROWS`]; the real outputs are 1000 + i, i being the position in
-//! [`raceway::simulation::output_table`] (their number depends on the bearing's ball count).
+//! [`raceway::output_table`] (their number depends on the bearing's ball count).
 //! Start values of inputs and parameters are the default scene's on the FMU's bearing.
 
 use fmi2::table::Row;
 use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
-use raceway::config::{BearingFile, DefectMode};
-use raceway::defect::DefectSpec;
-use raceway::geometry::Race;
-use raceway::operating::OperatingPoint;
-use raceway::scene::{AxialMount, CageSpeed, CouplingMode, Fidelity, MethodName, Mounting, Scene};
-use raceway::simulation::{output_table, Journal, WorkStats};
+use raceway::{
+    output_table, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode, DefectSpec,
+    Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
+};
 use Causality::{Input as In, Output as Out, Parameter};
 use VarType::{Integer, Real};
 
@@ -519,7 +517,7 @@ pub const ROWS: &[VarRow] = &[
         "solver.rtol",
         Real,
         None,
-        (Some(raceway::scene::MIN_RTOL), Some(0.1)),
+        (Some(raceway::MIN_RTOL), Some(0.1)),
         "Relative tolerance of the integrator in (0, 0.1); fmi2SetupExperiment's tolerance, when defined, overrides it",
         |c| c.scene.solver.rtol,
         |c, v| {
@@ -560,7 +558,7 @@ pub const ROWS: &[VarRow] = &[
         "solver.pi_beta",
         Real,
         None,
-        (Some(0.0), Some(raceway::scene::MAX_PI_BETA)),
+        (Some(0.0), Some(raceway::MAX_PI_BETA)),
         "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work",
         |c| c.scene.solver.pi_beta,
         |c, v| {

@@ -4,7 +4,7 @@
 use ballbearing_fmu::ballbearing::BallBearing;
 use fmi2::bindings::*;
 use fmi2::functions as sh;
-use raceway::config::BearingFile;
+use raceway::BearingFile;
 use std::ffi::{CStr, CString};
 use std::os::raw::{c_char, c_void};
 use std::sync::Mutex;
@@ -142,7 +142,7 @@ fn default_bearing_without_resources() {
 #[test]
 fn bearing_from_resources_decides_the_guid() {
     let h = H::new();
-    let text = raceway::config::PRESETS
+    let text = raceway::PRESETS
         .iter()
         .find(|(n, _)| *n == "cwru-6205-de")
         .unwrap()
@@ -163,7 +163,7 @@ fn bearing_from_resources_decides_the_guid() {
 #[test]
 fn invalid_bearing_resource_is_refused_naming_the_field() {
     let h = H::new();
-    let text = raceway::config::PRESETS[0]
+    let text = raceway::PRESETS[0]
         .1
         .replace("f_inner = 0.515", "f_inner = 0.4");
     let (_d, uri) = resources_with(&text);
@@ -761,9 +761,9 @@ fn discard_leaves_the_outputs_of_the_last_good_point_at_every_level() {
 #[test]
 fn error_from_a_step_leaves_the_outputs_of_the_last_good_point() {
     let b = BearingFile::default_preset();
-    let bearing = raceway::geometry::Bearing::new(&b).unwrap();
-    let (xi, ri) = bearing.groove_centre(raceway::geometry::Race::Inner);
-    let (xo, ro) = bearing.groove_centre(raceway::geometry::Race::Outer);
+    let bearing = raceway::Bearing::new(&b).unwrap();
+    let (xi, ri) = bearing.groove_centre(raceway::Race::Inner);
+    let (xo, ro) = bearing.groove_centre(raceway::Race::Outer);
     for fidelity in [0, 1] {
         let h = H::new();
         let (c, t) = ready(&h, &b, fidelity, 1, 1000, 5);

@@ -2,7 +2,7 @@
 //! generates for the default bearing, and the generated XML must be self-consistent.
 
 use ballbearing_fmu::{guid, model_description_xml, variables};
-use raceway::config::BearingFile;
+use raceway::BearingFile;
 
 const COMMITTED: &str = include_str!("../../modelDescription/modelDescription.xml");
 

@@ -2,8 +2,7 @@
 //! `ring.axial_offset`, set in either order, edit the scene's mounting.
 
 use ballbearing_fmu::variables::Config;
-use raceway::config::BearingFile;
-use raceway::scene::Mounting;
+use raceway::{BearingFile, Mounting};
 
 #[test]
 fn ring_axial_parameters_edit_the_mounting() {

@@ -5,7 +5,7 @@
 
 use ballbearing_fmu::variables::table;
 use fmi2::Start;
-use raceway::config::BearingFile;
+use raceway::BearingFile;
 
 const LOCK: &str = include_str!("value_references.tsv");
 

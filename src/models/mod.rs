@@ -21,21 +21,30 @@
 //! This module only declares and re-exports: every item lives in a submodule, so that the
 //! levels and the interface can be layered (tests/module_cycles.rs).
 
-pub mod balls;
+pub(crate) mod balls;
 mod cage;
-pub mod full;
-pub mod kinematic;
-pub mod levels;
-pub mod lumped;
+pub(crate) mod full;
+pub mod internals;
+mod kinematic;
+pub(crate) mod levels;
+mod lumped;
 mod model;
-pub mod motion;
+pub(crate) mod motion;
 pub mod out;
-pub mod quasi_static;
-pub mod reduced;
+mod quasi_static;
+mod reduced;
 mod start;
 
-pub use cage::{kinematic_levels_cage_speed, traction_cage_speed};
-pub use levels::{build, Level, LEVELS};
+pub use crate::simulation::ModelSystem;
+pub(crate) use cage::kinematic_levels_cage_speed;
+pub use cage::traction_cage_speed;
+pub use full::{FullModel, FullOptions};
+pub use kinematic::KinematicModel;
+pub use levels::{build, Constructor, Level, LEVELS};
+pub use lumped::LumpedModel;
 pub use model::{Model, ReactionJacobian, RingStates, SimError};
 pub use out::{output_table, OutputInfo};
-pub use start::{held_axial, operating_point, solve_l1, solve_l1_held};
+pub use quasi_static::QuasiStaticModel;
+pub use reduced::{ReducedModel, ReducedOptions};
+pub(crate) use start::operating_point;
+pub use start::{held_axial, solve_l1, solve_l1_held};

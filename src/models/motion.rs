@@ -71,11 +71,6 @@ impl QsMotion {
         }
     }
 
-    /// The last solution, if any.
-    pub fn last(&self) -> Option<&QsReaction> {
-        self.last.as_ref()
-    }
-
     /// The reaction at journal displacement `x` and shaft speed `speed` (cached: the same
     /// arguments return the last solution without work).
     pub fn solve(&mut self, speed: f64, x: [f64; 3]) -> Result<&QsReaction, SimError> {

@@ -45,12 +45,12 @@ use super::balls::ball_contact::{
 };
 use super::balls::layout::{
     ball_state_name, pedestal_state_name, ring_state_name, Layout, BOM, BR, BTH, BVR, BVX, BW, BX,
-    PVY, PVZ, PY, PZ, REDUCED_PER_BALL, REDUCED_RING_STATES, RV, RX,
+    PVY, PVZ, PY, PZ, REDUCED_PER_BALL, RV, RX,
 };
 use super::balls::{BallCore, BallSpin};
 use super::full::{steady::SteadyReport, FullModel, FullOptions};
 use super::Model;
-use crate::contact::traction::TractionCurve;
+use crate::contact::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::Bearing;
 use crate::models::{RingStates, SimError};
@@ -68,12 +68,6 @@ pub const PER_BALL: usize = REDUCED_PER_BALL;
 /// Offset of the spin rate ω_s inside a ball's block (x, r, θ, ẋ, ṙ, θ̇ are at the full
 /// model's offsets `layout::BX` … `layout::BW`).
 pub const BWS: usize = BOM;
-/// States of the inner-ring block (x, y, z at `layout::RX`, velocities at `layout::RV`).
-pub const RING_STATES: usize = REDUCED_RING_STATES;
-
-/// The reduced model's state layout ([`Layout::reduced`]).
-pub type ReducedLayout = Layout;
-
 /// Switches of the reduced model that are not part of a scene (diagnostics and tests).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReducedOptions {

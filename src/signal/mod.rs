@@ -19,12 +19,12 @@
 //! global state; FFT plans are made by one `rustfft::FftPlanner` per call and reused within it.
 
 mod common;
-pub mod csvio;
-pub mod envelope;
-pub mod peaks;
-pub mod spectrum;
-pub mod welch;
-pub mod window;
+mod csvio;
+mod envelope;
+mod peaks;
+mod spectrum;
+mod welch;
+mod window;
 
 pub(crate) use common::{check_input, mean};
 pub use common::{SignalError, MIN_SAMPLES};

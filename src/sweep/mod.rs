@@ -28,14 +28,14 @@
 //! order in the file and the `wall_s` column do.
 
 mod error;
-pub mod metrics;
-pub mod results;
-pub mod spec;
+mod metrics;
+mod results;
+mod spec;
 
 pub use error::SweepError;
 pub use metrics::{evaluate, metric_columns};
-pub use results::{canonical_rows, ResultsFile};
-pub use spec::{known_keys, run_id, Axis, AxisValue, Keep, Run, Sweep};
+pub use results::{canonical_rows, write_sorted, ResultsFile};
+pub use spec::{fnv1a64, known_keys, run_id, Axis, AxisValue, Keep, Run, Sweep};
 
 use std::path::Path;
 use std::sync::Mutex;

@@ -1,9 +1,8 @@
 //! The impact test's measurement (docs/model.md#ref-dynamic, #c14), shared by the lumped and full-level tests:
 //! the amplitude spectrum of the pedestal-acceleration pulse response.
 
-use raceway::scene::Scene;
 use raceway::signal::{self, Window};
-use raceway::simulation::{out, Simulation};
+use raceway::{out, Scene, Simulation};
 
 /// `pedestal.a.z` of the scene (sampled at its `output.sample_rate`) minus the same run without
 /// the pulse, over `window` seconds from the pulse's start (which removes the running ball-pass

@@ -1,9 +1,7 @@
 //! The envelope grid: the bearing's scales (limiting speed, static load rating) and the operating
 //! points built from them.
 
-use raceway::geometry::Bearing;
-use raceway::limits::StaticRating;
-use raceway::scene::Fidelity;
+use raceway::{Bearing, Fidelity, StaticRating};
 use serde::{Deserialize, Serialize};
 
 /// Limiting speed criterion: dm·n \[mm·rpm\] (pitch diameter in mm times shaft speed in rpm).
@@ -377,14 +375,14 @@ mod tests {
         // One C0 in every document: the library's ISO 76 rating. At ISO's ball load for
         // P0 = C0 the presets' own contacts stay below 4200 MPa (their grooves conform more
         // closely than the standard's 0.52/0.53 D) and above half of it.
-        for (name, _) in raceway::config::PRESETS {
+        for (name, _) in raceway::PRESETS {
             let b = Bearing::load(name).unwrap();
             let s = Scales::new(name, &b);
             assert_eq!(s.c0, StaticRating::of(&b).c0, "{name}");
             assert!(s.f0 > 9.4 && s.f0 < 16.5, "{name}: f0 = {}", s.f0);
             assert!(
-                s.p0_at_c0 > 0.5 * raceway::limits::RATING_PRESSURE
-                    && s.p0_at_c0 <= raceway::limits::RATING_PRESSURE,
+                s.p0_at_c0 > 0.5 * raceway::RATING_PRESSURE
+                    && s.p0_at_c0 <= raceway::RATING_PRESSURE,
                 "{name}: {} Pa",
                 s.p0_at_c0
             );

@@ -2,14 +2,12 @@
 //! measures, for the classification to judge.
 
 use super::grid::{self, PointSpec};
-use raceway::config::BearingFile;
-use raceway::defect::DefectSpec;
 use raceway::fault_frequencies::{inner_race_control_cage_ratio, outer_race_control};
-use raceway::geometry::{Bearing, Race};
 use raceway::load_distribution::{self, BallEquilibrium};
-use raceway::operating::OperatingPoint;
-use raceway::scene::{AxialMount, Fidelity, Mounting, Scene};
-use raceway::simulation::{out, Simulation};
+use raceway::{
+    out, AxialMount, Bearing, BearingFile, DefectSpec, Fidelity, Mounting, OperatingPoint, Race,
+    Scene, Simulation,
+};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 

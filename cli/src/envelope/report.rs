@@ -3,7 +3,7 @@
 
 use super::grid::{self, GridPoint, Scales};
 use super::point::Measured;
-use raceway::scene::Fidelity;
+use raceway::Fidelity;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -78,7 +78,7 @@ pub struct Bounds {
     /// Largest contact deflection allowed for in the ring-displacement bound, over D.
     pub deflection_over_d: f64,
     /// Largest peak Hertz pressure \[Pa\]: the model's own limit, beyond which `raceway static`
-    /// refuses a load ([`raceway::limits::MAX_CONTACT_PRESSURE`]).
+    /// refuses a load ([`raceway::MAX_CONTACT_PRESSURE`]).
     pub pressure_limit: f64,
     /// Neighbour flags: the cage ratio's change between neighbours beyond what the
     /// race-control range itself moves, relative, at the levels with the traction's cage speed
@@ -102,7 +102,7 @@ impl Default for Bounds {
             static_force_tol: 1e-3,
             force_factor: 5.0,
             deflection_over_d: raceway::load_distribution::MAX_DEFLECTION_OVER_D,
-            pressure_limit: raceway::limits::MAX_CONTACT_PRESSURE,
+            pressure_limit: raceway::MAX_CONTACT_PRESSURE,
             jump_traction: 0.01,
             jump_balls: 0.05,
             level_outlier: 0.05,
@@ -218,7 +218,7 @@ pub fn classify(p: &GridPoint, s: &Scales, raw: &Raw, wall: f64, b: &Bounds) -> 
     let mut bad: Vec<String> = Vec::new();
     let e = &m.ok;
     if let Some((i, t)) = e.nonfinite {
-        let names = raceway::simulation::output_table(s.z);
+        let names = raceway::output_table(s.z);
         let name = names.get(i).map(|v| v.name.as_str()).unwrap_or("?");
         bad.push(format!("{name} not finite at t = {t:.6} s"));
     }
@@ -1004,14 +1004,14 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
          P0 = max(X0 Fr + Y0 Fa, Fr) of the heaviest case is {:.2} C0, well inside the rating. Nothing here approaches the model's pressure \
          limit of {:.0} MPa (`limits::MAX_CONTACT_PRESSURE`, about P0 = 3.2 C0, beyond which `raceway static` \
          refuses a load); it is the pressure bound below, and \"Headroom\" shows how close the grid comes.",
-        raceway::limits::RATING_PRESSURE / 1e6,
+        raceway::RATING_PRESSURE / 1e6,
         grid::STRIBECK,
-        raceway::limits::RATING_PRESSURE / 1e6,
+        raceway::RATING_PRESSURE / 1e6,
         grid::LIGHT,
         grid::MEDIUM,
         grid::HEAVY,
         p0_max,
-        raceway::limits::MAX_CONTACT_PRESSURE / 1e6
+        raceway::MAX_CONTACT_PRESSURE / 1e6
     );
     let _ = writeln!(
         s,
@@ -1516,7 +1516,7 @@ pub fn markdown(cx: &Context, points: &[GridPoint], outcomes: &[Outcome]) -> Str
 mod tests {
     use super::*;
     use crate::envelope::point::{Extremes, L1Ref};
-    use raceway::geometry::Bearing;
+    use raceway::Bearing;
 
     fn setup(level: Fidelity) -> (GridPoint, Scales) {
         let b = Bearing::load("niu2014-table1").unwrap();
@@ -1653,7 +1653,7 @@ mod tests {
     }
 
     fn out_index(name: &str) -> usize {
-        raceway::simulation::output_table(14)
+        raceway::output_table(14)
             .iter()
             .position(|o| o.name == name)
             .unwrap()

@@ -3,7 +3,7 @@
 //! traction (docs/model.md#strips, #slip, #traction, #forces). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
 use crate::config::{StripRule, MAX_STRIPS};
-use crate::contact::traction::TractionCurve;
+use crate::contact::TractionCurve;
 use crate::defect::Defect;
 
 /// A 3-vector in inertial components.
@@ -56,13 +56,13 @@ pub struct RingPose {
 impl RingPose {
     /// Ring-frame components of an inertial vector: `T_ir v = v − β × v`.
     #[inline(always)]
-    pub fn to_ring(&self, v: V3) -> V3 {
+    pub fn to_ring(self, v: V3) -> V3 {
         sub(v, cross(self.beta, v))
     }
 
     /// Inertial components of a ring-frame vector: `T_ir^T v = v + β × v`.
     #[inline(always)]
-    pub fn to_inertial(&self, v: V3) -> V3 {
+    pub fn to_inertial(self, v: V3) -> V3 {
         add(v, cross(self.beta, v))
     }
 
@@ -97,8 +97,6 @@ pub struct RaceConst {
     pub a_star: f64,
     /// Deformed-surface radius R_s = 2fD/(2f + 1) \[m\] (docs/model.md#c7).
     pub rs: f64,
-    /// Sign s_k of the contact angle (outer +1, inner −1).
-    pub sign: f64,
 }
 
 /// Strip layout (docs/model.md#c7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).

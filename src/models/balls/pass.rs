@@ -7,7 +7,7 @@
 use super::ball_contact::{
     self, BallKin, ContactOut, GroovePos, RaceConst, RingPose, SlipField, Strips, TractionBatch, V3,
 };
-use crate::contact::traction::TractionCurve;
+use crate::contact::TractionCurve;
 
 /// A ball's kinematics with its cylindrical triad (e_r, e_θ), radius and orbital rate, as the
 /// models' `ball_kin` return them.

@@ -22,7 +22,7 @@ use super::balls::ball_contact::{
 use super::balls::layout::*;
 use super::balls::{BallCore, BallSpin};
 use super::Model;
-use crate::contact::traction::TractionCurve;
+use crate::contact::TractionCurve;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::load_distribution::QuasiStatic;
