@@ -15,6 +15,7 @@ cargo clippy --workspace --all-targets --quiet -- -D warnings -D clippy::undocum
 step "cargo doc (the crate's documentation builds without warnings)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
 RUSTDOCFLAGS="-D warnings -D missing_docs" cargo doc -p fmi2 --no-deps --quiet
+RUSTDOCFLAGS="-D warnings -D missing_docs" cargo doc -p raceway --no-deps --quiet
 
 step "Rust tests"
 if cargo nextest --version >/dev/null 2>&1; then

@@ -19,6 +19,7 @@ pub struct ConfigError {
 }
 
 impl ConfigError {
+    /// An error on the field `field` (`section.key`) with the rule it broke.
     pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
         Self {
             field: field.into(),
@@ -64,8 +65,11 @@ pub struct BearingSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
+    /// Young's modulus E \[Pa\].
     pub youngs_modulus: f64,
+    /// Poisson's ratio ν (dimensionless).
     pub poisson: f64,
+    /// Density \[kg/m³\].
     pub density: f64,
 }
 
@@ -95,6 +99,7 @@ pub enum HertzMethod {
 pub struct ContactSection {
     /// Ball–race normal damping [N s/m].
     pub c_br: f64,
+    /// How the Hertz constants are computed.
     pub hertz_method: HertzMethod,
     /// Optional override of the inner Hertz constant [N/m^1.5]; computed when absent.
     #[serde(rename = "K_inner", default, skip_serializing_if = "Option::is_none")]
@@ -154,12 +159,16 @@ pub enum TractionLaw {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSection {
+    /// Shape of the curve.
     #[serde(default)]
     pub law: TractionLaw,
+    /// Traction coefficient at zero slip (dimensionless).
     pub kappa_0: f64,
+    /// Maximum traction coefficient (dimensionless).
     pub kappa_max: f64,
     /// Slip speed of the maximum [m/s].
     pub u_max: f64,
+    /// Traction coefficient at large slip (dimensionless).
     pub kappa_inf: f64,
 }
 
@@ -179,9 +188,12 @@ impl Default for TractionSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InnerRing {
+    /// Mass of the inner ring with what turns with it \[kg\].
     pub mass: f64,
+    /// Polar moment of inertia about the ring axis \[kg m²\].
     #[serde(rename = "I_polar")]
     pub i_polar: f64,
+    /// Diametral moment of inertia (tilt) \[kg m²\].
     #[serde(rename = "I_diam")]
     pub i_diam: f64,
 }
@@ -200,10 +212,15 @@ impl Default for InnerRing {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pedestal {
+    /// Mass of the pedestal with the outer ring \[kg\].
     pub mass: f64,
+    /// Support stiffness in y \[N/m\].
     pub k_y: f64,
+    /// Support stiffness in z \[N/m\].
     pub k_z: f64,
+    /// Support damping in y [N s/m].
     pub c_y: f64,
+    /// Support damping in z [N s/m].
     pub c_z: f64,
 }
 
@@ -240,8 +257,10 @@ pub enum BlendLength {
     Metres(f64),
 }
 
+/// The named blend lengths of a bearing file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum BlendName {
+    /// `"b"`: the contact ellipse's semi-minor axis at the running load.
     #[serde(rename = "b")]
     SemiMinorAxis,
 }
@@ -256,10 +275,12 @@ impl Default for BlendLength {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DefectDefaults {
+    /// How the spall's drop is computed.
     #[serde(default)]
     pub mode: DefectMode,
     /// Edge radius r_e used in the edge Hertz constant (eq. 20) \[m\].
     pub edge_radius: f64,
+    /// Length over which the compliance is blended past an edge.
     #[serde(default)]
     pub blend_length: BlendLength,
 }
@@ -281,17 +302,24 @@ pub struct BearingFile {
     /// Human-readable name.
     #[serde(default)]
     pub name: String,
+    /// `[bearing]`: the geometry.
     pub bearing: BearingSection,
+    /// `[material]`: the steel of balls and rings.
     #[serde(default)]
     pub material: Material,
+    /// `[contact]`: the normal contact law and the traction strips.
     #[serde(default)]
     pub contact: ContactSection,
+    /// `[traction]`: the lubricant traction curve.
     #[serde(default)]
     pub traction: TractionSection,
+    /// `[inner_ring]`: mass and inertias of the inner ring.
     #[serde(default)]
     pub inner_ring: InnerRing,
+    /// `[pedestal]`: the support of the outer ring.
     #[serde(default)]
     pub pedestal: Pedestal,
+    /// `[defect]`: how spalls are modelled on this bearing.
     #[serde(default)]
     pub defect: DefectDefaults,
 }

@@ -76,7 +76,7 @@ pub struct DefectSpec {
 
 impl DefectSpec {
     /// Checks the values on their own (fields `defect.width`, `defect.depth`, `defect.theta0`):
-    /// finite, width and depth > 0 and below [`MAX_SIZE`]. [`Defect::new`] adds the check
+    /// finite, width and depth > 0 and below 0.1 m. [`Defect::new`] adds the check
     /// against the bearing (w_d < D).
     pub fn validate(&self) -> Result<(), ConfigError> {
         for (field, v) in [("defect.width", self.width), ("defect.depth", self.depth)] {

@@ -10,7 +10,6 @@
 
 use crate::geometry::Bearing;
 use serde::Serialize;
-use std::f64::consts::PI;
 
 /// Kinematic frequencies of a bearing at one shaft speed \[Hz\].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -51,12 +50,6 @@ fn from_ftf_bsf(b: &Bearing, speed_hz: f64, ftf: f64, bsf: f64) -> FaultFrequenc
         bsf,
         two_bsf: 2.0 * bsf,
     }
-}
-
-/// Cage frequency when both rings turn, `f_c = [f_i(1−γ) + f_o(1+γ)]/2` \[Hz\] (docs/model.md#l0).
-pub fn cage_frequency_two_rings(b: &Bearing, inner_hz: f64, outer_hz: f64, alpha: f64) -> f64 {
-    let gamma = b.gamma(alpha);
-    0.5 * (inner_hz * (1.0 - gamma) + outer_hz * (1.0 + gamma))
 }
 
 /// Ball kinematics under Jones' outer-race control (outer ring fixed, no spin at the outer
@@ -154,16 +147,6 @@ pub fn loaded_frequencies(
 ) -> FaultFrequencies {
     let rc = outer_race_control(b, alpha_i, alpha_o);
     frequencies_from_cage(b, speed_hz, rc.cage_ratio, rc.spin_ratio)
-}
-
-/// Converts a speed in rpm to Hz.
-pub fn rpm_to_hz(rpm: f64) -> f64 {
-    rpm / 60.0
-}
-
-/// Converts a speed in Hz to rad/s.
-pub fn hz_to_rad_s(hz: f64) -> f64 {
-    2.0 * PI * hz
 }
 
 #[cfg(test)]

@@ -12,11 +12,14 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Race {
+    /// The inner raceway (on the ring that turns with the shaft).
     Inner,
+    /// The outer raceway (on the ring held by the pedestal).
     Outer,
 }
 
 impl Race {
+    /// The race's name as written in scene files and outputs (`inner`, `outer`).
     pub fn name(self) -> &'static str {
         match self {
             Race::Inner => "inner",
@@ -48,7 +51,9 @@ pub struct Bearing {
     pub dm: f64,
     /// Free contact angle α0 \[rad\].
     pub alpha0: f64,
+    /// Inner groove curvature factor f_i (groove radius = f_i·D).
     pub f_inner: f64,
+    /// Outer groove curvature factor f_o (groove radius = f_o·D).
     pub f_outer: f64,
     /// Total curvature B = f_i + f_o − 1.
     pub b_total: f64,
@@ -64,8 +69,11 @@ pub struct Bearing {
     pub hertz_inner: HertzContact,
     /// Hertz solution of the outer contact at α0.
     pub hertz_outer: HertzContact,
-    /// Hertz constants used by the models [N/m^1.5] (the file's override if given).
+    /// Hertz constant of the inner contact used by the models [N/m^1.5] (the file's override
+    /// if given).
     pub k_inner: f64,
+    /// Hertz constant of the outer contact used by the models [N/m^1.5] (the file's override
+    /// if given).
     pub k_outer: f64,
 }
 

@@ -36,8 +36,9 @@ const Y0_ANGULAR: [f64; 7] = [0.46, 0.42, 0.38, 0.33, 0.29, 0.26, 0.22];
 pub struct StaticRating {
     /// Basic static radial load rating C0r \[N\].
     pub c0: f64,
-    /// Factors of the static equivalent load P0 = X0 Fr + Y0 Fa.
+    /// Radial factor X0 of the static equivalent load P0 = X0 Fr + Y0 Fa.
     pub x0: f64,
+    /// Axial factor Y0 of the static equivalent load P0 = X0 Fr + Y0 Fa.
     pub y0: f64,
 }
 

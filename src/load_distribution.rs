@@ -35,7 +35,7 @@
 //!
 //! Physical limits (beyond them Hertz theory and the groove geometry are meaningless): a contact
 //! deflection above [`MAX_DEFLECTION_OVER_D`]·D, or a loaded contact angle of magnitude above
-//! [`MAX_CONTACT_ANGLE_DEG`].
+//! 85°.
 
 use crate::fault_frequencies::{frequencies_from_cage, outer_race_control, FaultFrequencies};
 use crate::geometry::{Bearing, Race};
@@ -48,13 +48,13 @@ use std::fmt;
 /// 100× the ISO 76 permanent-deformation criterion of 1e-4 D).
 pub const MAX_DEFLECTION_OVER_D: f64 = 0.01;
 /// Largest loaded contact angle magnitude accepted \[deg\] ("reaching 90°").
-pub const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
+const MAX_CONTACT_ANGLE_DEG: f64 = 85.0;
 /// Finite-difference step of the stiffness matrix's fallback (docs/model.md#l1) \[m\].
-pub const STIFFNESS_STEP: f64 = 1e-8;
+const STIFFNESS_STEP: f64 = 1e-8;
 /// Convergence tolerance on ring displacements \[m\].
-pub const TOL_DISPLACEMENT: f64 = 1e-10;
+const TOL_DISPLACEMENT: f64 = 1e-10;
 /// Convergence tolerance on the ring force balance \[N\].
-pub const TOL_FORCE: f64 = 1e-6;
+const TOL_FORCE: f64 = 1e-6;
 
 /// A ball counts as loaded when its inner contact force exceeds the force tolerance
 /// (rounding of the groove geometry can leave zero-load contacts at ~1e-17 N).
@@ -1283,7 +1283,7 @@ fn fd_jacobian(
 /// shaft with minus that), `stiffness` its Jacobian (analytic, see `analytic_jacobian`; the
 /// central difference with h = [`STIFFNESS_STEP`] where a ball's equilibrium is singular).
 /// `warm` holds the ball centres of a nearby solve (empty: zero-speed start); it is updated.
-pub fn displacement_controlled(
+pub(crate) fn displacement_controlled(
     b: &Bearing,
     speed: f64,
     u: [f64; 3],

@@ -93,13 +93,17 @@ impl From<OperatingTable> for OperatingPoint {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum MethodName {
+    /// Runge–Kutta–Fehlberg 4(5).
     Rkf45,
+    /// Dormand–Prince 5(4).
     Dopri5,
+    /// Dormand–Prince 8(5,3) (default).
     #[default]
     Dop853,
 }
 
 impl MethodName {
+    /// The FMU's integer code (0, 1, 2).
     pub fn code(self) -> i32 {
         match self {
             MethodName::Rkf45 => 0,
@@ -107,6 +111,7 @@ impl MethodName {
             MethodName::Dop853 => 2,
         }
     }
+    /// The method of an FMU code; None for an unknown code.
     pub fn from_code(code: i32) -> Option<Self> {
         Some(match code {
             0 => MethodName::Rkf45,
@@ -115,6 +120,7 @@ impl MethodName {
             _ => return None,
         })
     }
+    /// The method's name in scene files (`rkf45`, `dopri5`, `dop853`).
     pub fn name(self) -> &'static str {
         match self {
             MethodName::Rkf45 => "rkf45",
@@ -122,6 +128,7 @@ impl MethodName {
             MethodName::Dop853 => "dop853",
         }
     }
+    /// The method of a scene-file name; None for an unknown name.
     pub fn from_name(s: &str) -> Option<Self> {
         [MethodName::Rkf45, MethodName::Dopri5, MethodName::Dop853]
             .into_iter()
@@ -133,6 +140,7 @@ impl MethodName {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSettings {
+    /// Integration method.
     #[serde(default)]
     pub method: MethodName,
     /// Relative tolerance; absolute tolerances are rtol × each state's nominal value.
@@ -361,6 +369,7 @@ impl CouplingMode {
         }
     }
 
+    /// The mode of an FMU code; None for an unknown code.
     pub fn from_code(code: i32) -> Option<Self> {
         match code {
             0 => Some(CouplingMode::Force),
@@ -369,6 +378,7 @@ impl CouplingMode {
         }
     }
 
+    /// The mode's name in scene files (`force`, `motion`).
     pub fn name(self) -> &'static str {
         match self {
             CouplingMode::Force => "force",
@@ -376,6 +386,7 @@ impl CouplingMode {
         }
     }
 
+    /// The mode of a scene-file name; None for an unknown name.
     pub fn from_name(s: &str) -> Option<Self> {
         [CouplingMode::Force, CouplingMode::Motion]
             .into_iter()
@@ -477,16 +488,25 @@ fn default_bearing() -> BearingRef {
 /// A resolved scene: everything a [`crate::simulation::Simulation`] needs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
+    /// The scene's name (for reports and output headers).
     pub name: String,
+    /// The bearing, resolved from the file's preset name or path.
     pub bearing: BearingFile,
+    /// The fidelity level to simulate at.
     pub fidelity: Fidelity,
     /// Shaft speed and loads (the file's `[operating]` table, in SI units).
     pub operating: OperatingPoint,
+    /// The spall (table `[defect]`); None for a healthy bearing.
     pub defect: Option<DefectSpec>,
+    /// Integration method and tolerances (table `[solver]`).
     pub solver: SolverSettings,
+    /// Duration, sampling and output selection (table `[output]`).
     pub output: OutputSettings,
+    /// Optional force pulse on the pedestal (table `[pulse]`).
     pub pulse: Option<Pulse>,
+    /// Options of the lumped level (table `[lumped]`).
     pub lumped: LumpedOptions,
+    /// Options of the ball-level models (table `[full]`).
     pub full: FullSettings,
     /// Force (default) or motion coupling (table `[coupling]`, key `mode`).
     pub coupling: CouplingMode,

@@ -28,7 +28,9 @@ use crate::solver::{
 /// Until the next change the ring moves as x(t) = x + v (t − t_set).
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Journal {
+    /// Journal displacement along x, y, z at the time it was set \[m\].
     pub x: [f64; 3],
+    /// Journal velocity along x, y, z \[m/s\].
     pub v: [f64; 3],
 }
 
@@ -65,8 +67,11 @@ impl Journal {
 /// Work counters of the integrator since the start (or the last reset).
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WorkStats {
+    /// Accepted steps.
     pub steps: u64,
+    /// Rejected steps.
     pub rejected: u64,
+    /// Right-hand-side evaluations.
     pub rhs_evals: u64,
 }
 
@@ -526,10 +531,12 @@ impl Simulation {
         o
     }
 
+    /// The scene the simulation was built from.
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
 
+    /// The derived bearing geometry.
     pub fn bearing(&self) -> &Bearing {
         &self.bearing
     }
@@ -539,6 +546,7 @@ impl Simulation {
         self.integrator.t()
     }
 
+    /// The current inputs: shaft speed and loads in SI units.
     pub fn inputs(&self) -> OperatingPoint {
         self.inputs
     }

@@ -63,7 +63,9 @@ pub struct HertzContact {
 /// How the ellipticity and the elliptic integrals are obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum HertzSolution {
+    /// The ellipticity solved exactly with the complete elliptic integrals.
     Exact,
+    /// The Hamrock–Brewe curve fits.
     HamrockBrewe,
 }
 

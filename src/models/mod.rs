@@ -6,17 +6,23 @@
 //! prescribed) at which the integrator must land and the model may switch a frozen discrete
 //! mode (docs/model.md#events).
 //!
-//! - [`model`](Model): the interface, with the errors ([`SimError`]; the inputs are a
-//!   [`crate::operating::OperatingPoint`]);
-//!   [`out`]: the output vector's layout;
-//! - [`levels`]: the registry of levels (names, codes, constructors) and [`build`];
-//! - [`balls`]: what the ball-level models (reduced, full) share, in one struct they contain
-//!   ([`balls::BallCore`]);
-//! - one module per level: [`kinematic`] (L0), [`quasi_static`] (L1), [`lumped`] (L2),
-//!   [`reduced`] (L3), [`full`] (L4);
-//! - shared by the levels: the L1 start ([`solve_l1`], [`held_axial`]), the cage speed of the
-//!   levels with kinematic balls ([`traction_cage_speed`]), the quasi-static reaction to a
-//!   prescribed journal motion ([`motion`]).
+//! What it exposes:
+//! - the interface: [`Model`], with its errors ([`SimError`]; the inputs are an
+//!   [`OperatingPoint`](crate::OperatingPoint)) and the output vector's layout ([`out`],
+//!   [`output_table`]);
+//! - the registry of levels (names, codes, constructors): [`LEVELS`], [`Level`] and [`build`];
+//! - one type per level: [`KinematicModel`] (L0), [`QuasiStaticModel`] (L1), [`LumpedModel`]
+//!   (L2), [`ReducedModel`] (L3), [`FullModel`] (L4), and [`ModelSystem`], which drives any of
+//!   them with the [`solver`](crate::solver);
+//! - shared by the levels: the L1 start ([`solve_l1`], [`solve_l1_held`], [`held_axial`]) and
+//!   the cage speed of the levels with kinematic balls ([`traction_cage_speed`]);
+//! - the ball-level models' state layouts and building blocks, for white-box tests and research
+//!   probes: [`internals`].
+//!
+//! In the source, the ball-level models (reduced, full) share `balls/` (one struct they contain,
+//! `BallCore`); each level is one file (`kinematic.rs`, `quasi_static.rs`, `lumped.rs`,
+//! `reduced.rs`, `full/`) registered in `levels.rs`; `motion.rs` is the quasi-static reaction to
+//! a prescribed journal motion at the levels without ring states.
 //!
 //! This module only declares and re-exports: every item lives in a submodule, so that the
 //! levels and the interface can be layered (tests/module_cycles.rs).

@@ -18,7 +18,12 @@ pub enum SimError {
     /// accepted, or the time whose outputs the model could not catch up to within the step
     /// budget), for the reason in `message`. The simulation is back where the advance started
     /// ([`Simulation::time`](crate::simulation::Simulation::time)), as if it had not been asked.
-    Solver { t: f64, message: String },
+    Solver {
+        /// Where the advance stopped \[s\].
+        t: f64,
+        /// Why.
+        message: String,
+    },
     /// The requested feature is not available at this fidelity level.
     Unsupported(String),
     /// A saved state could not be restored.
@@ -53,7 +58,9 @@ impl From<ConfigError> for SimError {
 /// `ring.x/y/z` outputs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RingStates {
+    /// State indices of the ring's displacement along x, y, z \[m\].
     pub pos: [usize; 3],
+    /// State indices of the ring's velocity along x, y, z \[m/s\].
     pub vel: [usize; 3],
 }
 
@@ -62,7 +69,9 @@ pub struct RingStates {
 /// ∂F_i/∂v_k` with x, v the journal (inner-ring centre) displacement and velocity [N/m, N s/m].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ReactionJacobian {
+    /// `dfdx[i][k] = ∂F_i/∂x_k`, the stiffness of the reaction \[N/m\].
     pub dfdx: [[f64; 3]; 3],
+    /// `dfdv[i][k] = ∂F_i/∂v_k`, the damping of the reaction [N s/m].
     pub dfdv: [[f64; 3]; 3],
 }
 
@@ -76,7 +85,7 @@ pub struct ReactionJacobian {
 /// communication point). `bearing.F` must then be the sum of the contact forces on the inner
 /// ring. [`Model::reaction_jacobian`] is optional (the simulation falls back to central
 /// differences of the model's own outputs). Levels without ring states (L0, L1) get the
-/// quasi-static displacement-controlled reaction from [`super::motion`] through the simulation.
+/// quasi-static displacement-controlled reaction (`models/motion.rs`) through the simulation.
 pub trait Model: Send {
     /// Number of first-order states.
     fn dim(&self) -> usize;
@@ -220,7 +229,7 @@ pub trait Model: Send {
     /// Motion coupling: the simulation moves the level's quasi-static (L1) operating point
     /// (speed and the load the ring carries) from which the level takes its cage speed. Called
     /// at the start of a communication step when the speed has moved by more than
-    /// [`crate::simulation::L1_SPEED_STEP`] since the last call; levels without an L1 cage speed
+    /// `L1_SPEED_STEP` (2 % of the speed) since the last call; levels without an L1 cage speed
     /// ignore it. (In force mode the level follows its own inputs.) On an error the level
     /// keeps its operating point.
     fn update_operating_point(&mut self, _inputs: &OperatingPoint) -> Result<(), SimError> {

@@ -2,19 +2,33 @@
 //! output, then the per-ball block (inner and outer contact forces, orbital speeds, separation
 //! flags), and the name, unit and meaning of each ([`output_table`]).
 
+/// `pedestal.a.y`: pedestal acceleration along y [m/s²].
 pub const PEDESTAL_A_Y: usize = 0;
+/// `pedestal.a.z`: pedestal acceleration along z (the paper's radial acceleration) [m/s²].
 pub const PEDESTAL_A_Z: usize = 1;
+/// `pedestal.y`: pedestal (outer ring) displacement along y \[m\].
 pub const PEDESTAL_Y: usize = 2;
+/// `pedestal.z`: pedestal (outer ring) displacement along z \[m\].
 pub const PEDESTAL_Z: usize = 3;
+/// `pedestal.v.y`: pedestal velocity along y \[m/s\].
 pub const PEDESTAL_V_Y: usize = 4;
+/// `pedestal.v.z`: pedestal velocity along z \[m/s\].
 pub const PEDESTAL_V_Z: usize = 5;
+/// `ring.x`: inner-ring displacement along x (axial) \[m\].
 pub const RING_X: usize = 6;
+/// `ring.y`: inner-ring displacement along y \[m\].
 pub const RING_Y: usize = 7;
+/// `ring.z`: inner-ring displacement along z \[m\].
 pub const RING_Z: usize = 8;
+/// `bearing.F.x`: force of the bearing on the shaft (inner ring) along x \[N\].
 pub const BEARING_F_X: usize = 9;
+/// `bearing.F.y`: force of the bearing on the shaft (inner ring) along y \[N\].
 pub const BEARING_F_Y: usize = 10;
+/// `bearing.F.z`: force of the bearing on the shaft (inner ring) along z \[N\].
 pub const BEARING_F_Z: usize = 11;
+/// `torque.friction`: bearing friction (drive) torque [N m].
 pub const FRICTION_TORQUE: usize = 12;
+/// `cage.speed`: cage (mean ball orbital) speed \[rad/s\].
 pub const CAGE_SPEED: usize = 13;
 /// First of the z inner contact forces, then z outer ones; then the z ball orbital speeds
 /// ([`orbit_speed`]) and the z separation flags ([`separated`]).
@@ -60,8 +74,11 @@ pub fn set_separation_flags(o: &mut [f64], z: usize) {
 /// Name, unit and meaning of one output.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputInfo {
+    /// The output's name, e.g. `pedestal.a.z` or `contact.inner.Q[3]`.
     pub name: String,
+    /// Its unit, e.g. `m/s2`.
     pub unit: &'static str,
+    /// What it is, in one sentence.
     pub description: String,
 }
 

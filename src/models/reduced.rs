@@ -74,7 +74,7 @@ pub struct ReducedOptions {
     /// Traction on (default) or frictionless contacts.
     pub traction: bool,
     /// Strips of the traction over the contact ellipse (default [`L3_STRIPS`]): the full
-    /// model's strip traction ([`super::balls::ball_contact::evaluate_law`]) with the ball's angular velocity
+    /// model's strip traction (`evaluate_law` in `models/balls/ball_contact.rs`) with the ball's angular velocity
     /// constrained to `θ̇ e_x + ω_s ê_s`. 0 is the original L3 (docs/model.md#l3): one point at the
     /// ellipse centre, rolling component only. That variant leaves the ball's motion across the
     /// groove undamped and the cage 0.33 % fast; see the module notes.

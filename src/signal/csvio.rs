@@ -76,7 +76,7 @@ pub fn read_csv_header(path: &Path) -> Result<Vec<String>, SignalError> {
 /// Errors, all with user-facing messages: unreadable file; no `time` column; missing
 /// `column` ([`SignalError::MissingColumn`] lists the available ones); a cell that is not a
 /// finite number (row and column are named); non-increasing or non-uniform time
-/// ([`SignalError::NonUniformSampling`], tolerance [`UNIFORM_TOLERANCE`] of the interval);
+/// ([`SignalError::NonUniformSampling`], tolerance `UNIFORM_TOLERANCE` (0.25) of the interval);
 /// `skip_s` negative or NaN; fewer than [`MIN_SAMPLES`] samples left.
 pub fn read_csv_column(
     path: &Path,

@@ -104,7 +104,7 @@ impl Spectrum {
 /// Scaling: `value[k] = 2 |X[k]| / Σw` (`|X[k]| / Σw` at DC and at Nyquist), so a sinusoid of
 /// amplitude `A` on a bin centre gives `value = A` for every window (amplitude correction by
 /// the coherent gain). Off-centre tones lose up to the window's scalloping loss, which
-/// [`super::peaks`] undoes. Resolution is `fs / x.len()`; bins run from 0 to `fs/2`.
+/// [`refine`](super::refine) undoes. Resolution is `fs / x.len()`; bins run from 0 to `fs/2`.
 ///
 /// Errors: fewer than [`MIN_SAMPLES`] samples, non-finite samples, or `fs ≤ 0`.
 pub fn amplitude_spectrum(x: &[f64], fs: f64, window: Window) -> Result<Spectrum, SignalError> {

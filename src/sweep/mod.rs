@@ -22,7 +22,7 @@
 //! varies fastest); a run's index is its position in that order and its id a stable hash of
 //! its parameters ([`spec::run_id`]). [`execute`] runs the grid on a rayon pool of N threads,
 //! one [`Simulation`](crate::simulation::Simulation) per run, and appends one row per finished
-//! run to `results.csv` ([`results`]), so an interrupted sweep resumes where it stopped and a
+//! run to `results.csv` ([`ResultsFile`]), so an interrupted sweep resumes where it stopped and a
 //! failed run is recorded with its message. Every random number (measurement noise) is seeded
 //! from the run's parameters, so the rows do not depend on the number of threads; only their
 //! order in the file and the `wall_s` column do.

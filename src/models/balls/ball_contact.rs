@@ -102,8 +102,11 @@ pub struct RaceConst {
 /// Strip layout (docs/model.md#c7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).
 #[derive(Debug, Clone, Copy)]
 pub struct Strips {
+    /// Number of strips in use (the first `n` entries of `s` and `w`).
     pub n: usize,
+    /// Strip centres s_k = ξ_k/a ∈ [−1, 1] (dimensionless).
     pub s: [f64; MAX_STRIPS],
+    /// Strip weights w_k (dimensionless, Σ w_k = 1).
     pub w: [f64; MAX_STRIPS],
 }
 
@@ -557,12 +560,15 @@ pub struct SlipField {
     pub rs: f64,
     /// ζ offset `√(R² − a²) − √(R_s² − a²)` \[m\].
     pub z0: f64,
-    /// Slip of the ball centre against the race (c1, c2 components) [m/s].
+    /// Slip of the ball centre against the race, c1 component [m/s].
     pub a1: f64,
+    /// Slip of the ball centre against the race, c2 component [m/s].
     pub a2: f64,
-    /// Relative angular velocity ω_b − ω_r on c2, c1 and n (spin) [rad/s].
+    /// Relative angular velocity ω_b − ω_r on c2 [rad/s].
     pub b1: f64,
+    /// Relative angular velocity ω_b − ω_r on c1 [rad/s].
     pub b2: f64,
+    /// Relative angular velocity ω_b − ω_r on n (spin) [rad/s].
     pub s: f64,
 }
 
@@ -708,7 +714,7 @@ fn sum_strips(
 /// The contacts of one RHS evaluation are independent, but each contact's traction is a chain
 /// of dependent square roots and an `exp` per strip ([`strip_sums`]): one contact at a time,
 /// the processor waits on each link. Here every loaded contact of the evaluation is queued
-/// ([`TractionBatch::push`], after [`evaluate_normal`]) and [`TractionBatch::run`] does each
+/// ([`TractionBatch::push`], after `evaluate_normal`) and [`TractionBatch::run`] does each
 /// stage of [`strip_sums`] for all of them in one pass over flat arrays, so that independent
 /// strips of different contacts overlap. Every value is computed by the same operations in
 /// the same order as [`strip_sums`], so the sums are bit for bit the same. The buffers are
@@ -757,7 +763,7 @@ impl TractionBatch {
         self.len = 0;
     }
 
-    /// Queues a loaded contact (the slip field and frame [`evaluate_normal`] returned for it);
+    /// Queues a loaded contact (the slip field and frame `evaluate_normal` returned for it);
     /// `slot` is the caller's name for it, handed back by [`TractionBatch::run`].
     ///
     /// # Panics

@@ -10,27 +10,44 @@
 
 /// States per ball.
 pub const PER_BALL: usize = 9;
-/// Offsets inside a ball's block.
+// Offsets inside a ball's block.
+/// Offset of the ball's axial position x \[m\].
 pub const BX: usize = 0;
+/// Offset of the ball's radial position relative to the pitch radius, r − dm/2 \[m\].
 pub const BR: usize = 1;
+/// Offset of the ball's azimuth relative to its reference cage angle \[rad\].
 pub const BTH: usize = 2;
+/// Offset of the ball's axial velocity ẋ \[m/s\].
 pub const BVX: usize = 3;
+/// Offset of the ball's radial velocity ṙ \[m/s\].
 pub const BVR: usize = 4;
+/// Offset of the ball's orbital rate θ̇ \[rad/s\].
 pub const BW: usize = 5;
+/// Offset of the ball's spin ω_x (then ω_y, ω_z) \[rad/s\]; the reduced model's spin rate ω_s.
 pub const BOM: usize = 6;
 
-/// Offsets inside the inner-ring block.
+// Offsets inside the inner-ring block.
+/// Offset of the inner ring's position x (then y, z) \[m\].
 pub const RX: usize = 0;
+/// Offset of the inner ring's velocity ẋ (then ẏ, ż) \[m/s\].
 pub const RV: usize = 3;
+/// Offset of the inner ring's tilt β_y \[rad\].
 pub const RBY: usize = 6;
+/// Offset of the inner ring's tilt β_z \[rad\].
 pub const RBZ: usize = 7;
+/// Offset of the inner ring's tilt rate β̇_y \[rad/s\].
 pub const RWY: usize = 8;
+/// Offset of the inner ring's tilt rate β̇_z \[rad/s\].
 pub const RWZ: usize = 9;
 
-/// Offsets inside the pedestal block.
+// Offsets inside the pedestal block.
+/// Offset of the pedestal's displacement y_p \[m\].
 pub const PY: usize = 0;
+/// Offset of the pedestal's displacement z_p \[m\].
 pub const PZ: usize = 1;
+/// Offset of the pedestal's velocity ẏ_p \[m/s\].
 pub const PVY: usize = 2;
+/// Offset of the pedestal's velocity ż_p \[m/s\].
 pub const PVZ: usize = 3;
 
 /// States of the reduced model's ball block: the full model's x, r, θ, ẋ, ṙ, θ̇ and one spin
@@ -46,8 +63,11 @@ pub const REDUCED_RING_STATES: usize = 6;
 /// [`Layout::reduced`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Layout {
+    /// Number of balls.
     pub z: usize,
+    /// States per ball.
     pub per_ball: usize,
+    /// States of the inner-ring block.
     pub ring_len: usize,
 }
 

@@ -550,7 +550,7 @@ impl Model for FullModel {
         self.core.prescribed = on;
     }
 
-    /// Analytic for frictionless contacts ([`contact::ring_translation_jacobian`] per intact
+    /// Analytic for frictionless contacts (`ring_translation_jacobian` of `models/balls/ball_contact.rs` per intact
     /// inner contact; a contact the spall alters by central differences of its normal force).
     /// With traction on, `None`: the simulation then differentiates the full reaction (traction
     /// included) by central differences.

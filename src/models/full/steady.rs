@@ -99,16 +99,23 @@ pub enum SteadyError {
     NoEquilibrium {
         /// The ball (free orbits) or None (caged).
         ball: Option<usize>,
-        /// The bound reached [rad/s] and the orbital acceleration there [rad/s²].
+        /// The bound reached \[rad/s\].
         at: f64,
+        /// The orbital acceleration at that bound [rad/s²].
         accel: f64,
     },
     /// The search for the orbital rate did not close its bracket in the evaluations allowed.
-    NotConverged { evaluations: usize },
+    NotConverged {
+        /// Right-hand-side evaluations spent.
+        evaluations: usize,
+    },
     /// A ball's spin did not settle at the given orbital rate.
     Spin {
+        /// The ball (0-based).
         ball: usize,
+        /// The orbital rate it was solved at \[rad/s\].
         orbit_rate: f64,
+        /// The spin residual left, |ω̇ − θ̇ e_x × ω| / (Ω |ω|) (dimensionless).
         residual: f64,
     },
 }
