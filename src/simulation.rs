@@ -15,7 +15,7 @@ use crate::models::{Model, ReactionJacobian};
 pub use crate::models::{out, output_table, OutputInfo, SimError};
 use crate::operating::OperatingPoint;
 use crate::scene::{CouplingMode, MethodName, Scene};
-use crate::solver::{
+use raceway_solver::{
     grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
     Method, Options, StepView, System,
 };
@@ -673,7 +673,7 @@ impl Simulation {
         }
         // Keep the integrator (its step size, FSAL stage and work counters); change the tolerances.
         let atol = Self::atol(self.model.as_ref(), rtol);
-        let bad = |e: crate::solver::SolverError| {
+        let bad = |e: raceway_solver::SolverError| {
             SimError::Config(ConfigError::new("solver.rtol", e.to_string()))
         };
         self.integrator.set_rtol(rtol).map_err(bad)?;
@@ -853,7 +853,7 @@ impl Simulation {
         // work whose count the inputs decide: attempted integrator steps, the model's catch-up
         // ([`Model::catch_up`]), and one unit for an integrator call that took no step.
         let budget = self.scene.solver.max_steps;
-        let attempts = |s: crate::solver::Stats| s.steps + s.rejected;
+        let attempts = |s: raceway_solver::Stats| s.steps + s.rejected;
         let used0 = attempts(self.integrator.stats());
         let mut other = 0u64;
         let exhausted = |sim: &mut Self, other: u64| {
@@ -952,7 +952,7 @@ impl Simulation {
             }
             let event = match result {
                 Ok(event) => event,
-                Err(crate::solver::SolverError::StepBudget { .. }) => {
+                Err(raceway_solver::SolverError::StepBudget { .. }) => {
                     return Err(exhausted(self, other))
                 }
                 Err(e) => {
@@ -1037,7 +1037,7 @@ impl Simulation {
 
     /// The integrator's full work counters (events handled, steps flagged by the stiffness
     /// detection, step-size range) since the start.
-    pub fn solver_stats(&self) -> crate::solver::Stats {
+    pub fn solver_stats(&self) -> raceway_solver::Stats {
         self.integrator.stats()
     }
 
