@@ -1,6 +1,7 @@
 //! `raceway simulate`: run a scene and write `time` plus the FMU's output names as CSV.
 
 use raceway::kinematics;
+use raceway::models::LEVELS;
 use raceway::scene::{Fidelity, MethodName, Scene};
 use raceway::simulation::{out, Simulation};
 use std::io::{BufWriter, Write};
@@ -70,7 +71,8 @@ pub fn run(args: Args) -> Result<(), String> {
     let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     if let Some(f) = &args.fidelity {
         scene.fidelity = Fidelity::from_name(f).ok_or_else(|| {
-            format!("--fidelity {f}: expected kinematic, quasi_static, lumped, reduced or full")
+            let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
+            format!("--fidelity {f}: expected one of {}", names.join(", "))
         })?;
     }
     if let Some(m) = &args.method {
