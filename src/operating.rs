@@ -57,14 +57,6 @@ impl OperatingPoint {
         }
         Ok(())
     }
-
-    /// The point with the shaft at rest (same loads).
-    pub fn at_rest(&self) -> Self {
-        Self {
-            shaft_speed: 0.0,
-            ..*self
-        }
-    }
 }
 
 /// rpm → rad/s (the one conversion of the library).

@@ -795,26 +795,11 @@ fn throughput(args: &Args, levels: &[Fidelity]) -> Result<(), String> {
     Ok(())
 }
 
-/// CPU time of the calling thread [s] (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`; NaN where
-/// that is not available). On a shared machine it is the fairer measure of one thread's work
-/// than wall time. (/proc/thread-self/schedstat, used before, misses the running slice since the
-/// last scheduler tick: it read 4.0 or 8.0 ms for a 6 ms run.)
-#[cfg(unix)]
+/// CPU time of the calling thread [s] (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Unix,
+/// `GetThreadTimes` on Windows, through the `cpu-time` crate; NaN where that is not
+/// available). On a shared machine it is the fairer measure of one thread's work than wall
+/// time. (/proc/thread-self/schedstat, used before, misses the running slice since the last
+/// scheduler tick.)
 fn thread_cpu_seconds() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes one timespec through a valid, exclusive pointer.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    if rc == 0 {
-        ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-    } else {
-        f64::NAN
-    }
-}
-
-#[cfg(not(unix))]
-fn thread_cpu_seconds() -> f64 {
-    f64::NAN
+    cpu_time::ThreadTime::try_now().map_or(f64::NAN, |t| t.as_duration().as_secs_f64())
 }

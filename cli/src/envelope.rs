@@ -12,6 +12,7 @@ mod point;
 mod report;
 
 use grid::{GridPoint, PointSpec, Scales};
+use raceway::models::LEVELS;
 use raceway::{Bearing, Fidelity, DEFAULT_PRESET, PRESETS};
 use report::{Bounds, Class, Outcome, Raw};
 use std::io::Read;
@@ -169,21 +170,16 @@ pub fn run(args: Args) -> Result<(), String> {
 
 /// The levels asked for, in ladder order; an unknown name is an error naming the valid ones.
 fn parse_levels(names: Option<&[String]>) -> Result<Vec<Fidelity>, String> {
-    let all = [
-        Fidelity::Kinematic,
-        Fidelity::QuasiStatic,
-        Fidelity::Lumped,
-        Fidelity::Reduced,
-        Fidelity::Full,
-    ];
+    let all: Vec<Fidelity> = LEVELS.iter().map(|l| l.fidelity).collect();
     let Some(names) = names else {
-        return Ok(all.to_vec());
+        return Ok(all);
     };
     let mut levels = Vec::new();
     for n in names {
         let n = n.trim();
         let l = Fidelity::from_name(n).ok_or_else(|| {
-            format!("--levels: unknown level '{n}'; valid: kinematic, quasi_static, lumped, reduced, full")
+            let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
+            format!("--levels: unknown level '{n}'; valid: {}", names.join(", "))
         })?;
         if !levels.contains(&l) {
             levels.push(l);

@@ -1,6 +1,7 @@
 //! `raceway simulate`: run a scene and write `time` plus the FMU's output names as CSV.
 
 use raceway::fault_frequencies;
+use raceway::models::LEVELS;
 use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -69,7 +70,8 @@ pub fn run(args: Args) -> Result<(), String> {
     let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     if let Some(f) = &args.fidelity {
         scene.fidelity = Fidelity::from_name(f).ok_or_else(|| {
-            format!("--fidelity {f}: expected kinematic, quasi_static, lumped, reduced or full")
+            let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
+            format!("--fidelity {f}: expected one of {}", names.join(", "))
         })?;
     }
     if let Some(m) = &args.method {

@@ -3,15 +3,17 @@
 use crate::variables::{table, Access, Config};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
+use raceway::models::LEVELS;
 use raceway::{BearingFile, Fidelity, Simulation};
 
 /// Whether each fidelity level runs in this build: (level, availability text). A level is
 /// "available" when a simulation of the default scene at that level can be built and advanced
 /// by 0.1 ms; otherwise the library's message is shown.
 pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(), String>)> {
-    (0..=4)
-        .filter_map(Fidelity::from_code)
-        .map(|f| {
+    LEVELS
+        .iter()
+        .map(|l| {
+            let f = l.fidelity;
             let mut cfg = Config::default_for(bearing);
             cfg.scene.fidelity = f;
             cfg.scene.defect = cfg.defect.spec();
@@ -23,14 +25,12 @@ pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(),
         .collect()
 }
 
-fn level_text(f: Fidelity) -> &'static str {
-    match f {
-        Fidelity::Kinematic => "Kinematic signal generator: impulse trains at the fault frequencies of the traction's cage speed (L1 with the balls' steady spin, the caged balance of their orbital torques); no dynamics",
-        Fidelity::QuasiStatic => "Quasi-static Jones–Harris load distribution and bearing stiffness at the current inputs; no dynamics",
-        Fidelity::Lumped => "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, Hertz contacts and the spall; the default",
-        Fidelity::Reduced => "Reduced per-ball dynamics: every ball with its own orbit (x, r, θ) and one spin rate about a fixed attitude axis, inner ring translations, pedestal; the full model's Hertz contacts, spall and strip traction (4 strips); ball flight and impacts with a fixed spin axis",
-        Fidelity::Full => "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
-    }
+/// The registry's one-line summary of a level.
+fn level_summary(f: Fidelity) -> &'static str {
+    LEVELS
+        .iter()
+        .find(|l| l.fidelity == f)
+        .map_or("", |l| l.summary)
 }
 
 /// The coupling-mode section: where the cut is, the two modes, stability, derivatives.
@@ -116,7 +116,7 @@ pub fn documentation_html(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
             f.code(),
             f.name(),
-            esc(level_text(*f)),
+            esc(level_summary(*f)),
             a
         ));
     }

@@ -11,6 +11,7 @@
 
 use fmi2::table::Row;
 use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
+use raceway::models::LEVELS;
 use raceway::{
     output_table, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode, DefectSpec,
     Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
@@ -230,13 +231,15 @@ pub const ROWS: &[VarRow] = &[
         "fidelity",
         Integer,
         None,
-        (Some(0.0), Some(4.0)),
-        "Fidelity level: 0 kinematic (L0), 1 quasi-static (L1), 2 lumped (L2), 3 reduced (L3), 4 full (L4); see the documentation for which levels this build provides",
+        (Some(0.0), Some((LEVELS.len() - 1) as f64)),
+        // Written from the level registry by `table` (fidelity_description).
+        "",
         |c| c.scene.fidelity.code() as f64,
         |c, v| {
             let code = v as i32;
-            c.scene.fidelity = Fidelity::from_code(code)
-                .ok_or_else(|| format!("fidelity = {code}: valid codes are 0..4"))?;
+            c.scene.fidelity = Fidelity::from_code(code).ok_or_else(|| {
+                format!("fidelity = {code}: valid codes are 0..{}", LEVELS.len() - 1)
+            })?;
             Ok(())
         },
     ),
@@ -772,6 +775,19 @@ fn with_unit(mut v: Variable) -> Variable {
     v
 }
 
+/// The `fidelity` parameter's description, from the level registry: "Fidelity level: 0
+/// kinematic (L0), 1 quasi-static (L1), …".
+fn fidelity_description() -> String {
+    let levels: Vec<String> = LEVELS
+        .iter()
+        .map(|l| format!("{} {} ({})", l.code, l.name.replace('_', "-"), l.label))
+        .collect();
+    format!(
+        "Fidelity level: {}; see the documentation for which levels this build provides",
+        levels.join(", ")
+    )
+}
+
 /// The full table of the FMU built on `bearing`: [`ROWS`] with the default scene's start
 /// values, and the real outputs (1000 + i) before the solver counters.
 pub fn table(bearing: &BearingFile) -> Vec<Entry> {
@@ -786,8 +802,12 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
             (Access::Stat(_) | Access::Output(_), _) => Start::None,
         };
+        let mut var = with_unit(r.variable(start));
+        if r.name == "fidelity" {
+            var.description = fidelity_description();
+        }
         Entry {
-            var: with_unit(r.variable(start)),
+            var,
             role: r.access,
         }
     };
