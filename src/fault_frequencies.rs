@@ -1,9 +1,10 @@
-//! L0: kinematic fault frequencies (docs/model.md#l0).
+//! L0: kinematic fault frequencies and the race-control cage-speed ratios (docs/model.md#l0).
 //!
 //! Two flavours:
 //! - pure rolling at one contact angle α (the textbook formulas, [`fault_frequencies`]);
 //! - loaded angles α_i ≠ α_o under Jones' outer-race control ([`outer_race_control`],
-//!   [`loaded_frequencies`], [`frequencies_from_cage`]).
+//!   [`loaded_frequencies`], [`frequencies_from_cage`]); inner-race control bounds the cage
+//!   speed from the other side ([`inner_race_control_cage_ratio`], [`rolling_cage_ratio`]).
 //!
 //! The outer ring is fixed and the shaft (inner ring) turns at `fs` Hz. All frequencies are in
 //! Hz; angles are in radians.
