@@ -26,6 +26,18 @@ for v in base new; do
   mkdir -p "$bench/src"
   cp scripts/step_overhead/main.rs "$bench/src/main.rs"
   cp "$src/Cargo.lock" "$bench/Cargo.lock"
+  # The workspace split (issue 18) moved the FMI shell into the fmi2 and ballbearing-fmu crates.
+  if [ -d "$src/fmu" ]; then
+    deps="raceway = { path = \"$src\" }
+fmi2 = { path = \"$src/fmi2\" }
+ballbearing-fmu = { path = \"$src/fmu\" }"
+    features='[features]
+default = ["split"]
+split = []'
+  else
+    deps="raceway = { path = \"$src\" }"
+    features=""
+  fi
   cat >"$bench/Cargo.toml" <<TOML
 [package]
 name = "step_overhead"
@@ -33,7 +45,9 @@ version = "0.1.0"
 edition = "2021"
 
 [dependencies]
-raceway = { path = "$src" }
+$deps
+
+$features
 
 [profile.release]
 panic = "unwind"

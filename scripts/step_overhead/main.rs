@@ -1,15 +1,64 @@
 //! Wall time of 1 s of the default scene in 1e-4 s communication steps, through the library
 //! (advance + read every output) and through the FMU shell in-process (fmi2DoStep + fmi2GetReal
 //! of every Real output). Prints one line per repeat: mode level seconds.
-use raceway::config::BearingFile;
-use raceway::fmi::ballbearing::BallBearing;
-use raceway::fmi::bindings::*;
-use raceway::fmi::shell as sh;
-use raceway::scene::{Fidelity, Scene};
-use raceway::simulation::Simulation;
+//!
+//! Builds against both layouts of the repository: before the workspace split (the FMI shell in
+//! `raceway::fmi`) and after it (feature `split`: the `fmi2` and `ballbearing-fmu` crates), as
+//! scripts/step_overhead.sh chooses.
+use api::*;
 use std::ffi::CString;
 use std::os::raw::{c_char, c_void};
 use std::time::Instant;
+
+#[cfg(not(feature = "split"))]
+mod api {
+    pub use raceway::config::BearingFile;
+    pub use raceway::fmi::ballbearing::BallBearing;
+    pub use raceway::fmi::bindings::*;
+    pub use raceway::fmi::shell as sh;
+    pub use raceway::scene::{Fidelity, Scene};
+    pub use raceway::simulation::Simulation;
+    use raceway::fmi::shell::{Causality, VarType};
+
+    pub fn guid(b: &BearingFile) -> String {
+        raceway::fmi::guid(b)
+    }
+
+    /// (value reference, name, is a Real output) of every variable.
+    pub fn vars(b: &BearingFile) -> Vec<(u32, String, bool)> {
+        raceway::fmi::variables::table(b)
+            .into_iter()
+            .map(|e| {
+                let out = e.var.causality == Causality::Output && e.var.ty == VarType::Real;
+                (e.var.vr, e.var.name, out)
+            })
+            .collect()
+    }
+}
+
+#[cfg(feature = "split")]
+mod api {
+    pub use ballbearing_fmu::ballbearing::BallBearing;
+    pub use fmi2::bindings::*;
+    pub use fmi2::functions as sh;
+    use fmi2::{Causality, VarType};
+    pub use raceway::{BearingFile, Fidelity, Scene, Simulation};
+
+    pub fn guid(b: &BearingFile) -> String {
+        ballbearing_fmu::guid(b)
+    }
+
+    /// (value reference, name, is a Real output) of every variable.
+    pub fn vars(b: &BearingFile) -> Vec<(u32, String, bool)> {
+        ballbearing_fmu::variables::table(b)
+            .into_iter()
+            .map(|e| {
+                let out = e.var.causality == Causality::Output && e.var.ty == VarType::Real;
+                (e.var.vr, e.var.name, out)
+            })
+            .collect()
+    }
+}
 
 unsafe extern "C" fn quiet(
     _env: Fmi2ComponentEnvironment,
@@ -41,18 +90,10 @@ fn library(level: Fidelity) -> f64 {
 
 fn fmu(level: Fidelity) -> f64 {
     let b = BearingFile::default_preset();
-    let guid = CString::new(raceway::fmi::guid(&b)).unwrap();
-    let outs: Vec<u32> = raceway::fmi::variables::table(&b)
-        .into_iter()
-        .filter(|e| e.var.causality == sh::Causality::Output && e.var.ty == sh::VarType::Real)
-        .map(|e| e.var.vr)
-        .collect();
-    let fid = raceway::fmi::variables::table(&b)
-        .into_iter()
-        .find(|e| e.var.name == "fidelity")
-        .unwrap()
-        .var
-        .vr;
+    let guid = CString::new(guid(&b)).unwrap();
+    let vars = vars(&b);
+    let outs: Vec<u32> = vars.iter().filter(|v| v.2).map(|v| v.0).collect();
+    let fid = vars.iter().find(|v| v.1 == "fidelity").unwrap().0;
     let cb = Fmi2CallbackFunctions {
         logger: Some(unsafe { fixed_args_logger(quiet) }),
         allocate_memory: None,
