@@ -36,7 +36,8 @@ default = ["split"]
 split = []'
   else
     deps="raceway = { path = \"$src\" }"
-    features=""
+    features='[features]
+split = []'
   fi
   cat >"$bench/Cargo.toml" <<TOML
 [package]
