@@ -52,6 +52,8 @@ pub struct SetUndo {
     inputs: OperatingPoint,
     journal: Journal,
     journal_set: bool,
+    loads_set_running: bool,
+    journal_by_master: bool,
     /// The live simulation's state, if the call sets two or more values that reach it (each
     /// input reaches it as it is set, as before this call-level undo existed).
     sim: Option<Vec<u8>>,
@@ -70,6 +72,13 @@ pub struct BallBearing {
     /// not, the journal starts at the static equilibrium of the L1 start, at rest.
     journal: Journal,
     journal_set: bool,
+    /// The master has set a load input after initialization (ignored in coupling mode motion).
+    loads_set_running: bool,
+    /// The master has set a journal input (ignored in coupling mode force).
+    journal_by_master: bool,
+    /// Which ignored inputs have been reported (loads in motion mode, journal in force mode):
+    /// each once per instance, at warning level.
+    ignored_reported: [bool; 2],
     start_time: f64,
     tolerance: Option<f64>,
     initialized: bool,
@@ -107,6 +116,9 @@ impl BallBearing {
             inputs,
             journal: Journal::default(),
             journal_set: false,
+            loads_set_running: false,
+            journal_by_master: false,
+            ignored_reported: [false; 2],
             start_time: 0.0,
             tolerance: None,
             initialized: false,
@@ -115,6 +127,32 @@ impl BallBearing {
             outputs_valid: false,
             step_outputs: vec![0.0; n_out],
         }
+    }
+
+    /// Inputs the master has set that `coupling` ignores, each kind reported once per instance:
+    /// the journal in force mode (the loads drive the inner ring), the loads after
+    /// initialization in motion mode (they act only at the start's equilibrium).
+    fn ignored_inputs(&mut self, coupling: CouplingMode) -> Vec<String> {
+        let mut notes = Vec::new();
+        if coupling == CouplingMode::Force && self.journal_by_master && !self.ignored_reported[1] {
+            self.ignored_reported[1] = true;
+            notes.push(
+                "the journal.* inputs are set but ignored in coupling mode force (coupling = 0: \
+                 the load.F* inputs act on the inner ring, which the bearing integrates); set \
+                 coupling = 1 (motion) to drive the journal"
+                    .to_string(),
+            );
+        }
+        if coupling == CouplingMode::Motion && self.loads_set_running && !self.ignored_reported[0] {
+            self.ignored_reported[0] = true;
+            notes.push(
+                "the load.F* inputs are set after initialization but ignored in coupling mode \
+                 motion (coupling = 1: the journal.* inputs move the inner ring; the loads act \
+                 only at the start's equilibrium); set coupling = 0 (force) to apply loads"
+                    .to_string(),
+            );
+        }
+        notes
     }
 
     /// The scene the simulation is built from: parameters, defect, tolerance override and the
@@ -242,7 +280,9 @@ impl FmuModel for BallBearing {
     fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
         // Always rebuild: the provisional simulation may predate the last parameter change.
         let mut live = self.build()?;
-        for w in live.sim.take_warnings() {
+        let mut warnings = live.sim.take_warnings();
+        warnings.extend(self.ignored_inputs(live.scene.coupling));
+        for w in warnings {
             log.log(
                 fmi2::bindings::Fmi2Status::Warning,
                 fmi2::LOG_STATUS_WARNING,
@@ -347,8 +387,11 @@ impl FmuModel for BallBearing {
         }
         std::mem::swap(&mut self.outputs, &mut self.step_outputs);
         self.outputs_valid = true;
-        // Plausibility warnings of this step and of the inputs set before it.
-        let warnings = live.sim.take_warnings();
+        // Plausibility warnings of this step and of the inputs set before it, and inputs that
+        // the coupling mode ignores.
+        let coupling = live.scene.coupling;
+        let mut warnings = live.sim.take_warnings();
+        warnings.extend(self.ignored_inputs(coupling));
         if warnings.is_empty() {
             StepResult::Ok
         } else {
@@ -361,6 +404,9 @@ impl FmuModel for BallBearing {
         self.inputs = self.cfg.scene.operating;
         self.journal = Journal::default();
         self.journal_set = false;
+        self.loads_set_running = false;
+        self.journal_by_master = false;
+        self.ignored_reported = [false; 2];
         self.start_time = 0.0;
         self.tolerance = None;
         self.initialized = false;
@@ -403,6 +449,7 @@ impl FmuModel for BallBearing {
                     next.check().map_err(|m| sim_err(SimError::Input(m)))?;
                 }
                 self.inputs = next;
+                self.loads_set_running |= self.initialized;
                 self.invalidate();
                 Ok(())
             }
@@ -417,6 +464,7 @@ impl FmuModel for BallBearing {
                 }
                 self.journal = next;
                 self.journal_set = true;
+                self.journal_by_master = true;
                 self.invalidate();
                 Ok(())
             }
@@ -531,6 +579,8 @@ impl FmuModel for BallBearing {
             inputs: self.inputs,
             journal: self.journal,
             journal_set: self.journal_set,
+            loads_set_running: self.loads_set_running,
+            journal_by_master: self.journal_by_master,
             sim,
         }
     }
@@ -542,6 +592,8 @@ impl FmuModel for BallBearing {
         self.inputs = undo.inputs;
         self.journal = undo.journal;
         self.journal_set = undo.journal_set;
+        self.loads_set_running = undo.loads_set_running;
+        self.journal_by_master = undo.journal_by_master;
         self.invalidate();
         if let (Some(bytes), Some(live)) = (undo.sim, self.live.as_mut()) {
             live.sim.restore_state(&bytes).map_err(sim_err)?;

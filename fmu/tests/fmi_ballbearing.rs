@@ -1009,3 +1009,80 @@ fn a_refused_value_takes_back_the_earlier_values_of_the_call() {
         sh::free_instance::<BallBearing>(twin);
     }
 }
+
+/// Inputs that the coupling mode ignores are reported once per instance at warning level
+/// (issue 19 item 4): loads set after initialization in motion mode, the journal in force mode.
+#[test]
+fn inputs_the_coupling_mode_ignores_are_reported_once() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let warnings = |h: &H, what: &str| {
+        h.log
+            .lock()
+            .unwrap()
+            .iter()
+            .filter(|(s, m)| *s == Fmi2Status::Warning && m.contains(what))
+            .count()
+    };
+    // Motion mode: a load set after initialization is ignored; the step says so once.
+    let (c, t) = ready_at(&h, &b, 2, 1, 2_000_000, 1, None);
+    let fz = vr(&b, "load.Fz");
+    // SAFETY: c is a live instance; single values.
+    unsafe {
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &-1500.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t, H_GOOD, 1),
+            Fmi2Status::Warning
+        );
+        assert_eq!(warnings(&h, "load.F* inputs are set"), 1, "{}", h.last());
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &fz, 1, &-1600.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t + H_GOOD, H_GOOD, 1),
+            Fmi2Status::Ok
+        );
+        assert_eq!(warnings(&h, "load.F* inputs are set"), 1);
+        sh::free_instance::<BallBearing>(c);
+    }
+    // Force mode: a journal input set in initialization mode is reported when it ends.
+    let h = H::new();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    let jz = vr(&b, "journal.z");
+    // SAFETY: c is a live instance; single values.
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &jz, 1, &1e-6),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(warnings(&h, "journal.* inputs are set"), 1, "{}", h.last());
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &jz, 1, &2e-6),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, H_GOOD, 1),
+            Fmi2Status::Ok
+        );
+        assert_eq!(warnings(&h, "journal.* inputs are set"), 1);
+        // Loads in force mode and nothing else: no warning at all.
+        assert_eq!(warnings(&h, "load.F* inputs are set"), 0);
+        sh::free_instance::<BallBearing>(c);
+    }
+}
