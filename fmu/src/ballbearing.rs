@@ -391,6 +391,18 @@ impl FmuModel for BallBearing {
         // the coupling mode ignores.
         let coupling = live.scene.coupling;
         let mut warnings = live.sim.take_warnings();
+        let after = live.sim.stats();
+        let attempted = (after.steps + after.rejected) - (before.steps + before.rejected);
+        if self.cfg.warn_steps > 0 && attempted > self.cfg.warn_steps {
+            warnings.push(format!(
+                "the step from t = {t} to {t_end} took {attempted} integrator steps ({} rejected), \
+                 more than solver.warn_steps = {}: either the communication step is long for \
+                 this level, or the dynamics became stiff, as when a coupling runs away or the \
+                 inputs jump; check the coupling and the communication step",
+                after.rejected - before.rejected,
+                self.cfg.warn_steps
+            ));
+        }
         warnings.extend(self.ignored_inputs(coupling));
         if warnings.is_empty() {
             StepResult::Ok

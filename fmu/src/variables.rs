@@ -613,6 +613,19 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
+    param(
+        127,
+        "solver.warn_steps",
+        Integer,
+        None,
+        (Some(0.0), Some(IMAX)),
+        "Integrator steps (accepted and rejected) in one communication step above which fmi2DoStep returns fmi2Warning and says how many it took (a long communication step, or stiff dynamics such as a coupling running away); 0: never",
+        |c| c.warn_steps.min(i32::MAX as u64) as f64,
+        |c, v| {
+            c.warn_steps = (v as i32).max(0) as u64;
+            Ok(())
+        },
+    ),
     stat(900, "solver.steps", "Accepted integrator steps since the start", |s| s.steps),
     stat(901, "solver.rejected", "Rejected integrator steps since the start", |s| s.rejected),
     stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
@@ -706,7 +719,14 @@ pub struct Config {
     pub defect: DefectParams,
     /// `ring.axial_offset` as set (it enters the scene's mounting with `ring.axial` = 2).
     pub axial_offset: f64,
+    /// `solver.warn_steps`: integrator steps per communication step above which a step warns
+    /// (0: never).
+    pub warn_steps: u64,
 }
+
+/// Default of `solver.warn_steps`: a communication step of 0.1 ms at the full level takes
+/// tens of integrator steps; 100 000 means the step is far too long for what the bearing does.
+pub const DEFAULT_WARN_STEPS: u64 = 100_000;
 
 impl Config {
     /// The default scene on `bearing`.
@@ -719,6 +739,7 @@ impl Config {
             scene,
             defect,
             axial_offset,
+            warn_steps: DEFAULT_WARN_STEPS,
         }
     }
 
@@ -861,7 +882,7 @@ mod tests {
         assert_eq!(names.len(), t.len(), "unique names");
         let z = b.bearing.z as usize;
         assert_eq!(t.len(), ROWS.len() + output_table(z).len());
-        assert_eq!(params().count(), 27);
+        assert_eq!(params().count(), 28);
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);

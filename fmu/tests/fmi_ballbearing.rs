@@ -1086,3 +1086,46 @@ fn inputs_the_coupling_mode_ignores_are_reported_once() {
         sh::free_instance::<BallBearing>(c);
     }
 }
+
+/// A communication step that takes more integrator steps than `solver.warn_steps` returns
+/// fmi2Warning and says how many (issue 19 item 4); below it, fmi2OK.
+#[test]
+fn a_step_with_more_internal_steps_than_warn_steps_says_so() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    // SAFETY: c is a live instance; single values.
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::set_integer::<BallBearing>(c, &vr(&b, "solver.warn_steps"), 1, &20),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        // The lumped level takes a few integrator steps per 1e-5 s and hundreds per 0.01 s.
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 1e-5, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 1e-5, 0.01, 1),
+            Fmi2Status::Warning
+        );
+        let (s, m) = h.last_entry();
+        assert_eq!(s, Fmi2Status::Warning);
+        assert!(m.contains("solver.warn_steps = 20"), "{m}");
+        sh::free_instance::<BallBearing>(c);
+    }
+}
