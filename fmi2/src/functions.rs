@@ -185,6 +185,7 @@ unsafe fn instantiate_inner<M: FmuModel>(
         last_successful_time: 0.0,
         terminated: false,
         strings: Vec::new(),
+        refused: Vec::new(),
     });
     inst.event(|| {
         format!(
@@ -370,6 +371,9 @@ pub unsafe fn exit_initialization_mode<M: FmuModel>(c: Fmi2Component) -> Fmi2Sta
     unsafe {
         with_instance::<M>(c, F, |me| {
             if let Err(s) = me.check_state(F, mask::EXIT_INIT) {
+                return s;
+            }
+            if let Err(s) = me.check_refused(F) {
                 return s;
             }
             if let Err(e) = me.model.exit_initialization(&me.logger) {
@@ -580,6 +584,9 @@ pub unsafe fn do_step<M: FmuModel>(
     unsafe {
         with_instance::<M>(c, F, |me| {
             if let Err(s) = me.check_state(F, mask::DO_STEP) {
+                return s;
+            }
+            if let Err(s) = me.check_refused(F) {
                 return s;
             }
             if !(h.is_finite() && h > 0.0) {

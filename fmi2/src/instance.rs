@@ -124,6 +124,11 @@ pub struct Instance<M: FmuModel> {
     pub(crate) terminated: bool,
     /// Storage of the strings returned by `fmi2GetString` (valid until the next call).
     pub(crate) strings: Vec<CString>,
+    /// Variables (table indices) whose last `fmi2Set*` call was refused, each with why: they
+    /// keep their previous values, so `fmi2ExitInitializationMode` and `fmi2DoStep` refuse to
+    /// run on them until they are set again (a master that ignores a setter's status learns
+    /// it there).
+    pub(crate) refused: Vec<(usize, String)>,
 }
 
 impl<M: FmuModel> Instance<M> {
@@ -257,5 +262,33 @@ impl<M: FmuModel> Instance<M> {
         self.last_successful_time = 0.0;
         self.terminated = false;
         self.strings.clear();
+        self.refused.clear();
+    }
+
+    /// Records that a `fmi2Set*` call refused the values of `indices` (all of its values are
+    /// then refused), replacing earlier reasons for them.
+    pub(crate) fn note_refused(&mut self, indices: &[usize], why: String) {
+        self.refused.retain(|(i, _)| !indices.contains(i));
+        self.refused
+            .extend(indices.iter().map(|&i| (i, why.clone())));
+    }
+
+    /// Refuses `fname` while a variable holds a value older than a refused `fmi2Set*`.
+    pub(crate) fn check_refused(&self, fname: &str) -> Result<(), Fmi2Status> {
+        let Some((i, why)) = self.refused.first() else {
+            return Ok(());
+        };
+        let name = &self.model.variables()[*i].name;
+        let more = match self.refused.len() {
+            1 => String::new(),
+            n => format!(" (and {} more variables)", n - 1),
+        };
+        Err(self.error(
+            fname,
+            format!(
+                "'{name}'{more} still holds its value from before a refused set ({why}); set it \
+                 again, or restore a state, before the model runs on it"
+            ),
+        ))
     }
 }

@@ -20,7 +20,10 @@
 //! Conventions (an FMU's documentation should repeat them):
 //! - A call rejected by an argument or call-sequence check returns `fmi2Error`, logs why, and
 //!   has no effect (the instance stays in its state); a `fmi2Set*` call applies all its values
-//!   or none. A failure of the model itself during `fmi2ExitInitializationMode` or `fmi2DoStep`
+//!   or none. The variables of a refused `fmi2Set*` call keep their earlier values, and
+//!   `fmi2ExitInitializationMode` and `fmi2DoStep` are refused (no effect) until they are set
+//!   again or a state is restored: a master that ignores a setter's status learns it at the
+//!   next step instead of running on stale values. A failure of the model itself during `fmi2ExitInitializationMode` or `fmi2DoStep`
 //!   moves the instance to the Error state, from which `fmi2Reset`, `fmi2SetFMUstate` and
 //!   `fmi2FreeInstance` lead out.
 //! - Messages with status Warning, Discard, Error or Fatal are always passed to the logger; all

@@ -178,12 +178,14 @@ unsafe fn set_values<M: FmuModel, T: Copy>(
                 if let Err(s) = me.check_settable(fname, i) {
                     return s;
                 }
+                idx.push(i);
                 if let Some(x) = as_f64(vals[k]) {
                     if let Err(s) = me.check_bounds(fname, i, x) {
+                        let name = me.model.variables()[i].name.clone();
+                        me.note_refused(&idx, format!("{fname} refused '{name}' = {x}"));
                         return s;
                     }
                 }
-                idx.push(i);
             }
             // All or nothing: a value the model refuses takes back the ones applied before it.
             let undo = (idx.len() > 1).then(|| me.model.begin_set(&idx));
@@ -199,9 +201,12 @@ unsafe fn set_values<M: FmuModel, T: Copy>(
                             ),
                         );
                     }
+                    let name = me.model.variables()[i].name.clone();
+                    me.note_refused(&idx, format!("{fname} refused '{name}': {e}"));
                     return me.error(fname, e);
                 }
             }
+            me.refused.retain(|(i, _)| !idx.contains(i));
             Fmi2Status::Ok
         })
     }

@@ -582,6 +582,16 @@ fn set_rules_and_value_checks() {
         );
         assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
         assert_eq!(set(c, 4, 100.0), Fmi2Status::Ok);
+        // 'u' still holds its value from before the refused NaN: the model does not run on it
+        // (and the call has no effect) until it is set again.
+        assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Error);
+        assert!(
+            h.last()
+                .contains("'u' still holds its value from before a refused set (fmi2SetReal refused 'u' = NaN)"),
+            "{}",
+            h.last()
+        );
+        assert_eq!(set(c, 3, 0.0), Fmi2Status::Ok);
         assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
         // after initialization: fixed parameters refused, tunable ones and inputs accepted
         assert_eq!(set(c, 4, 10.0), Fmi2Status::Error);

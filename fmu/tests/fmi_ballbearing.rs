@@ -986,6 +986,22 @@ fn a_refused_value_takes_back_the_earlier_values_of_the_call() {
             after, loads,
             "load.Fy stayed applied although load.Fz was refused"
         );
+        // The step refuses to run on the old loads (a master that ignored the setter's
+        // status learns it here) until they are set again.
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t, H_GOOD, 1),
+            Fmi2Status::Error
+        );
+        assert!(
+            h.last()
+                .contains("still holds its value from before a refused set"),
+            "{}",
+            h.last()
+        );
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, [fy, fz].as_ptr(), 2, loads.as_ptr()),
+            Fmi2Status::Ok
+        );
     }
     assert_eq!(all_outputs(c, &b), before);
     // The simulation runs on as if the call had not been made: same outputs as a twin that

@@ -178,6 +178,11 @@ def probe_nan_input(ctx):
     out["output"] = [status_of(s.setReal, [ctx.vr["pedestal.a.z"]], [1.0]), last_message()]
     s.setupExperiment(tolerance=1e-6, startTime=0.0)
     s.enterInitializationMode()
+    # The refused variables still hold their earlier values: initialization refuses to run on
+    # them until they are set again.
+    out["exit_refused"] = [status_of(s.exitInitializationMode), last_message()]
+    for name in ["load.Fx", "shaft.speed", "pedestal.mass", "lumped.slip_jitter"]:
+        s.setReal([ctx.vr[name]], [float(ctx.var[name].start)])
     s.exitInitializationMode()
     out["fixed_after_init"] = [status_of(s.setReal, [ctx.vr["pedestal.mass"]], [1.0]), last_message()]
     out["nan_after_init"] = [status_of(s.setReal, [ctx.vr["load.Fz"]], [float("nan")]), last_message()]

@@ -179,6 +179,8 @@ def test_nan_and_invalid_values(probe):
     assert r["inf_param"][0] == STATUS["error"] and "pedestal.mass" in r["inf_param"][1]
     assert r["range"][0] == STATUS["error"] and "lumped.slip_jitter" in r["range"][1]
     assert r["output"][0] == STATUS["error"] and "calculated output" in r["output"][1]
+    assert r["exit_refused"][0] == STATUS["error"], r["exit_refused"]
+    assert "still holds its value from before a refused set" in r["exit_refused"][1], r["exit_refused"]
     assert r["fixed_after_init"][0] == STATUS["error"] and "fixed parameter" in r["fixed_after_init"][1]
     assert r["nan_after_init"][0] == STATUS["error"] and "load.Fz" in r["nan_after_init"][1]
     assert r["ok_input"][0] == STATUS["ok"]
