@@ -1103,21 +1103,17 @@ fn inputs_the_coupling_mode_ignores_are_reported_once() {
     }
 }
 
-/// A communication step that takes more integrator steps than `solver.warn_steps` returns
-/// fmi2Warning and says how many (issue 19 item 4); below it, fmi2OK.
-#[test]
-fn a_step_with_more_internal_steps_than_warn_steps_says_so() {
-    let b = BearingFile::default_preset();
-    let h = H::new();
-    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+/// An initialized lumped instance with `solver.warn_steps` = `warn` and start time `t0`.
+fn warn_instance(h: &H, b: &BearingFile, warn: i32, t0: f64) -> Fmi2Component {
+    let c = h.inst(&ballbearing_fmu::guid(b), None);
     // SAFETY: c is a live instance; single values.
     unsafe {
         assert_eq!(
-            sh::setup_experiment::<BallBearing>(c, 0, 0.0, 0.0, 0, 0.0),
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, t0, 0, 0.0),
             Fmi2Status::Ok
         );
         assert_eq!(
-            sh::set_integer::<BallBearing>(c, &vr(&b, "solver.warn_steps"), 1, &20),
+            sh::set_integer::<BallBearing>(c, &vr(b, "solver.warn_steps"), 1, &warn),
             Fmi2Status::Ok
         );
         assert_eq!(
@@ -1128,20 +1124,93 @@ fn a_step_with_more_internal_steps_than_warn_steps_says_so() {
             sh::exit_initialization_mode::<BallBearing>(c),
             Fmi2Status::Ok
         );
-        // The lumped level takes a few integrator steps per 1e-5 s and hundreds per 0.01 s.
+    }
+    c
+}
+
+/// Attempted integrator steps (accepted + rejected) since the start, from the counters.
+fn attempted(c: Fmi2Component, b: &BearingFile) -> i32 {
+    let vrs = [vr(b, "solver.steps"), vr(b, "solver.rejected")];
+    let mut n = [0; 2];
+    // SAFETY: c is a live instance; both arrays hold 2 elements.
+    let s = unsafe { sh::get_integer::<BallBearing>(c, vrs.as_ptr(), 2, n.as_mut_ptr()) };
+    assert_eq!(s, Fmi2Status::Ok);
+    n[0] + n[1]
+}
+
+/// A communication step that takes more integrator steps (accepted and rejected) than
+/// `solver.warn_steps` returns fmi2Warning and says how many (issue 19 item 4); as many or
+/// fewer, or warn_steps = 0, fmi2OK. Twin instances take the same steps.
+#[test]
+fn a_step_with_more_internal_steps_than_warn_steps_says_so() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    // The count of a 0.01 s step after a short one, measured on an instance that never warns.
+    let step = |c: Fmi2Component, t0: f64| {
+        // SAFETY: c is a live instance.
+        unsafe {
+            let first = sh::do_step::<BallBearing>(c, t0, 1e-5, 1);
+            let before = attempted(c, &b);
+            let second = sh::do_step::<BallBearing>(c, t0 + 1e-5, 0.01, 1);
+            (first, second, attempted(c, &b) - before)
+        }
+    };
+    let quiet = warn_instance(&h, &b, 1_000_000, 0.0);
+    let (s1, s2, n) = step(quiet, 0.0);
+    assert_eq!((s1, s2), (Fmi2Status::Ok, Fmi2Status::Ok));
+    assert!(n > 20, "{n} integrator steps in 0.01 s");
+    // warn_steps = n: as many steps as allowed, no warning (also not for the short step).
+    let at = warn_instance(&h, &b, n, 0.0);
+    assert_eq!(step(at, 0.0), (Fmi2Status::Ok, Fmi2Status::Ok, n));
+    // warn_steps = n − 1: the long step warns with its own count; a short step after it does not.
+    let over = warn_instance(&h, &b, n - 1, 0.0);
+    assert_eq!(step(over, 0.0), (Fmi2Status::Ok, Fmi2Status::Warning, n));
+    let (s, m) = h.last_entry();
+    assert_eq!(s, Fmi2Status::Warning);
+    assert!(m.contains(&format!("took {n} integrator steps")), "{m}");
+    assert!(m.contains(&format!("solver.warn_steps = {}", n - 1)), "{m}");
+    // SAFETY: over is a live instance.
+    unsafe {
         assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 1e-5, 1),
-            Fmi2Status::Ok,
+            sh::do_step::<BallBearing>(over, 0.01 + 1e-5, 1e-5, 1),
+            Fmi2Status::Ok
+        );
+    }
+    // warn_steps = 1: every step warns, each with the steps it took itself (counted from the
+    // counters, rejected steps of earlier steps not included).
+    let every = warn_instance(&h, &b, 1, 0.0);
+    for k in 0..3 {
+        let before = attempted(every, &b);
+        // SAFETY: every is a live instance.
+        let s = unsafe { sh::do_step::<BallBearing>(every, k as f64 * 0.005, 0.005, 1) };
+        let took = attempted(every, &b) - before;
+        assert_eq!(s, Fmi2Status::Warning);
+        assert!(
+            h.last().contains(&format!("took {took} integrator steps")),
             "{}",
             h.last()
         );
-        assert_eq!(
-            sh::do_step::<BallBearing>(c, 1e-5, 0.01, 1),
-            Fmi2Status::Warning
+    }
+    // 0: never.
+    let never = warn_instance(&h, &b, 0, 0.0);
+    assert_eq!(step(never, 0.0).1, Fmi2Status::Ok);
+    // A start time other than 0: the same steps and, to round-off in the times, the same
+    // outputs as from 0.
+    let later = warn_instance(&h, &b, 1_000_000, 1.5);
+    assert_eq!(step(later, 1.5), (Fmi2Status::Ok, Fmi2Status::Ok, n));
+    let ((r1, i1), (r0, i0)) = (all_outputs(later, &b), all_outputs(quiet, &b));
+    assert_eq!(i1, i0);
+    for (x1, x0) in r1.iter().zip(&r0) {
+        let (x1, x0) = (f64::from_bits(*x1), f64::from_bits(*x0));
+        assert!(
+            (x1 - x0).abs() <= 1e-6 * x0.abs().max(1.0),
+            "{x1} against {x0}"
         );
-        let (s, m) = h.last_entry();
-        assert_eq!(s, Fmi2Status::Warning);
-        assert!(m.contains("solver.warn_steps = 20"), "{m}");
-        sh::free_instance::<BallBearing>(c);
+    }
+    // SAFETY: every instance is live and freed once.
+    unsafe {
+        for c in [quiet, at, over, every, never, later] {
+            sh::free_instance::<BallBearing>(c);
+        }
     }
 }
