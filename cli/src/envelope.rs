@@ -12,7 +12,7 @@ mod point;
 mod report;
 
 use grid::{GridPoint, PointSpec, Scales};
-use raceway::models::LEVELS;
+use raceway::models::{level_names, LEVELS};
 use raceway::{Bearing, Fidelity, DEFAULT_PRESET, PRESETS};
 use report::{Bounds, Class, Outcome, Raw};
 use std::io::Read;
@@ -177,10 +177,8 @@ fn parse_levels(names: Option<&[String]>) -> Result<Vec<Fidelity>, String> {
     let mut levels = Vec::new();
     for n in names {
         let n = n.trim();
-        let l = Fidelity::from_name(n).ok_or_else(|| {
-            let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
-            format!("--levels: unknown level '{n}'; valid: {}", names.join(", "))
-        })?;
+        let l = Fidelity::from_name(n)
+            .ok_or_else(|| format!("--levels: unknown level '{n}'; valid: {}", level_names()))?;
         if !levels.contains(&l) {
             levels.push(l);
         }

@@ -1,7 +1,7 @@
 //! `raceway simulate`: run a scene and write `time` plus the FMU's output names as CSV.
 
 use raceway::fault_frequencies;
-use raceway::models::LEVELS;
+use raceway::models::level_names;
 use raceway::{out, Fidelity, MethodName, Scene, Simulation};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -69,10 +69,8 @@ fn select_columns(names: &[String], wanted: Option<&[String]>) -> Result<Vec<usi
 pub fn run(args: Args) -> Result<(), String> {
     let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     if let Some(f) = &args.fidelity {
-        scene.fidelity = Fidelity::from_name(f).ok_or_else(|| {
-            let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
-            format!("--fidelity {f}: expected one of {}", names.join(", "))
-        })?;
+        scene.fidelity = Fidelity::from_name(f)
+            .ok_or_else(|| format!("--fidelity {f}: expected one of {}", level_names()))?;
     }
     if let Some(m) = &args.method {
         scene.solver.method = MethodName::from_name(m)

@@ -337,16 +337,17 @@ impl FmuModel for BallBearing {
             }
             Err(e) => return StepResult::Error(e.to_string()),
         }
+        // Integrator work of this step (for the solver log and the warn_steps check).
+        let after = live.sim.stats();
         if log.enabled(LOG_SOLVER) {
-            let s = live.sim.stats();
             log.log(
                 fmi2::bindings::Fmi2Status::Ok,
                 LOG_SOLVER,
                 &format!(
                     "t = {t} → {t_end}: {} steps, {} rejected, {} rhs evaluations",
-                    s.steps - before.steps,
-                    s.rejected - before.rejected,
-                    s.rhs_evals - before.rhs_evals
+                    after.steps - before.steps,
+                    after.rejected - before.rejected,
+                    after.rhs_evals - before.rhs_evals
                 ),
             );
         }
@@ -391,7 +392,6 @@ impl FmuModel for BallBearing {
         // the coupling mode ignores.
         let coupling = live.scene.coupling;
         let mut warnings = live.sim.take_warnings();
-        let after = live.sim.stats();
         let attempted = (after.steps + after.rejected) - (before.steps + before.rejected);
         if self.cfg.warn_steps > 0 && attempted > self.cfg.warn_steps {
             warnings.push(format!(

@@ -3,7 +3,7 @@
 use crate::variables::{table, Access, Config};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
-use raceway::models::LEVELS;
+use raceway::models::{level, LEVELS};
 use raceway::{BearingFile, Fidelity, Simulation};
 
 /// Whether each fidelity level runs in this build: (level, availability text). A level is
@@ -23,14 +23,6 @@ pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(),
             (f, r)
         })
         .collect()
-}
-
-/// The registry's one-line summary of a level.
-fn level_summary(f: Fidelity) -> &'static str {
-    LEVELS
-        .iter()
-        .find(|l| l.fidelity == f)
-        .map_or("", |l| l.summary)
 }
 
 /// The coupling-mode section: where the cut is, the two modes, stability, derivatives.
@@ -116,7 +108,7 @@ pub fn documentation_html(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
             f.code(),
             f.name(),
-            esc(level_summary(*f)),
+            esc(level(*f).summary),
             a
         ));
     }

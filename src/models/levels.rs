@@ -98,6 +98,12 @@ pub fn level(f: Fidelity) -> &'static Level {
         .expect("every Fidelity has its row in models::levels::LEVELS")
 }
 
+/// The levels' names in ladder order, comma-separated (for messages that list the choices).
+pub fn level_names() -> String {
+    let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
+    names.join(", ")
+}
+
 /// Builds the model of the scene's fidelity level.
 pub fn build(
     scene: &Scene,

@@ -46,7 +46,7 @@ pub(crate) use cage::kinematic_levels_cage_speed;
 pub use cage::traction_cage_speed;
 pub use full::{FullModel, FullOptions};
 pub use kinematic::KinematicModel;
-pub use levels::{build, Constructor, Level, LEVELS};
+pub use levels::{build, level, level_names, Constructor, Level, LEVELS};
 pub use lumped::LumpedModel;
 pub use model::{Model, ReactionJacobian, RingStates, SimError};
 pub use out::{output_table, OutputInfo};
