@@ -54,7 +54,7 @@ pub use defect::DefectSpec;
 pub use geometry::{race_curvatures, Bearing, Race};
 pub use limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
 pub use models::{out, output_table, OutputInfo, SimError};
-pub use operating::{rpm_to_rad_s, OperatingPoint};
+pub use operating::{rpm_to_rad_s, OperatingPoint, RingLoad};
 pub use scene::{
     AxialMount, BearingRef, CageSpeed, CouplingMode, Fidelity, FullSettings, LumpedOptions,
     MethodName, Mounting, OutputSettings, Pulse, Resonator, Scene, SolverSettings, DEFAULT_SCENE,

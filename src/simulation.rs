@@ -13,7 +13,7 @@ use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 // The models' interface types, at the paths they had when they lived here.
 pub use crate::models::{out, output_table, OutputInfo, SimError};
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use raceway_solver::{
     grid_points, AdvanceOutcome, Checkpoint, EventAction, EventSystem, Integrator, IntegratorState,
@@ -549,6 +549,34 @@ impl Simulation {
     /// The current inputs: shaft speed and loads in SI units.
     pub fn inputs(&self) -> OperatingPoint {
         self.inputs
+    }
+
+    /// Coupling mode "force", levels with a dynamic inner ring (lumped, reduced, full): a
+    /// force law on the ring added to the inputs' load from now on (`None`: none), e.g. a
+    /// partner model's transmission line over the next communication step. It is not part of
+    /// a checkpoint: set it before every advance that should feel it.
+    pub fn set_ring_load(&mut self, law: Option<RingLoad>) -> Result<(), SimError> {
+        if self.scene.coupling != CouplingMode::Force {
+            return Err(SimError::Unsupported(
+                "a ring load law acts in coupling mode 'force' only (in motion mode the journal's motion is the input)".into(),
+            ));
+        }
+        if !self.model.set_ring_load(law) {
+            return Err(SimError::Unsupported(format!(
+                "the {} level has no dynamic inner ring to carry a ring load law: use the lumped, reduced or full level",
+                self.scene.fidelity.name()
+            )));
+        }
+        self.integrator.discontinuity();
+        Ok(())
+    }
+
+    /// The inner ring's velocity \[m/s\] along x, y, z at the current state, on the levels
+    /// where the ring is a dynamic body (`None` on the kinematic and quasi-static levels).
+    pub fn ring_velocity(&self) -> Option<[f64; 3]> {
+        let rs = self.model.ring_states()?;
+        let y = self.integrator.y();
+        Some(rs.vel.map(|i| y[i]))
     }
 
     /// Sets the inputs from now on (piecewise constant until the next change). Unchanged

@@ -6,7 +6,7 @@ use crate::variables::{journal_get, journal_set, params, table, Access, Config, 
 use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::{FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER};
 use raceway::{
-    out, BearingFile, CouplingMode, Journal, OperatingPoint, Scene, SimError, Simulation,
+    out, BearingFile, CouplingMode, Journal, OperatingPoint, RingLoad, Scene, SimError, Simulation,
 };
 use std::path::Path;
 
@@ -15,7 +15,8 @@ pub const BEARING_RESOURCE: &str = "bearing.toml";
 
 /// Version of the model part of the serialized FMU state.
 // 3: the operating point in SI units (shaft speed in rad/s, force components).
-const MODEL_STATE_VERSION: u32 = 3;
+// 4: the transmission-line inputs and the line's force at the start.
+const MODEL_STATE_VERSION: u32 = 4;
 
 /// Reads `resources/bearing.toml`, or the default preset when there is none.
 pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
@@ -42,6 +43,10 @@ pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String)
 struct Live {
     sim: Simulation,
     scene: Scene,
+    /// Coupling mode tlm: the line's force on the journal (y, z) at the start, part of the
+    /// scene's operating point (so the start is the equilibrium with it); the ring load of
+    /// each step is the line's force less this.
+    line_offset: [f64; 2],
 }
 
 /// What a multi-value `fmi2Set*` call may change, recorded before it (see
@@ -54,6 +59,8 @@ pub struct SetUndo {
     journal_set: bool,
     loads_set_running: bool,
     journal_by_master: bool,
+    line: [f64; 5],
+    line_by_master: bool,
     /// The live simulation's state, if the call sets two or more values that reach it (each
     /// input reaches it as it is set, as before this call-level undo existed).
     sim: Option<Vec<u8>>,
@@ -76,9 +83,20 @@ pub struct BallBearing {
     loads_set_running: bool,
     /// The master has set a journal input (ignored in coupling mode force).
     journal_by_master: bool,
-    /// Which ignored inputs have been reported (loads in motion mode, journal in force mode):
-    /// each once per instance, at warning level.
-    ignored_reported: [bool; 2],
+    /// Transmission-line inputs (coupling mode tlm): wave at the step's start (y, z), at its
+    /// end (y, z), impedance; see [`Access::Line`].
+    line: [f64; 5],
+    /// The master has set a transmission-line input (ignored outside coupling mode tlm).
+    line_by_master: bool,
+    /// Which ignored inputs have been reported (loads in motion mode, journal in force and tlm
+    /// mode, the line outside tlm mode): each once per instance, at warning level.
+    ignored_reported: [bool; 3],
+    /// Coupling mode motion: the largest communication step at which value exchange with a
+    /// constant input over the step is stable on the bearing's own damping, 2c/k (from the
+    /// reaction's stiffness k and damping c at the start), and whether a longer step has
+    /// been reported.
+    stable_step: Option<f64>,
+    stable_step_reported: bool,
     start_time: f64,
     tolerance: Option<f64>,
     initialized: bool,
@@ -118,7 +136,11 @@ impl BallBearing {
             journal_set: false,
             loads_set_running: false,
             journal_by_master: false,
-            ignored_reported: [false; 2],
+            line: [0.0; 5],
+            line_by_master: false,
+            ignored_reported: [false; 3],
+            stable_step: None,
+            stable_step_reported: false,
             start_time: 0.0,
             tolerance: None,
             initialized: false,
@@ -134,12 +156,24 @@ impl BallBearing {
     /// initialization in motion mode (they act only at the start's equilibrium).
     fn ignored_inputs(&mut self, coupling: CouplingMode) -> Vec<String> {
         let mut notes = Vec::new();
+        let mode = if self.cfg.tlm {
+            "tlm (coupling = 2"
+        } else {
+            "force (coupling = 0"
+        };
         if coupling == CouplingMode::Force && self.journal_by_master && !self.ignored_reported[1] {
             self.ignored_reported[1] = true;
+            notes.push(format!(
+                "the journal.* inputs are set but ignored in coupling mode {mode}: the load.F* \
+                 inputs act on the inner ring, which the bearing integrates); set coupling = 1 \
+                 (motion) to drive the journal"
+            ));
+        }
+        if !self.cfg.tlm && self.line_by_master && !self.ignored_reported[2] {
+            self.ignored_reported[2] = true;
             notes.push(
-                "the journal.* inputs are set but ignored in coupling mode force (coupling = 0: \
-                 the load.F* inputs act on the inner ring, which the bearing integrates); set \
-                 coupling = 1 (motion) to drive the journal"
+                "the tlm.* inputs are set but ignored outside coupling mode tlm; set coupling = \
+                 2 to couple through the transmission line"
                     .to_string(),
             );
         }
@@ -170,7 +204,7 @@ impl BallBearing {
             }
             s.solver.rtol = t;
         }
-        s.operating = self.inputs;
+        s.operating = self.model_inputs(self.start_line_offset());
         self.inputs
             .check()
             .map_err(|m| sim_err(SimError::Input(m)))?;
@@ -179,14 +213,131 @@ impl BallBearing {
         Ok(s)
     }
 
+    /// The line's force on the journal (y, z) at rest, from the line inputs as they are now
+    /// (coupling mode tlm; zero otherwise): the start's equilibrium carries it.
+    fn start_line_offset(&self) -> [f64; 2] {
+        if self.cfg.tlm {
+            [self.line[2], self.line[3]]
+        } else {
+            [0.0; 2]
+        }
+    }
+
+    /// The operating point the model runs on: the inputs plus, in coupling mode tlm, the
+    /// line's force at the start (`offset`).
+    fn model_inputs(&self, offset: [f64; 2]) -> OperatingPoint {
+        OperatingPoint {
+            fy: self.inputs.fy + offset[0],
+            fz: self.inputs.fz + offset[1],
+            ..self.inputs
+        }
+    }
+
     fn build(&self) -> Result<Live, String> {
         let scene = self.scene_to_build()?;
+        let line_offset = self.start_line_offset();
         let mut sim = Simulation::new(&scene).map_err(sim_err)?;
-        sim.set_inputs(self.inputs).map_err(sim_err)?;
+        sim.set_inputs(self.model_inputs(line_offset))
+            .map_err(sim_err)?;
         if scene.coupling == CouplingMode::Motion && self.journal_set {
             sim.set_journal(self.journal).map_err(sim_err)?;
         }
-        Ok(Live { sim, scene })
+        if self.cfg.tlm {
+            // Refused on a level without a dynamic ring: the journal's mass lives in the ring.
+            sim.set_ring_load(None)
+                .map_err(|e| format!("coupling = 2 (tlm): {}", sim_err(e)))?;
+        }
+        Ok(Live {
+            sim,
+            scene,
+            line_offset,
+        })
+    }
+
+    /// Coupling mode motion: the first communication step longer than the stable one of value
+    /// exchange (see `stable_step`) is reported, once.
+    fn step_size_warning(&mut self, h: f64) -> Vec<String> {
+        match self.stable_step {
+            Some(hs) if h > hs && !self.stable_step_reported => {
+                self.stable_step_reported = true;
+                vec![format!(
+                    "the communication step {h:e} s is longer than {hs:e} s, the largest at which \
+                     value exchange (the force held over the step, as fmpy and libcosim do) is \
+                     stable on the bearing's own damping (2c/k, see the log at initialization): \
+                     unless the partner damps the journal or applies the interface Jacobian, \
+                     the coupling will run away; shorten the step or couple through the \
+                     transmission line (coupling = 2 with the JeffcottRotor), which is stable at \
+                     any step"
+                )]
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// What fmi2ExitInitializationMode says about the coupling in use: in motion mode the
+    /// largest stable step of value exchange (it also sets `stable_step`), in tlm mode the
+    /// line. `None` in force mode.
+    fn coupling_note(&mut self) -> Option<String> {
+        let live = self.live.as_mut()?;
+        if self.cfg.tlm {
+            return Some(format!(
+                "coupling tlm: the transmission line's force acts on the inner ring (impedance \
+                 tlm.Zc = {} N s/m now, the line's force at rest ({}, {}) N in the start's \
+                 equilibrium); the line is passive, so the coupling is stable at any \
+                 communication step; its accuracy is set by the line's delay, which the \
+                 JeffcottRotor checks and logs",
+                self.line[4], live.line_offset[0], live.line_offset[1]
+            ));
+        }
+        if live.scene.coupling != CouplingMode::Motion {
+            return None;
+        }
+        let jac = match live.sim.reaction_jacobian() {
+            Ok(j) => j,
+            Err(e) => return Some(format!("coupling motion: no stable-step estimate ({e})")),
+        };
+        // Per axis, a journal of any mass M on stiffness k and damping c: ω = √(k/M),
+        // ζ = c/(2Mω), and value exchange is stable for ωH < 4ζ, i.e. H < 2c/k.
+        let mut h_min = f64::INFINITY;
+        let mut parts = Vec::new();
+        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let (kk, cc) = (-jac.dfdx[k][k], -jac.dfdv[k][k]);
+            if kk > 0.0 {
+                let h = 2.0 * cc.max(0.0) / kk;
+                h_min = h_min.min(h);
+                parts.push(format!(
+                    "{axis}: k = {kk:.4e} N/m, c = {cc:.4} N s/m, 2c/k = {h:.3e} s"
+                ));
+            }
+        }
+        if !h_min.is_finite() {
+            return Some(
+                "coupling motion: the bearing has no stiffness against the journal at the start"
+                    .into(),
+            );
+        }
+        self.stable_step = Some(h_min);
+        Some(format!(
+            "coupling motion: value exchange with the force held over the communication step is \
+             stable for H < 2c/k = {h_min:.3e} s on the bearing's own damping, whatever the \
+             journal's mass ({}); the partner's damping on the journal adds to c; accurate to \
+             about 1 % only for ωH < 0.05 with ω = √(k/M) of the partner's journal mass M; the \
+             transmission-line coupling (coupling = 2 with the JeffcottRotor) is stable at any step",
+            parts.join("; ")
+        ))
+    }
+
+    /// The line's force law over the step from `t` to `t_end` (simulation time), less the
+    /// start's part that the operating point carries.
+    fn line_law(&self, t: f64, t_end: f64, offset: [f64; 2]) -> Result<RingLoad, String> {
+        let [c0y, c0z, c1y, c1z, zc] = self.line;
+        RingLoad::linear(
+            t,
+            t_end - t,
+            [0.0, c0y - offset[0], c0z - offset[1]],
+            [0.0, c1y - offset[0], c1z - offset[1]],
+            [0.0, zc, zc],
+        )
     }
 
     /// The journal the model uses: the one set, or (motion mode, none set) the start's.
@@ -314,6 +465,13 @@ impl FmuModel for BallBearing {
         self.journal_set = true;
         self.initialized = true;
         self.outputs_valid = false;
+        self.stable_step = None;
+        self.stable_step_reported = false;
+        if let Some(note) = self.coupling_note() {
+            if log.enabled(LOG_EVENTS) {
+                log.log(fmi2::bindings::Fmi2Status::Ok, LOG_EVENTS, &note);
+            }
+        }
         Ok(())
     }
 
@@ -323,9 +481,24 @@ impl FmuModel for BallBearing {
     /// the last successful communication point, never a failed attempt.
     fn do_step(&mut self, t: f64, t_end: f64, log: &Logger) -> StepResult {
         let start = self.start_time;
+        let law = match &self.live {
+            Some(live) if self.cfg.tlm => {
+                match self.line_law(t - start, t_end - start, live.line_offset) {
+                    Ok(l) => Some(l),
+                    Err(e) => return StepResult::Error(format!("coupling mode tlm: {e}")),
+                }
+            }
+            _ => None,
+        };
+        let mut warnings = self.step_size_warning(t_end - t);
         let Some(live) = self.live.as_mut() else {
             return StepResult::Error("no simulation (internal error)".into());
         };
+        if law.is_some() {
+            if let Err(e) = live.sim.set_ring_load(law) {
+                return StepResult::Error(e.to_string());
+            }
+        }
         let before = live.sim.stats();
         match live.sim.advance(t_end - start) {
             Ok(()) => {}
@@ -391,7 +564,7 @@ impl FmuModel for BallBearing {
         // Plausibility warnings of this step and of the inputs set before it, and inputs that
         // the coupling mode ignores.
         let coupling = live.scene.coupling;
-        let mut warnings = live.sim.take_warnings();
+        warnings.extend(live.sim.take_warnings());
         let attempted = (after.steps + after.rejected) - (before.steps + before.rejected);
         if self.cfg.warn_steps > 0 && attempted > self.cfg.warn_steps {
             warnings.push(format!(
@@ -418,7 +591,11 @@ impl FmuModel for BallBearing {
         self.journal_set = false;
         self.loads_set_running = false;
         self.journal_by_master = false;
-        self.ignored_reported = [false; 2];
+        self.line = [0.0; 5];
+        self.line_by_master = false;
+        self.ignored_reported = [false; 3];
+        self.stable_step = None;
+        self.stable_step_reported = false;
         self.start_time = 0.0;
         self.tolerance = None;
         self.initialized = false;
@@ -441,6 +618,11 @@ impl FmuModel for BallBearing {
                 }
                 Ok(journal_get(&self.journal_now(), k))
             }
+            Access::Line(k) => Ok(self.line[k]),
+            Access::RingVelocity(k) => {
+                let live = self.ensure_live()?;
+                Ok(live.sim.ring_velocity().map_or(0.0, |v| v[k]))
+            }
             Access::Param { get, .. } => Ok(get(&self.cfg)),
             Access::Output(i) => {
                 self.refresh_outputs()?;
@@ -456,7 +638,13 @@ impl FmuModel for BallBearing {
                 let mut next = self.inputs;
                 set(&mut next, value);
                 if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
-                    live.sim.set_inputs(next).map_err(sim_err)?;
+                    let [oy, oz] = live.line_offset;
+                    let model = OperatingPoint {
+                        fy: next.fy + oy,
+                        fz: next.fz + oz,
+                        ..next
+                    };
+                    live.sim.set_inputs(model).map_err(sim_err)?;
                 } else {
                     next.check().map_err(|m| sim_err(SimError::Input(m)))?;
                 }
@@ -477,6 +665,19 @@ impl FmuModel for BallBearing {
                 self.journal = next;
                 self.journal_set = true;
                 self.journal_by_master = true;
+                self.invalidate();
+                Ok(())
+            }
+            Access::Line(k) => {
+                if !value.is_finite() || (k == 4 && value < 0.0) {
+                    return Err(format!(
+                        "{} = {value} must be finite{}",
+                        self.vars[index].name,
+                        if k == 4 { " and >= 0" } else { "" }
+                    ));
+                }
+                self.line[k] = value;
+                self.line_by_master = true;
                 self.invalidate();
                 Ok(())
             }
@@ -593,6 +794,8 @@ impl FmuModel for BallBearing {
             journal_set: self.journal_set,
             loads_set_running: self.loads_set_running,
             journal_by_master: self.journal_by_master,
+            line: self.line,
+            line_by_master: self.line_by_master,
             sim,
         }
     }
@@ -606,6 +809,8 @@ impl FmuModel for BallBearing {
         self.journal_set = undo.journal_set;
         self.loads_set_running = undo.loads_set_running;
         self.journal_by_master = undo.journal_by_master;
+        self.line = undo.line;
+        self.line_by_master = undo.line_by_master;
         self.invalidate();
         if let (Some(bytes), Some(live)) = (undo.sim, self.live.as_mut()) {
             live.sim.restore_state(&bytes).map_err(sim_err)?;
@@ -629,6 +834,9 @@ impl FmuModel for BallBearing {
         for k in 0..6 {
             w.f64(journal_get(&self.journal, k));
         }
+        for v in self.line {
+            w.f64(v);
+        }
         w.bool(self.journal_set);
         w.f64(self.start_time)
             .opt_f64(self.tolerance)
@@ -642,6 +850,8 @@ impl FmuModel for BallBearing {
                     .f64(op.fy)
                     .f64(op.fz)
                     .f64(live.scene.solver.rtol)
+                    .f64(live.line_offset[0])
+                    .f64(live.line_offset[1])
                     .bytes(&live.sim.save_state());
             }
             _ => {
@@ -685,6 +895,12 @@ impl FmuModel for BallBearing {
                 journal_set(&mut journal, k, r.f64(row.name)?);
             }
         }
+        let mut line = [0.0; 5];
+        for row in ROWS {
+            if let Access::Line(k) = row.access {
+                line[k] = r.f64(row.name)?;
+            }
+        }
         let journal_set = r.bool("journal flag")?;
         let start_time = r.f64("start time")?;
         let tolerance = r.opt_f64("tolerance")?;
@@ -697,6 +913,10 @@ impl FmuModel for BallBearing {
                 fz: r.f64("operating fz")?,
             };
             let rtol = r.f64("rtol")?;
+            let line_offset = [
+                r.f64("line force y at the start")?,
+                r.f64("line force z at the start")?,
+            ];
             let sim_bytes = r.bytes("simulation state")?;
             r.finish("the BallBearing state")?;
             let mut scene = cfg.scene.clone();
@@ -705,7 +925,11 @@ impl FmuModel for BallBearing {
             scene.solver.rtol = rtol;
             let mut sim = Simulation::new(&scene).map_err(sim_err)?;
             sim.restore_state(sim_bytes).map_err(sim_err)?;
-            Some(Live { sim, scene })
+            Some(Live {
+                sim,
+                scene,
+                line_offset,
+            })
         } else {
             r.finish("the BallBearing state")?;
             None
@@ -713,6 +937,7 @@ impl FmuModel for BallBearing {
         self.cfg = cfg;
         self.inputs = inputs;
         self.journal = journal;
+        self.line = line;
         self.journal_set = journal_set;
         self.start_time = start_time;
         self.tolerance = tolerance;

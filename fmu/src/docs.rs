@@ -138,9 +138,9 @@ pub fn documentation_html(
             ),
         };
         let kind = match e.role {
-            Access::Input { .. } | Access::Journal(_) => "input",
+            Access::Input { .. } | Access::Journal(_) | Access::Line(_) => "input",
             Access::Param { .. } => "parameter (fixed)",
-            Access::Output(_) | Access::Stat(_) => "output",
+            Access::Output(_) | Access::Stat(_) | Access::RingVelocity(_) => "output",
         };
         h.push_str(&format!(
             "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",

@@ -4,9 +4,10 @@
 //! ([`crate::docs`]). A parameter is added with one row of [`ROWS`]; value references never
 //! move (a new variable takes a new one).
 //!
-//! Value references: inputs 1–4, journal inputs 5–10, parameters 100–126, solver counters
-//! 900–902, written out in [`ROWS`]; the real outputs are 1000 + i, i being the position in
-//! [`raceway::output_table`] (their number depends on the bearing's ball count).
+//! Value references: inputs 1–4, journal inputs 5–10, transmission-line inputs 11–15, ring
+//! velocity outputs 16–18, parameters 100–127, solver counters 900–902, written out in
+//! [`ROWS`]; the real outputs are 1000 + i, i being the position in [`raceway::output_table`]
+//! (their number depends on the bearing's ball count).
 //! Start values of inputs and parameters are the default scene's on the FMU's bearing.
 
 use fmi2::table::Row;
@@ -36,6 +37,12 @@ pub enum Access {
     /// Journal input `k` of coupling mode motion: displacement x, y, z (k = 0..3), then
     /// velocity (k = 3..6).
     Journal(usize),
+    /// Input `k` of the transmission-line (TLM) port, coupling mode tlm: the line's wave on
+    /// the journal at the step's start (k = 0, 1: y, z) and end (k = 2, 3: y, z) and its
+    /// impedance (k = 4).
+    Line(usize),
+    /// The inner ring's velocity along x, y, z (k = 0..3), a Real output.
+    RingVelocity(usize),
     /// A structural parameter (Integers pass as exact `f64`).
     Param {
         /// Reads the parameter.
@@ -95,6 +102,46 @@ const fn journal(vr: u32, name: &'static str, k: usize, description: &'static st
         max: None,
         description,
         access: Access::Journal(k),
+    }
+}
+
+/// A transmission-line input row (see [`Access::Line`]).
+const fn line(
+    vr: u32,
+    name: &'static str,
+    k: usize,
+    unit: &'static str,
+    description: &'static str,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: In,
+        variability: Variability::Continuous,
+        initial: None,
+        unit: Some(unit),
+        min: if k == 4 { Some(0.0) } else { None },
+        max: None,
+        description,
+        access: Access::Line(k),
+    }
+}
+
+/// A ring-velocity output row (m/s).
+const fn ring_velocity(vr: u32, name: &'static str, k: usize, description: &'static str) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Real,
+        causality: Out,
+        variability: Variability::Continuous,
+        initial: Some(Initial::Calculated),
+        unit: Some("m/s"),
+        min: None,
+        max: None,
+        description,
+        access: Access::RingVelocity(k),
     }
 }
 
@@ -226,6 +273,59 @@ pub const ROWS: &[VarRow] = &[
         5,
         "Journal (inner-ring centre) velocity along z in coupling mode motion: within a communication step the ring moves as x_k + v_k (t - t_k); ignored in force mode",
     ),
+    line(
+        11,
+        "tlm.c0.y",
+        0,
+        "N",
+        "Coupling mode tlm: the line's force on the journal along y at the start of the communication step (connect the JeffcottRotor's tlm.c0.y); ignored in the other modes",
+    ),
+    line(
+        12,
+        "tlm.c0.z",
+        1,
+        "N",
+        "Coupling mode tlm: the line's force on the journal along z at the start of the communication step (connect the JeffcottRotor's tlm.c0.z); ignored in the other modes",
+    ),
+    line(
+        13,
+        "tlm.c1.y",
+        2,
+        "N",
+        "Coupling mode tlm: the line's force on the journal along y at the end of the communication step; the inner ring feels F = c0 + (c1 - c0)(t - t_k)/H - Zc v over the step (connect the JeffcottRotor's tlm.c1.y); ignored in the other modes",
+    ),
+    line(
+        14,
+        "tlm.c1.z",
+        3,
+        "N",
+        "Coupling mode tlm: the line's force on the journal along z at the end of the communication step (connect the JeffcottRotor's tlm.c1.z); its value at initialization is the line's force at rest, part of the start's equilibrium; ignored in the other modes",
+    ),
+    line(
+        15,
+        "tlm.Zc",
+        4,
+        "N.s/m",
+        "Coupling mode tlm: the line's characteristic impedance (with the shaft damping it carries), acting as a damper on the journal's y and z velocity (connect the JeffcottRotor's tlm.Zc); ignored in the other modes",
+    ),
+    ring_velocity(
+        16,
+        "ring.v.x",
+        0,
+        "Inner-ring (journal) velocity along x on the lumped, reduced and full levels (in motion mode the journal.v.x input); 0 on the kinematic and quasi-static levels, whose ring is quasi-static",
+    ),
+    ring_velocity(
+        17,
+        "ring.v.y",
+        1,
+        "Inner-ring (journal) velocity along y (coupling mode tlm: connect it to the JeffcottRotor's tlm.v.y); see ring.v.x",
+    ),
+    ring_velocity(
+        18,
+        "ring.v.z",
+        2,
+        "Inner-ring (journal) velocity along z (coupling mode tlm: connect it to the JeffcottRotor's tlm.v.z); see ring.v.x",
+    ),
     param(
         100,
         "fidelity",
@@ -248,14 +348,18 @@ pub const ROWS: &[VarRow] = &[
         "coupling",
         Integer,
         None,
-        (Some(0.0), Some(1.0)),
-        "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start)",
-        |c| c.scene.coupling.code() as f64,
+        (Some(0.0), Some(2.0)),
+        "Coupling mode: 0 force (load.F* in, the inner ring integrated inside), 1 motion (journal.* displacement and velocity in, bearing.F = the reaction on the journal out; load.F* only set the quasi-static start), 2 tlm (force mode plus a transmission line through the shaft to the JeffcottRotor: tlm.c0/c1/Zc in, ring.v.y/z out; the journal's mass is the inner ring's; stable at any communication step; lumped, reduced and full levels)",
+        |c| if c.tlm { 2.0 } else { c.scene.coupling.code() as f64 },
         |c, v| {
             let code = v as i32;
-            c.scene.coupling = CouplingMode::from_code(code).ok_or_else(|| {
-                format!("coupling = {code}: valid codes are 0 (force) and 1 (motion)")
-            })?;
+            c.tlm = code == 2;
+            c.scene.coupling = match code {
+                2 => CouplingMode::Force,
+                _ => CouplingMode::from_code(code).ok_or_else(|| {
+                    format!("coupling = {code}: valid codes are 0 (force), 1 (motion) and 2 (tlm)")
+                })?,
+            };
             Ok(())
         },
     ),
@@ -722,6 +826,8 @@ pub struct Config {
     /// `solver.warn_steps`: integrator steps per communication step above which a step warns
     /// (0: never).
     pub warn_steps: u64,
+    /// Coupling mode tlm (`coupling` = 2): force mode plus the transmission line's port.
+    pub tlm: bool,
 }
 
 /// Default of `solver.warn_steps`: a communication step of 0.1 ms at the full level takes
@@ -740,6 +846,7 @@ impl Config {
             defect,
             axial_offset,
             warn_steps: DEFAULT_WARN_STEPS,
+            tlm: false,
         }
     }
 
@@ -821,7 +928,8 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             (Access::Journal(k), _) => Start::Real(journal_get(&journal, k)),
             (Access::Param { get, .. }, Integer) => Start::Integer(get(&cfg) as i32),
             (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
-            (Access::Stat(_) | Access::Output(_), _) => Start::None,
+            (Access::Line(_), _) => Start::Real(0.0),
+            (Access::Stat(_) | Access::Output(_) | Access::RingVelocity(_), _) => Start::None,
         };
         let mut var = with_unit(r.variable(start));
         if r.name == "fidelity" {

@@ -18,7 +18,7 @@ use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
 use crate::load_distribution;
 use crate::models::{out, SimError};
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
 use std::f64::consts::{PI, TAU};
 
@@ -83,6 +83,8 @@ pub struct LumpedModel {
     k_series: f64,
     c_b: f64,
     m1: f64,
+    /// A force law on the ring added to `inputs`' load (force coupling).
+    ring_load: Option<RingLoad>,
     m2: f64,
     k_py: f64,
     k_pz: f64,
@@ -162,6 +164,7 @@ impl LumpedModel {
             k_series: bearing.k_series(),
             c_b: file.contact.c_br,
             m1: file.inner_ring.mass + half_balls,
+            ring_load: None,
             m2: file.pedestal.mass + half_balls,
             k_py: file.pedestal.k_y,
             k_pz: file.pedestal.k_z,
@@ -750,13 +753,14 @@ impl Model for LumpedModel {
             dydt[VY] = 0.0;
             dydt[VZ] = 0.0;
         } else {
+            let law = |k: usize, v: f64| self.ring_load.as_ref().map_or(0.0, |l| l.force(k, t, v));
             dydt[VX] = if self.held_axial.is_some() {
                 0.0
             } else {
-                (self.inputs.fx + f_ring[0]) / self.m1
+                (self.inputs.fx + law(0, y[VX]) + f_ring[0]) / self.m1
             };
-            dydt[VY] = (self.inputs.fy + f_ring[1]) / self.m1;
-            dydt[VZ] = (self.inputs.fz + f_ring[2]) / self.m1;
+            dydt[VY] = (self.inputs.fy + law(1, y[VY]) + f_ring[1]) / self.m1;
+            dydt[VZ] = (self.inputs.fz + law(2, y[VZ]) + f_ring[2]) / self.m1;
         }
         let mut fpz = -f_ring[2] - self.k_pz * y[ZP] - self.c_pz * y[VZP] - pulse;
         if let Some((m_r, k_r, c_r)) = self.resonator {
@@ -979,6 +983,11 @@ impl Model for LumpedModel {
 
     fn set_prescribed_ring(&mut self, on: bool) {
         self.prescribed = on;
+    }
+
+    fn set_ring_load(&mut self, law: Option<RingLoad>) -> bool {
+        self.ring_load = law;
+        true
     }
 
     /// Per closed contact (force on the ring f = −Q n, n = (sin α, cos α e_r), a the groove-

@@ -4,7 +4,7 @@
 //! ([`RingStates`], [`ReactionJacobian`]). The output vector's layout is [`super::out`].
 
 use crate::config::ConfigError;
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use std::fmt;
 
 /// What went wrong.
@@ -225,6 +225,13 @@ pub trait Model: Send {
     /// Motion coupling on/off: when on, the right-hand side must set the ring's translational
     /// accelerations to zero (the ring velocity is then constant over a communication step).
     fn set_prescribed_ring(&mut self, _on: bool) {}
+
+    /// Force coupling: a force law on the inner ring added to the inputs' constant load from
+    /// now on (`None`: none). Returns false on a level without a dynamic ring (which cannot
+    /// take one); a level with [`Model::ring_states`] must apply it in its right-hand side.
+    fn set_ring_load(&mut self, _law: Option<RingLoad>) -> bool {
+        false
+    }
 
     /// Motion coupling: the simulation moves the level's quasi-static (L1) operating point
     /// (speed and the load the ring carries) from which the level takes its cage speed. Called

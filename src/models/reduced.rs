@@ -54,7 +54,7 @@ use crate::contact::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::Bearing;
 use crate::models::{RingStates, SimError};
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::Scene;
 use std::f64::consts::TAU;
 
@@ -539,5 +539,10 @@ impl Model for ReducedModel {
 
     fn set_prescribed_ring(&mut self, on: bool) {
         self.core.prescribed = on;
+    }
+
+    fn set_ring_load(&mut self, law: Option<RingLoad>) -> bool {
+        self.core.ring_load = law;
+        true
     }
 }

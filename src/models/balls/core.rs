@@ -16,7 +16,7 @@ use super::switches::{contact_event, Switches};
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::models::{out, RingStates, SimError};
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::Pulse;
 use std::f64::consts::TAU;
 
@@ -102,6 +102,8 @@ pub struct BallCore {
     /// Semi-major-axis factor of the spall-edge contact.
     pub(crate) defect_a_star: f64,
     pub(crate) inputs: OperatingPoint,
+    /// A force law on the inner ring added to `inputs`' load (force coupling).
+    pub(crate) ring_load: Option<RingLoad>,
     /// Reference cage speed ratio ψ̇/Ω.
     pub(crate) cage_ratio: f64,
     /// Azimuth of ball 0 at ψ = 0 [rad].
@@ -197,6 +199,7 @@ impl BallCore {
             defect,
             defect_a_star,
             inputs: *inputs,
+            ring_load: None,
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             theta_start,
             start_note: None,
@@ -621,6 +624,8 @@ impl BallCore {
             dydt[r + RX + k] = y[r + RV + k];
             dydt[r + RV + k] = if self.prescribed || (k == 0 && self.held_axial.is_some()) {
                 0.0
+            } else if let Some(law) = &self.ring_load {
+                (ext[k] + law.force(k, t, y[r + RV + k]) + f_ring[k]) / self.m_ir
             } else {
                 (ext[k] + f_ring[k]) / self.m_ir
             };

@@ -27,7 +27,7 @@ use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::load_distribution::QuasiStatic;
 use crate::models::{ReactionJacobian, SimError};
-use crate::operating::OperatingPoint;
+use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::{Pulse, Scene};
 
 /// Switches of the full model that are not part of a scene (diagnostics and tests).
@@ -548,6 +548,11 @@ impl Model for FullModel {
 
     fn set_prescribed_ring(&mut self, on: bool) {
         self.core.prescribed = on;
+    }
+
+    fn set_ring_load(&mut self, law: Option<RingLoad>) -> bool {
+        self.core.ring_load = law;
+        true
     }
 
     /// Analytic for frictionless contacts (`ring_translation_jacobian` of `models/balls/ball_contact.rs` per intact
