@@ -10,5 +10,6 @@
 
 pub mod fmu;
 pub mod jeffcott;
+pub mod tlm;
 
 fmi2::export_fmi2!(crate::fmu::JeffcottRotor);
