@@ -27,8 +27,79 @@
 //! extrapolation, and `K = ∂F/∂x`, `C = ∂F/∂v` of the bearing (its directional derivatives) the
 //! interface-Jacobian coupling, where the rotor integrates the linearised bearing reaction
 //! inside the step.
+//!
+//! # Coupling mode tlm
+//!
+//! Value exchange at the stiff bearing contact is unstable at any useful communication step;
+//! in coupling mode tlm ([`Coupling::Tlm`], [`TlmRotor`]) the rotor is cut at the compliant
+//! shaft instead. The journal's mass moves into the bearing model (the BallBearing's inner
+//! ring), the rotor keeps the disk, and the shaft (`k_s`, `c_s`) becomes a transmission line of
+//! delay `T` (the communication step) and characteristic impedance `Z_c = k_s T`
+//! ([`crate::tlm`]), simulated entirely here:
+//!
+//! ```text
+//!   m_d ÿ_d = F_line,y(t) + U_y
+//!   m_d z̈_d = F_line,z(t) − m_d g + U_z
+//!   F_line(t) = g_d(t) − (Z_c + c_s) v_d(t) + c_s v_j(t − T)      per axis, v_d = (ẏ_d, ż_d)
+//!   g_d(t) = o_j(t − T),   o_j = 2 Z_c v_j − g_j,   g_j(t) = o_d(t − T),   o_d = 2 Z_c v_d − g_d
+//! ```
+//!
+//! with `g_d` and `v_j(t − T)` linear inside a communication step between their samples. The
+//! rotor receives the journal velocity `v_j(t_k)` at each communication point and sends `c0`,
+//! `c1` and `Z_c + c_s`, with which the bearing applies
+//! `F(t) = c0 + (c1 − c0)(t − t_k)/T − (Z_c + c_s) v_j(t)` to its journal over its next step.
+//! The line's parasitic mass `k_s T²` is the scheme's error (second order in `T`), plus the
+//! delayed damper's `c_s T` (first order, see [`crate::tlm`]); the line is passive, so the
+//! coupling is stable at any delay.
+//!
+//! The journal is the bearing's in this mode; the rotor reports it as seen through the line:
+//! its lateral displacement integrated from the received velocities by the trapezoidal rule
+//! from `journal0`, its velocity the received one. Axially nothing moves (the axial direction
+//! is the bearing's: its inner-ring mass and axial load); `journal.mass`, `journal.c` and the
+//! constant load `L` do not act (they belong to the bearing side).
 
-use raceway_solver::{Integrator, IntegratorState, Method, Options, SolverError, System};
+use crate::tlm::{LineHistory, LineStep, TlmLine, AXES};
+use raceway_solver::{
+    Checkpoint, Integrator, IntegratorState, Method, Options, SolverError, System,
+};
+
+/// How the rotor couples to the bearing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Coupling {
+    /// The rotor owns the journal and takes the bearing force as input ([`Rotor`]).
+    #[default]
+    Force,
+    /// Transmission-line coupling at the shaft: the journal is the bearing's, the rotor keeps
+    /// the disk and simulates the shaft as a line ([`TlmRotor`]).
+    Tlm,
+}
+
+impl Coupling {
+    /// The mode of the FMU parameter `coupling` (0 force, 1 tlm).
+    pub fn from_code(code: i32) -> Option<Self> {
+        match code {
+            0 => Some(Coupling::Force),
+            1 => Some(Coupling::Tlm),
+            _ => None,
+        }
+    }
+
+    /// The FMU parameter value `coupling` of the mode.
+    pub fn code(self) -> i32 {
+        match self {
+            Coupling::Force => 0,
+            Coupling::Tlm => 1,
+        }
+    }
+
+    /// The mode's name (`force`, `tlm`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Coupling::Force => "force",
+            Coupling::Tlm => "tlm",
+        }
+    }
+}
 
 /// Parameters of the rotor (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -57,6 +128,12 @@ pub struct RotorParams {
     pub speed_final: f64,
     /// Ramp rate magnitude [rad/s²] (0: constant speed `speed_initial`).
     pub speed_rate: f64,
+    /// How the rotor couples to the bearing ([`Rotor`] runs the force mode, [`TlmRotor`] the
+    /// tlm mode).
+    pub coupling: Coupling,
+    /// Delay of the TLM line \[s\] (> 0; coupling mode tlm only): the master's communication
+    /// step.
+    pub tlm_delay: f64,
 }
 
 impl Default for RotorParams {
@@ -77,6 +154,8 @@ impl Default for RotorParams {
             speed_initial: 9900.0 * std::f64::consts::PI / 30.0,
             speed_final: 9900.0 * std::f64::consts::PI / 30.0,
             speed_rate: 0.0,
+            coupling: Coupling::Force,
+            tlm_delay: 1e-4,
         }
     }
 }
@@ -118,10 +197,14 @@ impl RotorParams {
             ("load.Fz", self.load[2]),
             ("journal.y0", self.journal0[1]),
             ("journal.z0", self.journal0[2]),
+            ("tlm.delay", self.tlm_delay),
         ] {
             if !v.is_finite() {
                 return Err(ParamError(format!("{name} = {v} is not finite")));
             }
+        }
+        if self.coupling == Coupling::Tlm {
+            self.validate_tlm()?;
         }
         if self.journal_mass <= 0.0 {
             return Err(ParamError(format!(
@@ -149,6 +232,41 @@ impl RotorParams {
             )));
         }
         Ok(())
+    }
+
+    /// The requirements of coupling mode tlm (whatever [`RotorParams::coupling`] says): a disk
+    /// (`disk.mass > 0`), a shaft to make the line of (`shaft.k > 0`) and a delay
+    /// (`tlm.delay > 0`). The error names the parameter.
+    pub fn validate_tlm(&self) -> Result<(), ParamError> {
+        if !(self.disk_mass.is_finite() && self.disk_mass > 0.0) {
+            return Err(ParamError(format!(
+                "disk.mass = {} kg: coupling = 1 (tlm) needs disk.mass > 0 (the rotor keeps the \
+                 disk; the journal's mass is the BallBearing's in this mode)",
+                self.disk_mass
+            )));
+        }
+        if !(self.shaft_k.is_finite() && self.shaft_k > 0.0) {
+            return Err(ParamError(format!(
+                "shaft.k = {} N/m: coupling = 1 (tlm) needs shaft.k > 0 (the shaft becomes the \
+                 transmission line, Zc = shaft.k * tlm.delay)",
+                self.shaft_k
+            )));
+        }
+        if !(self.tlm_delay.is_finite() && self.tlm_delay > 0.0) {
+            return Err(ParamError(format!(
+                "tlm.delay = {} s must be > 0 (the master's communication step)",
+                self.tlm_delay
+            )));
+        }
+        Ok(())
+    }
+
+    /// Unbalance force \[N\] (y, z) at time `tau` after the start (see the module docs).
+    pub fn unbalance_force(&self, tau: f64) -> [f64; 2] {
+        let (w, wd, phi) = self.speed(tau);
+        let (s, c) = phi.sin_cos();
+        let u = self.unbalance;
+        [u * (w * w * c + wd * s), u * (w * w * s - wd * c)]
     }
 
     /// Whether the rotor is a single rigid mass (no disk).
@@ -236,10 +354,7 @@ impl Rhs {
     }
 
     fn unbalance(&self, t: f64) -> [f64; 2] {
-        let (w, wd, phi) = self.p.speed(t - self.t0);
-        let (s, c) = phi.sin_cos();
-        let u = self.p.unbalance;
-        [u * (w * w * c + wd * s), u * (w * w * s - wd * c)]
+        self.p.unbalance_force(t - self.t0)
     }
 }
 
@@ -323,8 +438,17 @@ pub struct RotorOutputs {
     pub angle: f64,
     /// Unbalance force \[N\] (y, z).
     pub unbalance: [f64; 2],
-    /// Bearing force acting now \[N\] (as integrated).
+    /// Bearing force acting now \[N\] (as integrated; 0 in coupling mode tlm, where the
+    /// bearing force acts on the bearing's journal).
     pub bearing_force: [f64; 3],
+    /// Coupling mode tlm: `c0`, the line's force on the journal at the start of the bearing's
+    /// next step before the impedance term \[N\] (y, z); 0 in force mode.
+    pub tlm_c0: [f64; 2],
+    /// Coupling mode tlm: `c1`, the same at the end of that step \[N\] (y, z); 0 in force mode.
+    pub tlm_c1: [f64; 2],
+    /// Coupling mode tlm: the impedance `Z_c + c_s` the bearing applies to the journal
+    /// velocity \[N·s/m\]; 0 in force mode.
+    pub tlm_zc: f64,
 }
 
 impl Rotor {
@@ -420,6 +544,9 @@ impl Rotor {
             angle: phi.rem_euclid(std::f64::consts::TAU),
             unbalance: self.rhs.unbalance(t),
             bearing_force: self.rhs.bearing_force(t, &y),
+            tlm_c0: [0.0; 2],
+            tlm_c1: [0.0; 2],
+            tlm_zc: 0.0,
         }
     }
 
@@ -445,6 +572,245 @@ impl Rotor {
         self.rhs.iface = iface;
         self.rhs.tk = tk;
         self.rhs.xk = xk;
+        Ok(())
+    }
+}
+
+/// Disk state layout in coupling mode tlm: y_d, z_d, ẏ_d, ż_d.
+pub const TLM_DIM: usize = 4;
+
+/// The disk-only right-hand side of coupling mode tlm (a [`System`]): the disk driven by the
+/// line's force of the current communication step, gravity and the unbalance.
+#[derive(Debug, Clone)]
+struct DiskRhs {
+    p: RotorParams,
+    t0: f64,
+    /// The line's part of the current communication step.
+    step: LineStep,
+    /// Start and length of the current communication step.
+    tk: f64,
+    h: f64,
+}
+
+impl System for DiskRhs {
+    fn dim(&self) -> usize {
+        TLM_DIM
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], d: &mut [f64]) {
+        let p = &self.p;
+        let s = (t - self.tk) / self.h;
+        let f = self.step.disk_force(s, [y[2], y[3]]);
+        let u = p.unbalance_force(t - self.t0);
+        let md = p.disk_mass;
+        d[0] = y[2];
+        d[1] = y[3];
+        d[2] = (f[0] + u[0]) / md;
+        // the line's static force is exactly md * g: at rest this is exactly 0
+        d[3] = (f[1] - md * p.gravity + u[1]) / md;
+    }
+}
+
+/// The journal as the rotor sees it through the line in coupling mode tlm: the last velocity
+/// sample received and the displacement integrated from the samples (trapezoidal rule).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeenJournal {
+    /// Time of the last sample \[s\].
+    pub t: f64,
+    /// Lateral displacement (y, z) at that time \[m\].
+    pub x: [f64; AXES],
+    /// The velocity sample (y, z) \[m/s\].
+    pub v: [f64; AXES],
+}
+
+/// Everything a [`TlmRotor`] needs to continue bit-exactly (its parameters aside).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TlmSnapshot {
+    /// The disk's integrator.
+    pub integrator: IntegratorState,
+    /// The line's history.
+    pub line: LineHistory,
+    /// The journal as seen through the line.
+    pub journal: SeenJournal,
+}
+
+/// A running rotor in coupling mode tlm: the disk, the line standing for the shaft, and the
+/// journal as seen through it (see the module docs).
+#[derive(Debug, Clone)]
+pub struct TlmRotor {
+    rhs: DiskRhs,
+    integ: Integrator,
+    line: TlmLine,
+    seen: SeenJournal,
+    /// The integrator at the start of the current step, to take a failed step back.
+    checkpoint: Checkpoint,
+}
+
+impl TlmRotor {
+    /// A rotor at `t0` in its initial state: the disk at rest in its static equilibrium (at
+    /// `journal0` less its sag), the line carrying the disk's weight, the journal at `journal0`;
+    /// the disk integrated by DOPRI5 with relative tolerance `rtol`. Checks the parameters
+    /// including [`RotorParams::validate_tlm`].
+    pub fn new(p: &RotorParams, t0: f64, rtol: f64) -> Result<Self, ParamError> {
+        p.validate()?;
+        p.validate_tlm()?;
+        if !(rtol > 0.0 && rtol < 0.1) {
+            return Err(ParamError(format!("tolerance {rtol} must lie in (0, 0.1)")));
+        }
+        let y0 = [p.journal0[1], p.journal0[2] - p.disk_sag(), 0.0, 0.0];
+        // displacements to 1e-12 m, velocities to 1e-9 m/s
+        let opts = Options::new(Method::Dopri5, rtol, vec![1e-12, 1e-12, 1e-9, 1e-9]);
+        let integ = Integrator::new(opts, t0, &y0).map_err(|e| ParamError(e.to_string()))?;
+        // the line carries the disk's weight (the same product as in the right-hand side)
+        let line = TlmLine::at_rest(
+            p.shaft_k,
+            p.shaft_c,
+            p.tlm_delay,
+            [0.0, p.disk_mass * p.gravity],
+        )
+        .map_err(ParamError)?;
+        Ok(TlmRotor {
+            rhs: DiskRhs {
+                p: p.clone(),
+                t0,
+                step: LineStep::default(),
+                tk: t0,
+                h: p.tlm_delay,
+            },
+            integ,
+            line,
+            seen: SeenJournal {
+                t: t0,
+                x: [p.journal0[1], p.journal0[2]],
+                v: [0.0; AXES],
+            },
+            checkpoint: Checkpoint::with_capacity(TLM_DIM, 0),
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &RotorParams {
+        &self.rhs.p
+    }
+
+    /// The current time \[s\].
+    pub fn t(&self) -> f64 {
+        self.integ.t()
+    }
+
+    /// The disk's state (see [`TLM_DIM`]).
+    pub fn state(&self) -> &[f64] {
+        self.integ.y()
+    }
+
+    /// The line.
+    pub fn line(&self) -> &TlmLine {
+        &self.line
+    }
+
+    /// The journal as seen through the line (at its last sample).
+    pub fn seen_journal(&self) -> &SeenJournal {
+        &self.seen
+    }
+
+    /// One communication step from now to `t_end` (`t_end − t` is the line's delay; the
+    /// caller checks it), given the journal velocity `vj` (y, z) received for now. On failure
+    /// nothing changes (the rotor stays at the step's start, the error's `t`). Does not
+    /// allocate.
+    pub fn step(&mut self, vj: [f64; AXES], t_end: f64) -> Result<(), RotorError> {
+        let tk = self.integ.t();
+        let h = t_end - tk;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(RotorError {
+                t: tk,
+                message: format!("step to t = {t_end} does not go forward"),
+            });
+        }
+        let step = self.line.begin_step(vj);
+        self.rhs.step = step;
+        self.rhs.tk = tk;
+        self.rhs.h = h;
+        self.integ.checkpoint(&mut self.checkpoint);
+        // the line's force changes its slope at the communication point
+        self.integ.discontinuity();
+        if let Err(e) = self.integ.advance(&mut self.rhs, t_end, None) {
+            self.integ.rollback(&self.checkpoint);
+            return Err(RotorError {
+                t: tk,
+                message: e.to_string(),
+            });
+        }
+        let y = self.integ.y();
+        self.line.end_step(&step, [y[2], y[3]]);
+        let s = &mut self.seen;
+        let dt = tk - s.t;
+        for ((x, v), vn) in s.x.iter_mut().zip(s.v).zip(vj) {
+            *x += 0.5 * dt * (v + vn);
+        }
+        s.v = vj;
+        s.t = tk;
+        Ok(())
+    }
+
+    /// Integrator work counters (steps, rejected, rhs evaluations).
+    pub fn stats(&self) -> (u64, u64, u64) {
+        let s = self.integ.stats();
+        (s.steps, s.rejected, s.rhs_evals)
+    }
+
+    /// The outputs at the current time, `vj` (y, z) being the journal velocity received for
+    /// now (the input, set or not yet set for this point): the journal as seen through the
+    /// line is the trapezoidal integral up to now with `vj` at the end, its acceleration the
+    /// slope of the velocity samples since the last one used (0 at the start).
+    pub fn outputs(&self, vj: [f64; AXES]) -> RotorOutputs {
+        let p = &self.rhs.p;
+        let t = self.integ.t();
+        let y = self.integ.y();
+        let s = &self.seen;
+        let dt = t - s.t;
+        let mut journal_x = p.journal0;
+        let mut journal_v = [0.0; 3];
+        let mut journal_a = [0.0; 3];
+        for a in 0..AXES {
+            journal_x[1 + a] = s.x[a] + 0.5 * dt * (s.v[a] + vj[a]);
+            journal_v[1 + a] = vj[a];
+            if dt > 0.0 {
+                journal_a[1 + a] = (vj[a] - s.v[a]) / dt;
+            }
+        }
+        let (w, _, phi) = p.speed(t - self.rhs.t0);
+        RotorOutputs {
+            journal_x,
+            journal_v,
+            journal_a,
+            disk: [y[0], y[1]],
+            disk_v: [y[2], y[3]],
+            speed: w,
+            angle: phi.rem_euclid(std::f64::consts::TAU),
+            unbalance: p.unbalance_force(t - self.rhs.t0),
+            bearing_force: [0.0; 3],
+            tlm_c0: self.line.c0(),
+            tlm_c1: self.line.c1(),
+            tlm_zc: self.line.impedance(),
+        }
+    }
+
+    /// The state to continue from (the parameters are not included).
+    pub fn snapshot(&self) -> TlmSnapshot {
+        TlmSnapshot {
+            integrator: self.integ.snapshot(),
+            line: self.line.history(),
+            journal: self.seen,
+        }
+    }
+
+    /// Restores a [`TlmRotor::snapshot`] taken from a rotor with the same parameters.
+    pub fn restore(&mut self, s: &TlmSnapshot) -> Result<(), String> {
+        self.integ
+            .restore(&s.integrator)
+            .map_err(|e| e.to_string())?;
+        self.line.set_history(s.line);
+        self.seen = s.journal;
         Ok(())
     }
 }
@@ -682,5 +1048,254 @@ mod tests {
         let mut p = RotorParams::default();
         p.load[2] = f64::INFINITY;
         assert!(p.validate().unwrap_err().0.contains("load.Fz"));
+    }
+}
+
+#[cfg(test)]
+mod tlm_tests {
+    use super::*;
+
+    /// The default rotor's disk and shaft in coupling mode tlm with delay `t`, without
+    /// gravity, unbalance, loads or shaft damping.
+    fn quiet_tlm(t: f64) -> RotorParams {
+        RotorParams {
+            coupling: Coupling::Tlm,
+            tlm_delay: t,
+            gravity: 0.0,
+            unbalance: 0.0,
+            load: [0.0; 3],
+            shaft_c: 0.0,
+            ..RotorParams::default()
+        }
+    }
+
+    /// The rotor released with the line carrying `f0` onto the disk (the disk displaced by
+    /// −f0/k_s from the line's rest length), at rest.
+    fn released(p: &RotorParams, f0: [f64; 2]) -> TlmRotor {
+        let mut r = TlmRotor::new(p, 0.0, 1e-10).unwrap();
+        r.line = TlmLine::at_rest(p.shaft_k, p.shaft_c, p.tlm_delay, f0).unwrap();
+        r
+    }
+
+    /// Angular frequency of the disk's z velocity from its upward zero crossings (linear
+    /// interpolation between steps), the journal held still.
+    fn disk_frequency(t: f64, periods: f64) -> f64 {
+        let p = quiet_tlm(t);
+        let mut r = released(&p, [0.0, -100.0]);
+        let w0 = (p.shaft_k / p.disk_mass).sqrt();
+        let n = (periods * std::f64::consts::TAU / w0 / t).ceil() as usize;
+        let mut crossings = Vec::new();
+        let mut prev = (0.0, r.state()[3]);
+        for k in 1..=n {
+            r.step([0.0; 2], k as f64 * t).unwrap();
+            let now = (r.t(), r.state()[3]);
+            if prev.1 < 0.0 && now.1 >= 0.0 {
+                crossings.push(prev.0 + (now.0 - prev.0) * prev.1 / (prev.1 - now.1));
+            }
+            prev = now;
+        }
+        assert!(crossings.len() >= 5, "{} crossings", crossings.len());
+        let (a, b) = (crossings[0], crossings[crossings.len() - 1]);
+        std::f64::consts::TAU * (crossings.len() - 1) as f64 / (b - a)
+    }
+
+    #[test]
+    fn disk_on_the_line_against_a_still_journal_rings_at_the_shaft_frequency() {
+        let p = quiet_tlm(1e-5);
+        let w0 = (p.shaft_k / p.disk_mass).sqrt();
+        let fine = disk_frequency(1e-5, 20.0) / w0 - 1.0;
+        assert!(fine.abs() < 0.01, "T = 1e-5: ω/ω0 − 1 = {fine:e}");
+        // the error is the line's parasitic mass: below k_s T² / m_d
+        let bound = p.shaft_k * 1e-10 / p.disk_mass;
+        assert!(fine < 0.0 && -fine < bound, "{fine:e} vs {bound:e}");
+        // second order in T: ten times the delay, a hundred times the error
+        let coarse = disk_frequency(1e-4, 20.0) / w0 - 1.0;
+        let ratio = coarse / fine;
+        assert!((70.0..140.0).contains(&ratio), "error ratio {ratio}");
+    }
+
+    #[test]
+    fn the_line_against_a_rigid_wall_is_passive_at_a_coarse_delay() {
+        // ω T = 0.5: the disk's energy plus the waves' on the line must not grow. Counted from
+        // the samples (linear waves), the line's energy fluctuates inside a period by the
+        // quadrature's O((ωT)²), about 1 % here; an unstable scheme would grow exponentially.
+        let t = 1e-3;
+        let p = quiet_tlm(t);
+        let f0 = [60.0, -100.0];
+        let mut r = released(&p, f0);
+        let energy = |r: &TlmRotor| {
+            let v = &r.state()[2..];
+            0.5 * p.disk_mass * (v[0] * v[0] + v[1] * v[1]) + r.line().wave_energy([0.0; 2])
+        };
+        let e0 = energy(&r);
+        let spring = (f0[0] * f0[0] + f0[1] * f0[1]) / (2.0 * p.shaft_k);
+        assert!((e0 / spring - 1.0).abs() < 1e-14, "{e0} vs {spring}");
+        let mut e = Vec::with_capacity(10_000);
+        for k in 1..=10_000 {
+            r.step([0.0; 2], k as f64 * t).unwrap();
+            e.push(energy(&r));
+        }
+        let max = e.iter().cloned().fold(0.0, f64::max);
+        assert!(max <= 1.015 * e0, "max energy {max} vs initial {e0}");
+        let first = e[..1000].iter().cloned().fold(0.0, f64::max);
+        let last = e[9000..].iter().cloned().fold(0.0, f64::max);
+        assert!(last <= first, "energy grows: {last} after {first}");
+        assert!(e[9999] <= e0);
+    }
+
+    #[test]
+    fn at_rest_under_gravity_the_line_carries_the_disk_weight_unchanged() {
+        let p = RotorParams {
+            coupling: Coupling::Tlm,
+            unbalance: 0.0,
+            ..RotorParams::default()
+        };
+        let w = -p.disk_mass * p.gravity;
+        let mut r = TlmRotor::new(&p, 0.5, 1e-8).unwrap();
+        let o = r.outputs([0.0; 2]);
+        assert_eq!((o.tlm_c0, o.tlm_c1), ([0.0, w], [0.0, w]));
+        assert_eq!(o.tlm_zc, p.shaft_k * p.tlm_delay + p.shaft_c);
+        let z0 = r.state()[1];
+        for k in 1..=100 {
+            r.step([0.0; 2], 0.5 + k as f64 * p.tlm_delay).unwrap();
+            let o = r.outputs([0.0; 2]);
+            for c in [o.tlm_c0, o.tlm_c1] {
+                assert_eq!(c[0], 0.0);
+                assert!((c[1] / w - 1.0).abs() <= 1e-9, "step {k}: {c:?}");
+            }
+            assert_eq!(o.disk_v, [0.0; 2]);
+            assert_eq!(r.state()[1], z0);
+        }
+        // the disk hangs its sag below the journal
+        assert!((z0 - (p.journal0[2] - p.disk_mass * p.gravity / p.shaft_k)).abs() < 1e-18);
+    }
+
+    #[test]
+    fn the_journal_seen_through_the_line_is_the_trapezoidal_integral_of_its_velocity() {
+        let t = 1e-4;
+        let p = RotorParams {
+            journal0: [1e-6, 2e-6, -3e-6],
+            ..quiet_tlm(t)
+        };
+        let mut r = TlmRotor::new(&p, 0.0, 1e-8).unwrap();
+        let o = r.outputs([0.3, -0.1]);
+        assert_eq!(o.journal_x, p.journal0);
+        assert_eq!(o.journal_v, [0.0, 0.3, -0.1]);
+        assert_eq!(o.journal_a, [0.0; 3]);
+        // v = (a_y t, a_z t): the trapezoidal rule is exact, x = x0 + a t²/2
+        let acc = [2.0, -5.0];
+        for k in 0..50 {
+            let tk = k as f64 * t;
+            r.step([acc[0] * tk, acc[1] * tk], tk + t).unwrap();
+        }
+        let tn = 50.0 * t;
+        // before the input of the new point is set: extrapolated with the last sample
+        let last = [acc[0] * 49.0 * t, acc[1] * 49.0 * t];
+        let o = r.outputs(last);
+        assert_eq!(o.journal_a[1..], [0.0, 0.0]);
+        // with it
+        let vn = [acc[0] * tn, acc[1] * tn];
+        let o = r.outputs(vn);
+        for a in 0..2 {
+            let x = p.journal0[1 + a] + 0.5 * acc[a] * tn * tn;
+            assert!((o.journal_x[1 + a] - x).abs() < 1e-18, "axis {a}");
+            assert!((o.journal_a[1 + a] / acc[a] - 1.0).abs() < 1e-9);
+            assert_eq!(o.journal_v[1 + a], vn[a]);
+        }
+        assert_eq!(o.journal_x[0], p.journal0[0]);
+        assert_eq!((o.journal_v[0], o.journal_a[0]), (0.0, 0.0));
+    }
+
+    #[test]
+    fn tlm_mode_needs_a_disk_a_shaft_and_a_delay() {
+        let base = RotorParams {
+            coupling: Coupling::Tlm,
+            ..RotorParams::default()
+        };
+        assert!(base.validate().is_ok());
+        let e = RotorParams {
+            disk_mass: 0.0,
+            ..base.clone()
+        }
+        .validate()
+        .unwrap_err();
+        assert!(
+            e.0.starts_with("disk.mass = 0 kg") && e.0.contains("coupling = 1"),
+            "{e}"
+        );
+        let e = RotorParams {
+            shaft_k: 0.0,
+            ..base.clone()
+        }
+        .validate()
+        .unwrap_err();
+        assert!(
+            e.0.starts_with("shaft.k = 0 N/m") && e.0.contains("coupling = 1"),
+            "{e}"
+        );
+        let e = RotorParams {
+            tlm_delay: 0.0,
+            ..base.clone()
+        }
+        .validate()
+        .unwrap_err();
+        assert!(e.0.starts_with("tlm.delay = 0 s"), "{e}");
+        // the force mode does not care about the delay, and TlmRotor checks whatever the mode
+        let force = RotorParams {
+            tlm_delay: 0.0,
+            coupling: Coupling::Force,
+            ..base.clone()
+        };
+        assert!(force.validate().is_ok());
+        assert!(TlmRotor::new(&force, 0.0, 1e-8).is_err());
+        assert_eq!(Coupling::from_code(1), Some(Coupling::Tlm));
+        assert_eq!(Coupling::from_code(0), Some(Coupling::Force));
+        assert_eq!(Coupling::from_code(2), None);
+        assert_eq!(Coupling::Tlm.code(), 1);
+    }
+
+    #[test]
+    fn a_restored_snapshot_continues_bit_exactly() {
+        let p = RotorParams {
+            coupling: Coupling::Tlm,
+            speed_rate: 3000.0,
+            speed_final: 1500.0,
+            ..RotorParams::default()
+        };
+        let t = p.tlm_delay;
+        let vj = |k: usize| {
+            [
+                1e-3 * (k as f64 * 0.3).sin(),
+                -2e-3 * (k as f64 * 0.2).cos(),
+            ]
+        };
+        let mut a = TlmRotor::new(&p, 0.0, 1e-8).unwrap();
+        for k in 0..30 {
+            a.step(vj(k), (k + 1) as f64 * t).unwrap();
+        }
+        let snap = a.snapshot();
+        let mut b = TlmRotor::new(&p, 0.0, 1e-8).unwrap();
+        b.restore(&snap).unwrap();
+        for k in 30..60 {
+            a.step(vj(k), (k + 1) as f64 * t).unwrap();
+            b.step(vj(k), (k + 1) as f64 * t).unwrap();
+        }
+        assert_eq!(a.state(), b.state());
+        assert_eq!(a.outputs(vj(60)), b.outputs(vj(60)));
+        assert_eq!(a.line(), b.line());
+    }
+
+    #[test]
+    fn a_step_that_does_not_go_forward_changes_nothing() {
+        let p = RotorParams {
+            coupling: Coupling::Tlm,
+            ..RotorParams::default()
+        };
+        let mut r = TlmRotor::new(&p, 0.0, 1e-8).unwrap();
+        r.step([1e-3, 0.0], 1e-4).unwrap();
+        let before = r.snapshot();
+        let e = r.step([1e-3, 0.0], 1e-4).unwrap_err();
+        assert_eq!(e.t, 1e-4);
+        assert_eq!(r.snapshot(), before);
     }
 }
