@@ -107,11 +107,6 @@ impl LineStep {
         }
         f
     }
-
-    /// The journal velocity `v_j(t_k)` this step was started with \[m/s\].
-    pub fn journal_velocity(&self) -> [f64; AXES] {
-        self.vj[1]
-    }
 }
 
 impl TlmLine {
@@ -288,6 +283,60 @@ mod tests {
         // the spring's energy F²/(2 k_s)
         let e = (9.0 + 78.48 * 78.48) / 4e6;
         assert!((l.wave_energy([0.0; AXES]) / e - 1.0).abs() < 1e-14);
+    }
+
+    /// Two steps by hand: Zc = 1280 N/m · 1/128 s = 10 N·s/m, c_s = 2 N·s/m, F_0 = (0, 5) N.
+    #[test]
+    fn two_steps_follow_the_wave_equations() {
+        let t = 1.0 / 128.0;
+        let mut l = TlmLine::at_rest(1280.0, 2.0, t, [0.0, 5.0]).unwrap();
+        assert_eq!((l.zc(), l.damping(), l.delay()), (10.0, 2.0, t));
+        // step 1, v_j = (1, 2): o_j(t_0) = 2 Zc v_j − o_d(t_{−1}) = (20, 45)
+        let s1 = l.begin_step([1.0, 2.0]);
+        assert_eq!(
+            l.history().oj_prev,
+            [0.0, 5.0],
+            "begin_step changes nothing"
+        );
+        // mid-step: g_d = (10, 25), v_j(t − T) = (0.5, 1); F = g_d − 12 v_d + 2 v_j(t − T)
+        assert_eq!(s1.disk_force(0.5, [0.5, -1.0]), [5.0, 39.0]);
+        assert_eq!(s1.disk_force(1.0, [0.0, 0.0]), [22.0, 49.0]);
+        // end with v_d = (0.25, −0.5): o_d(t_1) = 2 Zc v_d − o_j(t_0) = (−15, −55)
+        l.end_step(&s1, [0.25, -0.5]);
+        let h = l.history();
+        assert_eq!(h.oj_prev, [20.0, 45.0]);
+        assert_eq!(h.vj_prev, [1.0, 2.0]);
+        assert_eq!(h.od_prev, [0.0, -5.0]);
+        assert_eq!(h.od, [-15.0, -55.0]);
+        // w = o_d + c_s v_d
+        assert_eq!((l.c0(), l.c1()), ([0.0, -5.0], [-14.5, -56.0]));
+        assert_eq!(h.w_prev, l.c0());
+        assert_eq!(h.w, l.c1());
+        // the journal's force over its next step: c0 + (c1 − c0) s − (Zc + c_s) v_j
+        assert_eq!(l.journal_force(0.5, [1.0, -1.0]), [-19.25, -18.5]);
+        assert_eq!(l.journal_force(0.0, [0.0, 0.0]), l.c0());
+        assert_eq!(l.journal_force(1.0, [0.0, 0.0]), l.c1());
+        // waves in transit with v_j = (1, 0): towards the disk (20 → 20, 45 → 5), towards the
+        // journal (0 → −15, −5 → −55): T/(12 Zc) (1200 + 225 + 2275 + 3325)
+        let e = l.wave_energy([1.0, 0.0]);
+        assert!((e - 7025.0 * t / 120.0).abs() < 1e-12, "{e}");
+        // step 2, v_j = 0: o_j(t_1) = −o_d(t_0) = (0, 5); g_d from (20, 45) to (0, 5)
+        let s2 = l.begin_step([0.0, 0.0]);
+        assert_eq!(s2.disk_force(0.0, [0.0, 0.0]), [22.0, 49.0]);
+        assert_eq!(s2.disk_force(1.0, [1.0, 1.0]), [-12.0, -7.0]);
+        assert_eq!(s2.disk_force(0.25, [0.0, 0.0]), [15.0 + 1.5, 35.0 + 3.0]);
+        l.end_step(&s2, [0.0, 0.0]);
+        let h2 = l.history();
+        assert_eq!(h2.oj_prev, [0.0, 5.0]);
+        assert_eq!(h2.vj_prev, [0.0, 0.0]);
+        assert_eq!(h2.od_prev, [-15.0, -55.0]);
+        assert_eq!(h2.od, [0.0, -5.0]);
+        assert_eq!((l.c0(), l.c1()), ([-14.5, -56.0], [0.0, -5.0]));
+        // a restored history continues the same
+        let mut m = TlmLine::at_rest(1280.0, 2.0, t, [0.0, 0.0]).unwrap();
+        m.set_history(h);
+        let s = m.begin_step([0.0, 0.0]);
+        assert_eq!(s, s2);
     }
 
     #[test]
