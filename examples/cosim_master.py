@@ -15,6 +15,12 @@ and the schemes differ only in what the master sets:
                  journal motion xhat_k, vhat_k the bearing extrapolated to t_k), and K, C set as
                  bearing.dF_dx / bearing.dF_dv: the rotor integrates the linearised bearing
                  reaction inside its step (a linearly implicit coupling step).
+- "tlm" (run_tlm): a transmission line through the shaft, the journal's mass inside the bearing
+                 (BallBearing coupling = 2, JeffcottRotor coupling = 1 with tlm.delay = H): the
+                 rotor hands the line's force over the step (tlm.c0, tlm.c1) and its impedance
+                 (tlm.Zc) to the bearing, the bearing its journal velocity (ring.v) to the rotor.
+                 Passive, so stable at any H; neither FMU's outputs depend on its inputs at the
+                 same instant, so the order of sets and gets does not matter.
 - "implicit":    rolled-back step sensitivities (fmi2GetFMUstate/fmi2SetFMUstate): trial steps
                  of the bearing (perturbed journal velocity) and the rotor (perturbed end force)
                  give a linearised interface condition, solved for the journal velocity over the
@@ -250,6 +256,63 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
         "t": np.array(ts), "x": np.array(xs), "v": np.array(vs),
         "F": np.array(fs[: len(ts)]), "ok": ok, "error": error,
     }
+
+
+TLM_WAVE = ["tlm.c0.y", "tlm.c0.z", "tlm.c1.y", "tlm.c1.z", "tlm.Zc"]
+TLM_V_IN = ["tlm.v.y", "tlm.v.z"]
+RING_V = ["ring.v.y", "ring.v.z"]
+RING_X = ["ring.x", "ring.y", "ring.z"]
+
+
+def run_tlm(rotor, bearing, H, t_end, t0=0.0, on_step=None, blowup=1e-2):
+    """Jacobi co-simulation through the transmission line (both FMUs in initialization mode,
+    parameters set: rotor coupling = 1 and tlm.delay = H, bearing coupling = 2). Plain value
+    exchange at each communication point, as any master does. Returns dict of arrays: t, x (the
+    journal: bearing ring.x/y/z), disk (rotor disk.y/z), and 'ok', 'error'."""
+    rotor.exit_init()
+    bearing.set(TLM_WAVE, rotor.get(TLM_WAVE))  # the line's force at rest: the start's equilibrium
+    bearing.exit_init()
+    x_start = bearing.get(RING_X)
+    n = int(round((t_end - t0) / H))
+    ts, xs, ds = [t0], [x_start], [rotor.get(["disk.y", "disk.z"])]
+    ok, error, t = True, None, t0
+    for k in range(n):
+        try:
+            bearing.set(TLM_WAVE, rotor.get(TLM_WAVE))
+            rotor.set(TLM_V_IN, bearing.get(RING_V))
+            rotor.step(t, H)
+            bearing.step(t, H)
+        except Exception as e:  # an FMU refusing to continue counts as a failure
+            ok, error = False, f"t = {t}: {e}"
+            break
+        t = t0 + (k + 1) * H
+        x = bearing.get(RING_X)
+        ts.append(t)
+        xs.append(x)
+        ds.append(rotor.get(["disk.y", "disk.z"]))
+        if on_step:
+            on_step(t, rotor, bearing)
+        if not np.all(np.isfinite(x)) or np.max(np.abs(x - x_start)) > blowup:
+            ok, error = False, f"t = {t}: the journal left the {blowup} m ball around its start"
+            break
+    return {"t": np.array(ts), "x": np.array(xs), "disk": np.array(ds), "ok": ok, "error": error}
+
+
+def half_ball_mass():
+    """Half the balls' mass of the default bearing (presets/niu2014-table1.toml): the lumped level
+    (L2) adds it to the inner ring in force mode (m1 = inner_ring.mass + z m_b / 2)."""
+    import math
+    import tomllib
+
+    doc = tomllib.loads((REPO / "presets" / "niu2014-table1.toml").read_text())
+    flat = {}
+
+    def walk(d):
+        for k, v in d.items():
+            walk(v) if isinstance(v, dict) else flat.setdefault(k, v)
+    walk(doc)
+    d = flat["ball_diameter"]
+    return 0.5 * flat["z"] * flat["density"] * math.pi * d ** 3 / 6
 
 
 def is_stable(t, e):

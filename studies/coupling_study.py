@@ -182,6 +182,25 @@ def coupled_pair(rotor_params, bearing_params, offset=(0.0, 0.0, 0.0)):
     return r, b, x0
 
 
+def tlm_pair(rotor_params, rpm, H, bearing_extra=None, journal_mass=M_RIGID, fidelity=2):
+    """JeffcottRotor (coupling = 1, tlm.delay = H) and BallBearing (coupling = 2) in
+    initialization mode for cm.run_tlm: the journal's mass moves into the bearing (its ring mass,
+    inner_ring.mass plus half the balls at the lumped level, is the rotor's journal.mass), the
+    journal's load and weight become the bearing's load.F*; the disk's weight comes through the
+    line."""
+    w = rpm * math.pi / 30
+    ring = journal_mass - (half_ball_mass() if fidelity == 2 else 0.0)
+    bp = {"coupling": 2, "fidelity": fidelity, "shaft.speed": w, "load.Fx": LOADS[0],
+          "load.Fy": LOADS[1], "load.Fz": LOADS[2] - journal_mass * G, "inner_ring.mass": ring}
+    bp.update(bearing_extra or {})
+    rp = {"coupling": 1, "tlm.delay": H, "speed.initial": w, "speed.final": w,
+          "load.Fx": 0.0, "load.Fz": 0.0}
+    rp.update(rotor_params)
+    b = cm.Fmu(bearing_fmu(), "bearing", bp)
+    r = cm.Fmu(rotor_fmu(), "rotor", rp)
+    return r, b
+
+
 def modal(M, K, C):
     """Modes of M x'' + C x' + K x = 0 with M = m I (undamped modes, modal damping)."""
     Ks = 0.5 * (K + K.T)
@@ -367,20 +386,7 @@ def unbalance_force(t, w):
     return C_UNB * w * w * np.array([np.cos(w * t), np.sin(w * t)])
 
 
-def half_ball_mass():
-    """Half the balls' mass of the default bearing (presets/niu2014-table1.toml): the lumped level
-    (L2) adds it to the inner ring in force mode (m1 = inner_ring.mass + z m_b / 2)."""
-    import tomllib
-
-    doc = tomllib.loads((REPO / "presets" / "niu2014-table1.toml").read_text())
-    flat = {}
-
-    def walk(d):
-        for k, v in d.items():
-            walk(v) if isinstance(v, dict) else flat.setdefault(k, v)
-    walk(doc)
-    d = flat["ball_diameter"]
-    return 0.5 * flat["z"] * flat["density"] * math.pi * d ** 3 / 6
+half_ball_mass = cm.half_ball_mass
 
 
 def monolithic_reference(h):

@@ -4,13 +4,18 @@ Usage: python examples/systems/build_ssp.py [--out <target>/fmu/RotorBearing.ssp
                                             [--write-ssd]
 
 The system (examples/systems/rotor_bearing/SystemStructure.ssd, committed) couples the
-JeffcottRotor FMU to the BallBearing FMU in motion mode (coupling = 1):
+JeffcottRotor FMU to the BallBearing FMU through a transmission line (TLM) in the shaft: the
+rotor (coupling = 1) keeps the disk and simulates the shaft as a line of delay tlm.delay = the
+communication step; the bearing (coupling = 2) holds the journal's mass (its inner ring):
 
-    rotor.journal.x/y/z, rotor.journal.v.x/y/z -> bearing.journal.x/y/z, bearing.journal.v.x/y/z
-    rotor.shaft.speed                          -> bearing.shaft.speed
-    bearing.bearing.F.x/y/z                    -> rotor.bearing.F.x/y/z
+    rotor.tlm.c0.y/z, tlm.c1.y/z, tlm.Zc -> bearing.tlm.c0.y/z, tlm.c1.y/z, tlm.Zc
+    bearing.ring.v.y/z                    -> rotor.tlm.v.y/z
+    rotor.shaft.speed                     -> bearing.shaft.speed
 
-and runs the rotor up through its first critical speed (speed ramp inside the rotor). Parameter
+and runs the rotor up through its first critical speed (speed ramp inside the rotor), without
+any added damper, at a communication step of 0.1 ms. The line is passive, so plain value
+exchange (libcosim, fmpy) is stable at every step; neither FMU's outputs depend on its inputs at
+the same instant, so the order in which a master sets and reads them does not matter. Parameter
 values are inline ParameterBindings of each component (SSP 1.0, ssv:ParameterSet).
 
 --write-ssd regenerates the committed SystemStructure.ssd from SYSTEM below (the initial journal
@@ -27,35 +32,39 @@ from xml.sax.saxutils import quoteattr
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-from cosim_master import fmu_path  # noqa: E402
+from cosim_master import fmu_path, half_ball_mass  # noqa: E402
 
 SSD = HERE / "rotor_bearing" / "SystemStructure.ssd"
 AXES = ("x", "y", "z")
 
-# Run-up: 2400 -> 8100 rpm at 600 rad/s^2 (0.99 s), through the first critical speed (~4.6k rpm).
+# Run-up: 2400 -> 8100 rpm at 600 rad/s^2 (0.99 s), through the first critical speed (~4.7k rpm).
 RUNUP = {"speed.initial": 250.0, "speed.final": 850.0, "speed.rate": 600.0}
-STEP = 1e-5  # master step [s]: explicit coupling needs omega*H < 4 zeta (docs/coupling.md)
+STEP = 1e-4  # master step [s]: the line's delay (tlm.delay) must equal it
 STOP = 1.1
-# The journal's damper (squeeze film) gives the journal-on-bearing mode zeta ~ 0.1, which makes
-# the explicit coupling of plain SSP masters stable at STEP (limit ~ 50 us).
-# shaft.c = 400 N s/m: disk mode zeta ~ 0.05, so start transients (fmpy's zero first step) die
-# within ~0.1 s and the resonance stays sharp enough for the run-up plot.
-ROTOR = {"journal.c": 3000.0, "shaft.c": 400.0, "unbalance": 1e-4, **RUNUP}
-# Motion mode; the start loads (the rotor's load and weight: 10 kg) and speed put the bearing's
-# start equilibrium where the rotor's journal starts (statics.py).
-BEARING = {"coupling": 1, "shaft.speed": RUNUP["speed.initial"], "load.Fx": 4000.0,
-           "load.Fy": 0.0, "load.Fz": -1000.0 - 10.0 * 9.81}
+JOURNAL_MASS = 2.0  # kg: the rotor's default journal mass, now the bearing's ring mass
+G = 9.81
+# shaft.c = 400 N s/m: disk mode zeta ~ 0.05, so start transients die within ~0.1 s and the
+# resonance stays sharp enough for the run-up plot. The rotor's own load and journal parameters
+# do not act in tlm mode (the journal is the bearing's): its load goes to the bearing.
+ROTOR = {"coupling": 1, "tlm.delay": STEP, "shaft.c": 400.0, "unbalance": 1e-4, "load.Fx": 0.0,
+         "load.Fz": 0.0, **RUNUP}
+# tlm mode: the journal's load and weight act on the bearing's ring, whose mass is the journal's
+# (at the default lumped level the ring carries half the balls: inner_ring.mass is the rest);
+# the disk's weight comes through the line.
+BEARING = {"coupling": 2, "shaft.speed": RUNUP["speed.initial"], "load.Fx": 4000.0,
+           "load.Fy": 0.0, "load.Fz": -1000.0 - JOURNAL_MASS * G,
+           "inner_ring.mass": JOURNAL_MASS - half_ball_mass()}
 # Connections (start element, start connector, end element, end connector).
+LINE = ["tlm.c0.y", "tlm.c0.z", "tlm.c1.y", "tlm.c1.z", "tlm.Zc"]
 CONNECTIONS = (
-    [("rotor", f"journal.{a}", "bearing", f"journal.{a}") for a in AXES]
-    + [("rotor", f"journal.v.{a}", "bearing", f"journal.v.{a}") for a in AXES]
+    [("rotor", n, "bearing", n) for n in LINE]
+    + [("bearing", f"ring.v.{a}", "rotor", f"tlm.v.{a}") for a in ("y", "z")]
     + [("rotor", "shaft.speed", "bearing", "shaft.speed")]
-    + [("bearing", f"bearing.F.{a}", "rotor", f"bearing.F.{a}") for a in AXES]
 )
 # Extra outputs recorded (connectors without connections).
 EXTRA = {
     "rotor": ["disk.y", "disk.z", "shaft.angle"],
-    "bearing": ["pedestal.a.z", "ring.z", "cage.speed"],
+    "bearing": ["bearing.F.z", "pedestal.a.z", "ring.y", "ring.z", "cage.speed"],
 }
 
 
@@ -100,12 +109,12 @@ def ssd_text(journal0):
         f'endElement="{ee}" endConnector={quoteattr(ec)}/>'
         for se, sc, ee, ec in CONNECTIONS)
     return f"""<?xml version="1.0" encoding="UTF-8"?>
-<!-- Rotor <-> ball bearing, motion-mode coupling; packed by examples/systems/build_ssp.py -->
+<!-- Rotor <-> ball bearing through a transmission line in the shaft; packed by examples/systems/build_ssp.py -->
 <ssd:SystemStructureDescription version="1.0" name="RotorBearing"
     xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon"
     xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription"
     xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues">
-  <ssd:System name="RotorBearing" description="Jeffcott rotor run-up on a spalled angular-contact ball bearing (BallBearing in motion mode)">
+  <ssd:System name="RotorBearing" description="Jeffcott rotor run-up on a spalled angular-contact ball bearing (transmission-line coupling, no added damper)">
     <ssd:Elements>
 {component("rotor", "JeffcottRotor", rotor_params)}
 {component("bearing", "BallBearing", BEARING)}
@@ -128,6 +137,8 @@ def main():
     if a.write_ssd:
         from statics import journal_equilibrium
 
+        # the rotor reports the journal as seen through the line from journal0: start it
+        # where the bearing's start equilibrium puts the ring
         x0 = journal_equilibrium(speed=RUNUP["speed.initial"])
         SSD.parent.mkdir(parents=True, exist_ok=True)
         SSD.write_text(ssd_text(x0))

@@ -2,7 +2,7 @@
 (no SSP file): the same FMUs, parameters and connections (taken from build_ssp.py), run with
 libcosim's fixed-step (Jacobi) master.
 
-Usage: python examples/systems/rotor_bearing_libcosim.py [--stop 1.1] [--step 1e-5]
+Usage: python examples/systems/rotor_bearing_libcosim.py [--stop 1.1] [--step 1e-4]
                                                          [--out out/systems/libcosim_api.npz]
 """
 
@@ -97,8 +97,8 @@ def record(ex, idx, names, stop, step, signals):
 
 
 SIGNALS = ([("rotor", f"journal.{a}") for a in "xyz"] + [("rotor", "disk.y"), ("rotor", "disk.z"),
-           ("rotor", "shaft.speed"), ("bearing", "bearing.F.z"), ("bearing", "cage.speed"),
-           ("bearing", "pedestal.a.z")])
+           ("rotor", "shaft.speed"), ("bearing", "ring.y"), ("bearing", "ring.z"),
+           ("bearing", "bearing.F.z"), ("bearing", "cage.speed"), ("bearing", "pedestal.a.z")])
 
 
 def main():

@@ -10,8 +10,10 @@ Usage: python examples/systems/run_system.py [--stop 1.1] [--masters libcosim-ss
 fmpy's simulate_ssp (fmpy 0.3.x) and what this script does about it:
 - it ignores the SSD's ParameterBindings; the script reads them (fmpy.ssp.ssd.read_ssd) and
   passes them as its `parameter_set` argument, names prefixed with the component;
-- it starts every connection at 0.0 (not at the start values) and applies inputs only from the
-  first step on, so the first macro step sees a journal at 0 and no bearing force;
+- it starts every connection at 0.0 (not at the outputs after initialization), so each FMU's
+  first step sees 0.0 on its inputs (a shaft speed of 0, no line force); the script patches it to
+  hand the outputs after initialization to the connected inputs first, as libcosim does
+  (`_fmpy_with_start_values`);
 - it records each row with the time at the *start* of the step that produced it (one-step
   label shift), which the comparison corrects (row k is t_{k+1});
 - fixed step, Jacobi order (all components step, then all connections are applied).
@@ -20,6 +22,7 @@ fmpy's simulate_ssp (fmpy 0.3.x) and what this script does about it:
 import argparse
 import json
 import math
+import os
 import pathlib
 import sys
 import time
@@ -34,7 +37,7 @@ import rotor_bearing_libcosim as api  # noqa: E402
 from cosim_master import fmu_path  # noqa: E402
 
 SSP = fmu_path("BallBearing").parent / "RotorBearing.ssp"
-COMPARE = ["rotor.journal.z", "rotor.disk.z", "bearing.bearing.F.z"]
+COMPARE = ["bearing.ring.z", "rotor.disk.z", "bearing.bearing.F.z"]
 
 
 def run_libcosim_ssp(stop, step):
@@ -65,7 +68,58 @@ def run_libcosim_api(stop, step):
     return api.record(ex, idx, names, stop, step, api.SIGNALS)
 
 
-def run_fmpy_ssp(stop, step):
+def _fmpy_with_start_values():
+    """fmpy's simulate_ssp (0.3.x) starts every connection at 0.0, so each FMU's first step gets
+    0.0 on its inputs (here shaft.speed = 0 and no line force on the bearing for 0.1 ms, and the
+    bearing's start equilibrium without the disk's weight: a different system from the one the
+    SSD describes). This patch initializes the FMUs in the SSD's order and, in each one's
+    initialization mode, sets its inputs from the outputs of those already initialized, as
+    libcosim's initialization does. Returns the function that undoes it."""
+    import fmpy.ssp.simulation as sim
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+
+    orig_conn, orig_inst = sim.get_connections, sim.instantiate_fmu
+    state = {"connections": [], "done": []}
+
+    def get_connections(system):
+        state["connections"] = orig_conn(system)
+        return state["connections"]
+
+    def instantiate_fmu(component, ssp_unzipdir, start_time, stop_time=None, parameter_set=None):
+        # fmpy's instantiate_fmu for FMI 2.0, plus the inputs set in initialization mode
+        path = os.path.join(ssp_unzipdir, component.source)
+        component.unzipdir = extract(path)
+        md = read_model_description(path, validate=False)
+        component.variables = {v.name: v for v in md.modelVariables}
+        component.fmu = FMU2Slave(guid=md.guid, unzipDirectory=component.unzipdir,
+                                  modelIdentifier=md.coSimulation.modelIdentifier,
+                                  instanceName=component.name)
+        component.fmu.instantiate()
+        component.fmu.setupExperiment(startTime=start_time)
+        if parameter_set is not None:
+            sim.set_parameters(component, parameter_set)
+        component.fmu.enterInitializationMode()
+        for a, b in state["connections"]:
+            if b in component.connectors and a.value is not None:
+                sim.set_value(component, b.name, a.value)
+                b.value = a.value
+        component.fmu.exitInitializationMode()
+        for conn in component.connectors:
+            if conn.kind == "output":
+                conn.value = sim.get_value(component, conn.name)
+        for a, b in state["connections"]:
+            if a in component.connectors:
+                b.value = a.value
+
+    sim.get_connections, sim.instantiate_fmu = get_connections, instantiate_fmu
+
+    def undo():
+        sim.get_connections, sim.instantiate_fmu = orig_conn, orig_inst
+    return undo
+
+
+def run_fmpy_ssp(stop, step, start_values=True):
     from fmpy.ssp.simulation import simulate_ssp
     from fmpy.ssp.ssd import ParameterSet, read_ssd
 
@@ -77,7 +131,11 @@ def run_fmpy_ssp(stop, step):
                 for p in ps.parameters:
                     p.name = f"{comp.name}.{p.name}"
                     pset.parameters.append(p)
-    r = simulate_ssp(str(SSP), stop_time=stop, step_size=step, parameter_set=pset)
+    undo = _fmpy_with_start_values() if start_values else (lambda: None)
+    try:
+        r = simulate_ssp(str(SSP), stop_time=stop, step_size=step, parameter_set=pset)
+    finally:
+        undo()
     out = {"time": r["time"] + step}  # fmpy labels a row with the start of its step
     for comp, var in api.SIGNALS:
         key = f"{comp}.{var}"
