@@ -649,10 +649,12 @@ impl Simulation {
 
     /// Motion coupling, levels with ring states (L2, L4): when the shaft speed has moved by more
     /// than [`L1_SPEED_STEP`] since the last update, moves the level's L1 operating point (its
-    /// cage speed) to the current speed and the load the ring carries now (minus `bearing.F`).
-    /// Called at the start of every advance, so it sees the state after all inputs of the
-    /// communication point are set, whatever their order, and a speed ramp re-solves L1 once
-    /// per [`L1_SPEED_STEP`] of speed, not once per step.
+    /// cage speed) to the current speed at the start's loads. Called at the start of every
+    /// advance, so it sees the inputs of the communication point whatever the order they were
+    /// set in, and a speed ramp re-solves L1 once per [`L1_SPEED_STEP`] of speed, not once per
+    /// step. It depends on the inputs alone (the speed at the communication points and the
+    /// start's loads), not on the journal's state at that moment, so two masters that hand the
+    /// same inputs at the same communication points get the same cage speed.
     fn update_l1_point(&mut self) -> Result<(), SimError> {
         if self.scene.coupling != CouplingMode::Motion || self.qs_motion.is_some() {
             return Ok(());
@@ -662,18 +664,7 @@ impl Simulation {
             return Ok(());
         }
         let t = self.integrator.t();
-        let o = &mut self.out_scratch;
-        self.model.outputs(t, self.integrator.y(), o);
-        let f = [
-            -o[out::BEARING_F_X],
-            -o[out::BEARING_F_Y],
-            -o[out::BEARING_F_Z],
-        ];
-        let [fx, fy, fz] = if f.iter().all(|v| v.is_finite()) {
-            f
-        } else {
-            self.start_loads
-        };
+        let [fx, fy, fz] = self.start_loads;
         let point = OperatingPoint {
             fx,
             fy,
