@@ -97,7 +97,7 @@ def record(ex, idx, names, stop, step, signals):
 
 
 SIGNALS = ([("rotor", f"journal.{a}") for a in "xyz"] + [("rotor", "disk.y"), ("rotor", "disk.z"),
-           ("rotor", "shaft.speed"), ("bearing", "ring.y"), ("bearing", "ring.z"),
+           ("rotor", "shaft.speed"), ("rotor", "shaft.angle"), ("bearing", "ring.y"), ("bearing", "ring.z"),
            ("bearing", "bearing.F.z"), ("bearing", "cage.speed"), ("bearing", "pedestal.a.z")])
 
 

@@ -148,6 +148,20 @@ MASTERS = {"libcosim-ssp": run_libcosim_ssp, "fmpy-ssp": run_fmpy_ssp,
            "libcosim-api": run_libcosim_api}
 
 
+def order_track(t, x, phase, speed, window=0.04, skip=0.05):
+    """The 1x order of x(t): least-squares fit of a + b cos(phase) + c sin(phase) over windows of
+    `window` seconds (hop a quarter of it) after `skip`; returns (speed [rpm], amplitude)."""
+    dt = t[1] - t[0]
+    seg = int(round(window / dt))
+    rpm, amp = [], []
+    for a in range(int(round(skip / dt)), len(x) - seg, seg // 4):
+        p = phase[a:a + seg]
+        A = np.column_stack([np.ones(seg), np.cos(p), np.sin(p)])
+        amp.append(float(np.hypot(*np.linalg.lstsq(A, x[a:a + seg], rcond=None)[0][1:])))
+        rpm.append(float(np.mean(speed[a:a + seg]) * 30 / math.pi))
+    return np.array(rpm), np.array(amp)
+
+
 def waterfall(res, out, title):
     """Order map (STFT of rotor.disk.z against shaft speed) and the 1x order track."""
     import matplotlib
@@ -188,10 +202,7 @@ def waterfall(res, out, title):
     ax[0].set_ylabel("shaft speed [rpm]")
     ax[0].set_title("Run-up waterfall (disk z)")
     # 1x order track
-    w = spd
-    amp1 = [float(np.hypot(*np.linalg.lstsq(
-        np.column_stack([np.ones(seg), np.cos(res["phase"][a:a + seg]), np.sin(res["phase"][a:a + seg])]),
-        z[a:a + seg], rcond=None)[0][1:])) for a in range(int(round(0.05 / dt)), len(z) - seg, hop)]
+    _, amp1 = order_track(t, z, res["phase"], spd)
     ax[1].plot(rr, np.array(amp1) * 1e6, "C0-", label="disk z, 1× order")
     ax[1].set_xlabel("shaft speed [rpm]")
     ax[1].set_ylabel("1× amplitude [µm]")
