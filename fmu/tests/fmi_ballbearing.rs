@@ -1403,3 +1403,82 @@ fn motion_coupling_logs_its_stable_step_and_warns_once_beyond_it() {
     }
     assert_eq!(count(&h), 1);
 }
+
+/// Coupling mode tlm: a saved and restored state (in the same instance and, serialized, in a
+/// fresh one) continues bit for bit under the same line inputs: the line's inputs and its
+/// force at the start are part of the state.
+#[test]
+fn tlm_state_round_trips() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let reals = [
+        ("tlm.c0.z", -78.48),
+        ("tlm.c1.z", -78.48),
+        ("tlm.Zc", 200.0),
+    ];
+    let (c, s) = configured(&h, &b, &[("fidelity", 2), ("coupling", 2)], &reals);
+    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+    let line = [vr(&b, "tlm.c0.z"), vr(&b, "tlm.c1.z")];
+    // a few steps with a line force that changes from step to step
+    let run = |c: Fmi2Component, t0: f64, n: usize| -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut t = t0;
+        for k in 0..n {
+            let f = [-78.48 - 10.0 * k as f64, -78.48 - 10.0 * (k + 1) as f64];
+            // SAFETY: c is a live instance; two values.
+            unsafe {
+                assert_eq!(
+                    sh::set_real::<BallBearing>(c, line.as_ptr(), 2, f.as_ptr()),
+                    Fmi2Status::Ok
+                );
+                assert_eq!(
+                    sh::do_step::<BallBearing>(c, t, 1e-4, 1),
+                    Fmi2Status::Ok,
+                    "{}",
+                    h.last()
+                );
+            }
+            t += 1e-4;
+            out.extend(["ring.z", "ring.v.z", "bearing.F.z"].map(|n| real(c, &b, n)));
+        }
+        out
+    };
+    run(c, 0.0, 3);
+    let mut st: Fmi2FmuState = std::ptr::null_mut();
+    let mut size = 0usize;
+    // SAFETY: c is a live instance; the state pointer and size are written by the calls.
+    let bytes = unsafe {
+        assert_eq!(sh::get_fmu_state::<BallBearing>(c, &mut st), Fmi2Status::Ok);
+        assert_eq!(
+            sh::serialized_fmu_state_size::<BallBearing>(c, st, &mut size),
+            Fmi2Status::Ok
+        );
+        let mut bytes: Vec<Fmi2Byte> = vec![0; size];
+        assert_eq!(
+            sh::serialize_fmu_state::<BallBearing>(c, st, bytes.as_mut_ptr(), size),
+            Fmi2Status::Ok
+        );
+        bytes
+    };
+    let first = run(c, 3e-4, 4);
+    // SAFETY: st is the state taken above.
+    unsafe { assert_eq!(sh::set_fmu_state::<BallBearing>(c, st), Fmi2Status::Ok) };
+    assert_eq!(run(c, 3e-4, 4), first);
+    let (fresh, s) = configured(&h, &b, &[], &[]);
+    assert_eq!(s, Fmi2Status::Ok);
+    let mut st2: Fmi2FmuState = std::ptr::null_mut();
+    // SAFETY: fresh is a live instance; bytes holds `size` bytes of a serialized state.
+    unsafe {
+        assert_eq!(
+            sh::deserialize_fmu_state::<BallBearing>(fresh, bytes.as_ptr(), size, &mut st2),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::set_fmu_state::<BallBearing>(fresh, st2), Fmi2Status::Ok);
+    }
+    assert_eq!(run(fresh, 3e-4, 4), first);
+    // SAFETY: live instances.
+    unsafe {
+        sh::free_instance::<BallBearing>(c);
+        sh::free_instance::<BallBearing>(fresh);
+    }
+}
