@@ -1029,6 +1029,37 @@ mod tests {
     }
 
     #[test]
+    fn unbalance_force_is_the_reaction_of_the_eccentric_mass() {
+        // U = −m_u · d²/dt² (e cos φ, e sin φ), by central differences of the closed-form
+        // angle, during a run-up (Ω̇ ≠ 0) and after it
+        let p = RotorParams {
+            speed_initial: 200.0,
+            speed_final: 900.0,
+            speed_rate: 4000.0,
+            unbalance: 3e-4,
+            ..RotorParams::default()
+        };
+        let pos = |tau: f64| {
+            let phi = p.speed(tau).2;
+            [phi.cos(), phi.sin()]
+        };
+        let h = 1e-5;
+        for tau in [0.01, 0.09, 0.3] {
+            let (a, b, c) = (pos(tau - h), pos(tau), pos(tau + h));
+            let u = p.unbalance_force(tau);
+            for i in 0..2 {
+                let acc = (a[i] - 2.0 * b[i] + c[i]) / (h * h);
+                let expect = -p.unbalance * acc;
+                assert!(
+                    (u[i] - expect).abs() < 1e-5 * p.unbalance * 900.0 * 900.0,
+                    "τ = {tau}, axis {i}: {} vs {expect}",
+                    u[i]
+                );
+            }
+        }
+    }
+
+    #[test]
     fn invalid_parameters_are_named() {
         let p = RotorParams {
             journal_mass: 0.0,
@@ -1283,6 +1314,41 @@ mod tlm_tests {
         assert_eq!(a.state(), b.state());
         assert_eq!(a.outputs(vj(60)), b.outputs(vj(60)));
         assert_eq!(a.line(), b.line());
+    }
+
+    #[test]
+    fn a_later_start_time_shifts_the_run() {
+        // the speed ramp, the unbalance and the line all count from the start time
+        let p = RotorParams {
+            coupling: Coupling::Tlm,
+            speed_initial: 300.0,
+            speed_final: 1200.0,
+            speed_rate: 20_000.0,
+            ..RotorParams::default()
+        };
+        let t = p.tlm_delay;
+        let t1 = 0.375;
+        let mut a = TlmRotor::new(&p, 0.0, 1e-10).unwrap();
+        let mut b = TlmRotor::new(&p, t1, 1e-10).unwrap();
+        assert_eq!(b.params(), &p);
+        for k in 0..40 {
+            let v = [1e-4 * (k as f64 * 0.5).sin(), 0.0];
+            a.step(v, (k + 1) as f64 * t).unwrap();
+            b.step(v, t1 + (k + 1) as f64 * t).unwrap();
+        }
+        let (oa, ob) = (a.outputs([0.0; 2]), b.outputs([0.0; 2]));
+        for i in 0..2 {
+            assert!((oa.disk[i] - ob.disk[i]).abs() < 1e-12, "{oa:?} vs {ob:?}");
+            assert!((oa.unbalance[i] - ob.unbalance[i]).abs() < 1e-9 * oa.unbalance[i].abs());
+        }
+        assert!((oa.speed - ob.speed).abs() < 1e-9 * oa.speed && oa.speed > 300.0);
+        assert!((oa.angle - ob.angle).abs() < 1e-9);
+        // its work counters are the integrator's
+        let s = a.snapshot().integrator.stats;
+        assert_eq!(a.stats(), (s.steps, s.rejected, s.rhs_evals));
+        assert!(s.steps >= 40 && s.rhs_evals >= 6 * s.steps, "{s:?}");
+        assert_eq!(Coupling::Tlm.name(), "tlm");
+        assert_eq!(Coupling::Force.name(), "force");
     }
 
     #[test]

@@ -321,6 +321,15 @@ fn a_coarse_delay_and_bearing_side_parameters_warn_once_at_initialization() {
 }
 
 #[test]
+fn the_largest_accurate_delay_itself_does_not_warn() {
+    // T_acc = sqrt(0.01 * 8 kg / 2e6 N/m) = 2e-4 s exactly in binary, the bound included
+    let mut ps = QUIET.to_vec();
+    ps.push(("tlm.delay", 2e-4));
+    let r = Rotor::tlm(&ps);
+    assert!(r.warnings().is_empty(), "{:?}", r.warnings());
+}
+
+#[test]
 fn tlm_mode_without_disk_or_shaft_is_refused_naming_the_parameter() {
     for (name, msg) in [
         ("disk.mass", "disk.mass = 0 kg"),
