@@ -15,6 +15,7 @@
 //! | 100–115 | the Real parameters of [`PARAMS`] |
 //! | 116 | Integer parameter `coupling` (0 force, 1 tlm) |
 //! | 117 | parameter `tlm.delay` ([`TLM_DELAY`]) |
+//! | 118 | Integer parameter `disk.axial` (1 the disk rides axially with the journal, 0 not) |
 //! | 1000–1016 | outputs `journal.*`, `disk.*`, `shaft.*`, `unbalance.F.*` |
 //! | 1017–1021 | outputs `tlm.c0.y`, `tlm.c0.z`, `tlm.c1.y`, `tlm.c1.z`, `tlm.Zc` (tlm) |
 //!
@@ -59,8 +60,8 @@ pub const DEFAULT_START_TIME: f64 = 0.0;
 pub const DEFAULT_STOP_TIME: f64 = 0.1;
 pub const DEFAULT_TOLERANCE: f64 = 1e-8;
 pub const DEFAULT_STEP_SIZE: f64 = 1e-4;
-/// Version of the FMU state's model part (2: coupling mode tlm, the line's history).
-const MODEL_STATE_VERSION: u32 = 2;
+/// Version of the FMU state's model part (2: coupling mode tlm, the line's history; 3: disk.axial).
+const MODEL_STATE_VERSION: u32 = 3;
 /// Relative tolerance of the check that the communication step equals `tlm.delay`.
 const DELAY_RTOL: f64 = 1e-9;
 
@@ -81,6 +82,8 @@ pub enum Role {
     Coupling,
     /// The parameter `tlm.delay` ([`TLM_DELAY`]).
     Delay,
+    /// The Integer parameter `disk.axial`.
+    DiskAxial,
     /// Journal velocity received in coupling mode tlm, axis 0 = y, 1 = z.
     TlmV(usize),
     Out(O),
@@ -283,6 +286,8 @@ pub const TLM_DELAY: Row<ParamAccess> = param(
 
 /// Value reference of the Integer parameter `coupling`.
 pub const VR_COUPLING: u32 = 116;
+/// Value reference of the Integer parameter `disk.axial`.
+pub const VR_DISK_AXIAL: u32 = 118;
 /// Value references of the inputs `tlm.v.y`, `tlm.v.z`.
 pub const VR_TLM_V: [u32; AXES] = [30, 31];
 
@@ -490,6 +495,19 @@ pub fn table() -> Vec<(Variable, Role)> {
     v.max = Some(1.0);
     t.push((v, Role::Coupling));
     t.push((TLM_DELAY.variable(Start::Real(d.tlm_delay)), Role::Delay));
+    let mut v = var(
+        VR_DISK_AXIAL,
+        "disk.axial",
+        VarType::Integer,
+        Parameter,
+        Fixed,
+        "Coupling mode force: 1 (default) the disk rides axially with the journal (axial inertia journal.mass + disk.mass); 0 it moves only laterally (axial inertia journal.mass, as in coupling mode tlm, where the axial direction is the BallBearing's ring)",
+    );
+    v.initial = Some(Initial::Exact);
+    v.start = Start::Integer(i32::from(d.disk_axial));
+    v.min = Some(0.0);
+    v.max = Some(1.0);
+    t.push((v, Role::DiskAxial));
     for (i, vr) in VR_TLM_V.into_iter().enumerate() {
         let yz = ["y", "z"][i];
         let mut v = var(
@@ -1020,6 +1038,7 @@ impl FmuModel for JeffcottRotor {
     fn get_integer(&mut self, index: usize) -> Result<i32, String> {
         match self.roles[index] {
             Role::Coupling => Ok(self.params.coupling.code()),
+            Role::DiskAxial => Ok(i32::from(self.params.disk_axial)),
             _ => Err(format!("'{}' is not an Integer", self.vars[index].name)),
         }
     }
@@ -1028,6 +1047,15 @@ impl FmuModel for JeffcottRotor {
             Role::Coupling => {
                 self.params.coupling = Coupling::from_code(value)
                     .ok_or_else(|| format!("coupling = {value}: must be 0 (force) or 1 (tlm)"))?;
+                self.live = None;
+                Ok(())
+            }
+            Role::DiskAxial => {
+                self.params.disk_axial = match value {
+                    0 => false,
+                    1 => true,
+                    _ => return Err(format!("disk.axial = {value}: must be 0 or 1")),
+                };
                 self.live = None;
                 Ok(())
             }
@@ -1067,7 +1095,8 @@ impl FmuModel for JeffcottRotor {
             w.f64((p.access.get)(&self.params));
         }
         w.u32(self.params.coupling.code() as u32)
-            .f64(self.params.tlm_delay);
+            .f64(self.params.tlm_delay)
+            .bool(self.params.disk_axial);
         write_iface(&mut w, &self.iface);
         write_axes(&mut w, &self.tlm_v);
         w.f64(self.start_time).opt_f64(self.tolerance);
@@ -1128,6 +1157,7 @@ impl FmuModel for JeffcottRotor {
             .and_then(Coupling::from_code)
             .ok_or_else(|| format!("corrupt state: coupling = {code}"))?;
         params.tlm_delay = r.f64("tlm.delay")?;
+        params.disk_axial = r.bool("disk.axial")?;
         let iface = read_iface(&mut r)?;
         let tlm_v = read_axes(&mut r, "tlm.v")?;
         let start_time = r.f64("start time")?;

@@ -3,11 +3,12 @@
 //! Two lumped masses in the bearing's frame (x axial, y and z radial, shaft rotation about +x):
 //! the **journal** (mass `m_j`, the inner-ring centre, displacement `x_j = (x, y, z)`) and the
 //! **disk** (mass `m_d`, lateral displacement `(y_d, z_d)`) on a massless shaft of lateral
-//! stiffness `k_s` and damping `c_s`. Axially the disk rides with the journal. With `m_d = 0`
+//! stiffness `k_s` and damping `c_s`. Axially the disk rides with the journal (`disk.axial = 1`,
+//! the default; with 0 the axial inertia is the journal's alone, m_a = m_j). With `m_d = 0`
 //! the rotor is rigid: one mass `m_j` carrying the unbalance.
 //!
 //! ```text
-//!   (m_j + m_d) ẍ_j   = F_x + L_x − c_j ẋ_j
+//!   m_a ẍ_j           = F_x + L_x − c_j ẋ_j,   m_a = m_j + m_d (disk.axial = 1) or m_j
 //!   m_j ÿ_j           = F_y + L_y − c_j ẏ_j + k_s (y_d − y_j) + c_s (ẏ_d − ẏ_j)
 //!   m_j z̈_j           = F_z + L_z − c_j ż_j + k_s (z_d − z_j) + c_s (ż_d − ż_j) − m_j g
 //!   m_d ÿ_d           = −k_s (y_d − y_j) − c_s (ẏ_d − ẏ_j) + U_y
@@ -134,6 +135,10 @@ pub struct RotorParams {
     /// Delay of the TLM line \[s\] (> 0; coupling mode tlm only): the master's communication
     /// step.
     pub tlm_delay: f64,
+    /// Whether the disk rides axially with the journal (coupling mode force): the axial inertia
+    /// is then `journal_mass + disk_mass`, else `journal_mass` alone (as in coupling mode tlm,
+    /// where the axial direction is the bearing's ring).
+    pub disk_axial: bool,
 }
 
 impl Default for RotorParams {
@@ -156,6 +161,7 @@ impl Default for RotorParams {
             speed_rate: 0.0,
             coupling: Coupling::Force,
             tlm_delay: 1e-4,
+            disk_axial: true,
         }
     }
 }
@@ -389,7 +395,7 @@ impl System for Rhs {
         } else {
             let sy = p.shaft_k * (y[6] - y[1]) + p.shaft_c * (y[8] - y[4]);
             let sz = p.shaft_k * (y[7] - y[2]) + p.shaft_c * (y[9] - y[5]);
-            d[3] = ext[0] / (mj + md);
+            d[3] = ext[0] / if p.disk_axial { mj + md } else { mj };
             d[4] = (ext[1] + sy) / mj;
             d[5] = (ext[2] + sz) / mj;
             d[6] = y[8];
@@ -845,6 +851,33 @@ mod tests {
         p.gravity = 0.0;
         p.load = [0.0; 3];
         p.unbalance = 0.0;
+    }
+
+    /// A constant axial force accelerates the journal at F/(m_j + m_d), or at F/m_j when the
+    /// disk does not ride axially (`disk.axial = 0`): x = F t²/(2 m_a).
+    #[test]
+    fn axial_inertia_follows_disk_axial() {
+        for (axial, m_a) in [(true, 10.0), (false, 2.0)] {
+            let mut p = RotorParams {
+                disk_axial: axial,
+                ..RotorParams::default()
+            };
+            quiet(&mut p);
+            p.speed_initial = 0.0;
+            p.speed_final = 0.0;
+            let mut r = Rotor::new(&p, 0.0, 1e-10).unwrap();
+            r.set_interface(InterfaceForce {
+                f: [100.0, 0.0, 0.0],
+                ..InterfaceForce::default()
+            });
+            r.advance(1e-3).unwrap();
+            let exact = 100.0 * 1e-6 / (2.0 * m_a);
+            let x = r.state()[0];
+            assert!(
+                (x - exact).abs() < 1e-9 * exact,
+                "disk.axial {axial}: {x} vs {exact}"
+            );
+        }
     }
 
     #[test]

@@ -478,11 +478,11 @@ fn a_restored_state_continues_bit_exactly() {
     use fmi2::FmuModel;
     let mut m = JeffcottRotor::new();
     let mut part = m.save_state();
-    assert_eq!(part[..4], 2u32.to_le_bytes());
+    assert_eq!(part[..4], 3u32.to_le_bytes());
     part[..4].copy_from_slice(&1u32.to_le_bytes());
     let e = m.restore_state(&part).unwrap_err();
     assert!(
-        e.contains("state version 1 is not supported (expected 2)"),
+        e.contains("state version 1 is not supported (expected 3)"),
         "{e}"
     );
 }
