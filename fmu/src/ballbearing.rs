@@ -320,8 +320,7 @@ impl BallBearing {
         Some(format!(
             "coupling motion: value exchange with the force held over the communication step is \
              stable for H < 2c/k = {h_min:.3e} s on the bearing's own damping, whatever the \
-             journal's mass ({}); the partner's damping on the journal adds to c; accurate to \
-             about 1 % only for ωH < 0.05 with ω = √(k/M) of the partner's journal mass M; the \
+             journal's mass ({}); the partner's damping on the journal adds to c; the \
              transmission-line coupling (coupling = 2 with the JeffcottRotor) is stable at any step",
             parts.join("; ")
         ))
