@@ -668,13 +668,7 @@ impl FmuModel for BallBearing {
                 Ok(())
             }
             Access::Line(k) => {
-                if !value.is_finite() || (k == 4 && value < 0.0) {
-                    return Err(format!(
-                        "{} = {value} must be finite{}",
-                        self.vars[index].name,
-                        if k == 4 { " and >= 0" } else { "" }
-                    ));
-                }
+                // (the shell has refused non-finite values and a negative tlm.Zc, below its min)
                 self.line[k] = value;
                 self.line_by_master = true;
                 self.invalidate();

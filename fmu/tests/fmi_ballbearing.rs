@@ -1565,3 +1565,104 @@ fn tlm_state_round_trips() {
         sh::free_instance::<BallBearing>(fresh);
     }
 }
+
+/// Over a communication step the line's force goes linearly from c0 to c1: one step from c0 to
+/// c1 and two half steps through their mean run alike (to the integrator's tolerance), also
+/// after the start (the slope is over the step, not over the time since the start); and a
+/// negative impedance or a non-finite line input is refused by the shell, naming it.
+#[test]
+fn the_line_force_is_linear_over_the_step() {
+    let b = BearingFile::default_preset();
+    let run = |halves: bool| -> Vec<f64> {
+        let h = H::new();
+        let reals = [
+            ("tlm.c0.z", -78.48),
+            ("tlm.c1.z", -78.48),
+            ("tlm.Zc", 200.0),
+        ];
+        let (c, s) = configured(&h, &b, &[("fidelity", 2), ("coupling", 2)], &reals);
+        assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+        let (c0, c1) = (vr(&b, "tlm.c0.z"), vr(&b, "tlm.c1.z"));
+        let mut out = Vec::new();
+        let mut t = 0.0;
+        for k in 0..20 {
+            let (a, z) = (-78.48 + 40.0 * k as f64, -78.48 + 40.0 * (k + 1) as f64);
+            let legs: Vec<(f64, f64, f64)> = if halves {
+                let m = 0.5 * (a + z);
+                vec![(a, m, 5e-5), (m, z, 5e-5)]
+            } else {
+                vec![(a, z, 1e-4)]
+            };
+            for (f0, f1, step) in legs {
+                // SAFETY: c is a live instance; one value each.
+                unsafe {
+                    assert_eq!(sh::set_real::<BallBearing>(c, &c0, 1, &f0), Fmi2Status::Ok);
+                    assert_eq!(sh::set_real::<BallBearing>(c, &c1, 1, &f1), Fmi2Status::Ok);
+                    let s = sh::do_step::<BallBearing>(c, t, step, 1);
+                    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+                }
+                t += step;
+            }
+            out.extend(["ring.z", "ring.v.z"].map(|n| real(c, &b, n)));
+        }
+        // SAFETY: c is a live instance; one value each.
+        unsafe {
+            let zc = vr(&b, "tlm.Zc");
+            assert_eq!(
+                sh::set_real::<BallBearing>(c, &zc, 1, &-1.0),
+                Fmi2Status::Error
+            );
+            assert!(h.last().contains("tlm.Zc"), "{}", h.last());
+            sh::free_instance::<BallBearing>(c);
+        }
+        out
+    };
+    let (one, two) = (run(false), run(true));
+    for parity in 0..2 {
+        let range = one
+            .iter()
+            .skip(parity)
+            .step_by(2)
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        for k in (parity..one.len()).step_by(2) {
+            let (a, b) = (one[k], two[k]);
+            assert!((a - b).abs() < 1e-5 * range, "sample {k}: {a} vs {b}");
+        }
+    }
+    // the ramp moves the ring: 40 N per step against the start's equilibrium
+    assert!((one[38] - one[0]).abs() > 1e-7, "{} {}", one[38], one[0]);
+}
+
+/// A Real parameter set through fmi2SetReal is the one the model runs with: a heavier inner
+/// ring reads back and moves less under the same line-force ramp.
+#[test]
+fn a_real_parameter_set_acts() {
+    let b = BearingFile::default_preset();
+    let run = |mass: f64| -> f64 {
+        let h = H::new();
+        let reals = [
+            ("inner_ring.mass", mass),
+            ("tlm.c0.z", 0.0),
+            ("tlm.c1.z", 0.0),
+        ];
+        let (c, s) = configured(&h, &b, &[("fidelity", 2), ("coupling", 2)], &reals);
+        assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+        assert_eq!(real(c, &b, "inner_ring.mass"), mass);
+        let f1 = vr(&b, "tlm.c1.z");
+        // SAFETY: c is a live instance; one value.
+        unsafe {
+            assert_eq!(
+                sh::set_real::<BallBearing>(c, &f1, 1, &-500.0),
+                Fmi2Status::Ok
+            );
+            assert_eq!(sh::do_step::<BallBearing>(c, 0.0, 2e-5, 1), Fmi2Status::Ok);
+        }
+        let v = real(c, &b, "ring.v.z");
+        // SAFETY: c is a live instance.
+        unsafe { sh::free_instance::<BallBearing>(c) };
+        v
+    };
+    let (light, heavy) = (run(0.5), run(5.0));
+    assert!(light < 0.0 && heavy < 0.0, "{light} {heavy}");
+    assert!(heavy.abs() < 0.5 * light.abs(), "{light} {heavy}");
+}
