@@ -80,10 +80,8 @@ impl Rotor {
         };
         assert!(!c.is_null());
         // SAFETY: as above; the instance is live.
-        assert_eq!(
-            unsafe { sh::setup_experiment::<M>(c, 1, 1e-8, 0.0, 0, 0.0) },
-            Fmi2Status::Ok
-        );
+        let status = unsafe { sh::setup_experiment::<M>(c, 1, 1e-8, 0.0, 0, 0.0) };
+        assert_eq!(status, Fmi2Status::Ok);
         Rotor { log, _cb: cb, c }
     }
 
@@ -258,10 +256,8 @@ fn force_mode_is_the_default_and_its_tlm_outputs_are_zero() {
     let mut c = -1;
     let v = vr("coupling");
     // SAFETY: test importer: one value reference and one value, the instance is live.
-    assert_eq!(
-        unsafe { sh::get_integer::<M>(r.c, &v, 1, &mut c) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::get_integer::<M>(r.c, &v, 1, &mut c) };
+    assert_eq!(status, Fmi2Status::Ok);
     assert_eq!(c, 0);
     // tlm.v set in force mode: one warning at the next step, then quiet
     assert_eq!(r.set("tlm.v.y", 1e-3), Fmi2Status::Ok);
