@@ -60,4 +60,4 @@ pub use scene::{
     MethodName, Mounting, OutputSettings, Pulse, Resonator, Scene, SolverSettings, DEFAULT_SCENE,
     MAX_PI_BETA, MIN_RTOL, RTOL_FLOOR_WHY,
 };
-pub use simulation::{Journal, Simulation, WorkStats};
+pub use simulation::{model_exchange_capacity, Journal, Simulation, WorkStats};

@@ -112,6 +112,27 @@ pub struct Simulation {
     start: Start,
     /// The plausibility limits of the loads and contacts, and the warnings not yet taken.
     limits: Limits,
+    /// Model Exchange: what the event functions were at the last completed step or event
+    /// update, and which have changed sign since (see [`Simulation::step_completed`]).
+    me: MeMemory,
+}
+
+/// Model Exchange's memory of the event functions: their values at the last reference point
+/// (the last completed integrator step or event update) and the indices that changed sign since
+/// the last event update. Not needed by [`Simulation::advance`] (which locates events itself).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+struct MeMemory {
+    g_ref: Vec<f64>,
+    fired: Vec<bool>,
+}
+
+/// The most continuous states and event functions any level has on a bearing with `z` balls:
+/// what a Model Exchange FMU, whose numbers are fixed in its model description whatever the
+/// level, declares (a level with fewer pads). The full level has the most of both: 9 states per
+/// ball, 16 more for the rings, pedestal and angles; 5 event functions per ball with a spall.
+pub fn model_exchange_capacity(z: usize) -> (usize, usize) {
+    let full = crate::models::internals::layout::Layout::full(z).dim();
+    (full.max(14), (5 * z).max(z))
 }
 
 /// The plausibility limits ([`crate::limits`]) a simulation applies: a load beyond the static
@@ -268,6 +289,8 @@ struct Snapshot {
     journal: Option<(Journal, f64)>,
     #[serde(default)]
     l1_speed: Option<f64>,
+    #[serde(default)]
+    model_exchange: Option<MeMemory>,
 }
 
 /// Motion coupling (levels with ring states): the L1 operating point behind the cage speed is
@@ -335,6 +358,7 @@ impl Simulation {
                 ..Start::default()
             },
             limits,
+            me: MeMemory::default(),
         };
         if let Some(note) = sim.model.start_note() {
             sim.limits.warnings.push(note);
@@ -1072,6 +1096,7 @@ impl Simulation {
             integrator: self.integrator.snapshot(),
             journal: Some((self.journal, self.journal_t)),
             l1_speed: Some(self.l1_speed),
+            model_exchange: (self.me != MeMemory::default()).then(|| self.me.clone()),
         };
         serde_json::to_vec(&snap).expect("a snapshot serializes")
     }
@@ -1110,6 +1135,15 @@ impl Simulation {
         if let Some(s) = snap.l1_speed {
             self.l1_speed = s;
         }
+        let me = snap.model_exchange.unwrap_or_default();
+        let ne = self.model.n_events();
+        if !(me.g_ref.is_empty() || me.g_ref.len() == ne) || !(me.fired.is_empty() || me.fired.len() == ne) {
+            return Err(SimError::State(format!(
+                "the snapshot's event memory has {} values for {ne} event functions",
+                me.g_ref.len()
+            )));
+        }
+        self.me = me;
         // The discrete state first (the L1 operating point, the spall passes registered so
         // far), so that the inputs find the model where it was: no L1 re-solve, and no catch-up
         // from t = 0 (unbounded for a late snapshot) at the kinematic level.
@@ -1122,6 +1156,218 @@ impl Simulation {
             qs.applied_load = load;
         }
         self.model.update_mode(t, self.integrator.y());
+        Ok(())
+    }
+}
+
+/// Model Exchange: the importer integrates the continuous states ([`Simulation::state`],
+/// [`Simulation::derivatives`]) and locates the events ([`Simulation::event_functions`],
+/// [`Simulation::next_time_event`]); the simulation keeps the time, the state and the frozen
+/// discrete mode, which changes only at [`Simulation::event_update`]. The integrator of
+/// [`Simulation::advance`] only holds the time and the state here (so that
+/// [`Simulation::save_state`] and the outputs work unchanged); do not mix the two ways of
+/// running one simulation.
+impl Simulation {
+    /// Whether the importer can integrate this simulation (Model Exchange): not the kinematic
+    /// level (its signal is impulse trains registered lazily, spall pass by spall pass, on the
+    /// way to each output: no continuous dynamics of its own), and coupling mode force only (in
+    /// motion mode the journal's prescribed motion replaces the ring's states at every
+    /// communication point, a co-simulation device).
+    pub fn model_exchange_check(&self) -> Result<(), SimError> {
+        if self.scene.fidelity == crate::scene::Fidelity::Kinematic {
+            return Err(SimError::Unsupported(
+                "the kinematic level (L0) has no continuous dynamics of its own for an importer \
+                 to integrate: its pedestal signal is impulse responses registered pass by pass \
+                 on the way to each output; use it in Co-Simulation, or the quasi-static, \
+                 lumped, reduced or full level in Model Exchange"
+                    .into(),
+            ));
+        }
+        if self.scene.coupling != CouplingMode::Force {
+            return Err(SimError::Unsupported(
+                "coupling mode motion prescribes the journal over communication steps (a \
+                 co-simulation device); Model Exchange takes coupling mode force, where the \
+                 importer's loads act on the inner ring"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Number of continuous states of the level (the importer's vector may be longer: see
+    /// [`model_exchange_capacity`]).
+    pub fn state_dim(&self) -> usize {
+        self.model.dim()
+    }
+
+    /// Number of event functions of the level.
+    pub fn n_event_functions(&self) -> usize {
+        self.model.n_events()
+    }
+
+    /// The continuous state at [`Simulation::time`].
+    pub fn state(&self) -> &[f64] {
+        self.integrator.y()
+    }
+
+    /// Sets the time and the continuous state (`y` of length [`Simulation::state_dim`], finite)
+    /// at which the next evaluations are made. The discrete mode stays as it is.
+    pub fn set_state(&mut self, t: f64, y: &[f64]) -> Result<(), SimError> {
+        self.start.undoable = false;
+        self.integrator
+            .try_set_state(t, y)
+            .map_err(|e| SimError::Input(format!("continuous states: {e}")))
+    }
+
+    /// Sets the time of the next evaluations (the state is kept).
+    pub fn set_time(&mut self, t: f64) -> Result<(), SimError> {
+        if !t.is_finite() {
+            return Err(SimError::Input(format!("time {t} is not finite")));
+        }
+        self.start.undoable = false;
+        let n = self.model.dim();
+        self.y_scratch[..n].copy_from_slice(self.integrator.y());
+        self.integrator.set_state(t, &self.y_scratch[..n]);
+        Ok(())
+    }
+
+    /// The derivatives of the state at the current time, state and inputs in the frozen mode
+    /// (`dydt` of length [`Simulation::state_dim`]). No allocation.
+    pub fn derivatives(&mut self, dydt: &mut [f64]) {
+        let t = self.integrator.t();
+        self.model.rhs(t, self.integrator.y(), dydt);
+    }
+
+    /// The event functions at the current time and state (`g` of length
+    /// [`Simulation::n_event_functions`]): a sign change is an event.
+    pub fn event_functions(&mut self, g: &mut [f64]) {
+        let t = self.integrator.t();
+        self.model.events(t, self.integrator.y(), g);
+    }
+
+    /// Nominal magnitudes of the states (the absolute tolerance is rtol × nominal).
+    pub fn nominals(&self, out: &mut [f64]) {
+        self.model.nominal(out);
+    }
+
+    /// The next known discontinuity strictly after the current time (a time event), from the
+    /// current state and inputs.
+    pub fn next_time_event(&self) -> Option<f64> {
+        self.model
+            .next_stop(self.integrator.t(), self.integrator.y(), f64::INFINITY)
+    }
+
+    /// Takes the event functions at the current state as the reference of the next sign
+    /// changes (after the mode was re-derived).
+    fn me_reference(&mut self) {
+        let ne = self.model.n_events();
+        let mut g = std::mem::take(&mut self.me.g_ref);
+        g.resize(ne, 0.0);
+        self.event_functions(&mut g);
+        self.me.g_ref = g;
+        self.me.fired.clear();
+        self.me.fired.resize(ne, false);
+    }
+
+    /// Notes the sign changes of the event functions since the reference and takes the
+    /// current values as the new reference; true if any changed.
+    fn me_note_crossings(&mut self) -> bool {
+        let ne = self.model.n_events();
+        if self.me.g_ref.len() != ne {
+            self.me_reference();
+            return false;
+        }
+        let mut g = vec![0.0; ne];
+        self.event_functions(&mut g);
+        let mut any = false;
+        for ((r, &now), fired) in self.me.g_ref.iter_mut().zip(&g).zip(&mut self.me.fired) {
+            if (*r > 0.0) != (now > 0.0) {
+                *fired = true;
+                any = true;
+            }
+            *r = now;
+        }
+        any
+    }
+
+    /// The importer accepted a step at the current time and state: the event functions that
+    /// changed sign since the last step are noted as fired (the importer may not have located
+    /// the root itself); true if any did, i.e. an event is due.
+    pub fn step_completed(&mut self) -> bool {
+        self.me_note_crossings()
+    }
+
+    /// The event update at the current time and state (a located state event, a time event,
+    /// or inputs that changed the discrete state): the event functions that changed sign since
+    /// the last reference are reported fired ([`Model::event_fired`]), the discrete mode is
+    /// re-derived ([`Model::update_mode`]), and the contacts are checked against the pressure
+    /// limits. Returns the indices that fired.
+    pub fn event_update(&mut self) -> Result<Vec<usize>, SimError> {
+        self.me_note_crossings();
+        let fired: Vec<usize> = (0..self.me.fired.len())
+            .filter(|&i| self.me.fired[i])
+            .collect();
+        for &i in &fired {
+            self.model.event_fired(i);
+        }
+        let t = self.integrator.t();
+        self.model.update_mode(t, self.integrator.y());
+        self.integrator.discontinuity();
+        self.me_reference();
+        self.start.undoable = false;
+        let inputs = self.inputs;
+        self.check_contacts(|| crate::models::operating_point(&inputs))?;
+        Ok(fired)
+    }
+
+    /// Model Exchange in continuous-time mode: the new inputs act on the derivatives from now
+    /// on, but the discrete mode stays frozen until the next [`Simulation::event_update`].
+    /// Returns true when the change needs an event: the level re-solved its quasi-static
+    /// operating point (a discrete change of its cage speed) or the shaft speed changed (the
+    /// time events were predicted at the old speed). Loads that move within the level's
+    /// re-solve threshold need none. The same checks as [`Simulation::set_inputs`]; on an error
+    /// nothing changes.
+    pub fn set_inputs_continuous(&mut self, inputs: OperatingPoint) -> Result<bool, SimError> {
+        inputs.check().map_err(SimError::Input)?;
+        if inputs == self.inputs {
+            return Ok(false);
+        }
+        if self.scene.coupling != CouplingMode::Force {
+            return Err(SimError::Unsupported(
+                "continuous-time inputs exist in coupling mode force only".into(),
+            ));
+        }
+        let located = self.scene.mounting.axial == crate::scene::AxialMount::Located;
+        if located && inputs.fx != self.inputs.fx {
+            return Err(SimError::Input(format!(
+                "load.Fx = {} N cannot act on an axially located inner ring (it sets the ring's \
+                 axial place only at the start, {} N there)",
+                inputs.fx, self.inputs.fx
+            )));
+        }
+        self.limits.loads(&inputs, located)?;
+        self.start.undoable = false;
+        let before = self.model.discrete_state();
+        let t = self.integrator.t();
+        self.model.set_inputs(&inputs, t, self.integrator.y())?;
+        let speed_changed = inputs.shaft_speed != self.inputs.shaft_speed;
+        self.inputs = inputs;
+        Ok(speed_changed || self.model.discrete_state() != before)
+    }
+
+    /// Model Exchange in event mode (or at initialization): [`Simulation::set_inputs`], then the
+    /// event functions at the new mode become the reference of the next sign changes.
+    pub fn set_inputs_at_event(&mut self, inputs: OperatingPoint) -> Result<(), SimError> {
+        self.set_inputs(inputs)?;
+        self.me_reference();
+        Ok(())
+    }
+
+    /// Model Exchange: the start of the importer's integration (after initialization): the
+    /// event functions at the initial state become the reference of the first sign changes.
+    pub fn begin_model_exchange(&mut self) -> Result<(), SimError> {
+        self.model_exchange_check()?;
+        self.me_reference();
         Ok(())
     }
 }

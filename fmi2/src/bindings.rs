@@ -1,6 +1,6 @@
 //! FMI 2.0 C types (`fmi2TypesPlatform.h`, `fmi2FunctionTypes.h`), written for raceway.
 //!
-//! Only what a Co-Simulation FMU needs. Layouts follow the standard headers for the
+//! What a Co-Simulation and Model Exchange FMU needs. Layouts follow the standard headers for the
 //! "default" platform: `fmi2Boolean` is `int`, `fmi2ValueReference` is `unsigned int`.
 
 use std::os::raw::{c_char, c_int, c_uint, c_void};
@@ -86,6 +86,24 @@ pub const FMI2_LAST_SUCCESSFUL_TIME: Fmi2StatusKind = 2;
 /// `fmi2Terminated`.
 pub const FMI2_TERMINATED: Fmi2StatusKind = 3;
 
+/// `fmi2EventInfo`, filled by `fmi2NewDiscreteStates`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Fmi2EventInfo {
+    /// `newDiscreteStatesNeeded`.
+    pub new_discrete_states_needed: Fmi2Boolean,
+    /// `terminateSimulation`.
+    pub terminate_simulation: Fmi2Boolean,
+    /// `nominalsOfContinuousStatesChanged`.
+    pub nominals_of_continuous_states_changed: Fmi2Boolean,
+    /// `valuesOfContinuousStatesChanged`.
+    pub values_of_continuous_states_changed: Fmi2Boolean,
+    /// `nextEventTimeDefined`.
+    pub next_event_time_defined: Fmi2Boolean,
+    /// `nextEventTime`.
+    pub next_event_time: Fmi2Real,
+}
+
 /// `fmi2CallbackLogger`: C-variadic. raceway always calls it with the format `"%s"` and one
 /// string argument, so no importer-side formatting of our text can go wrong.
 pub type Fmi2CallbackLogger = unsafe extern "C" fn(
@@ -156,5 +174,8 @@ mod tests {
         );
         assert_eq!(std::mem::size_of::<Option<Fmi2CallbackLogger>>(), 8);
         assert_eq!(std::mem::size_of::<Fmi2Boolean>(), 4);
+        // five ints, then a double at offset 24 (8-byte aligned)
+        assert_eq!(std::mem::size_of::<Fmi2EventInfo>(), 32);
+        assert_eq!(std::mem::offset_of!(Fmi2EventInfo, next_event_time), 24);
     }
 }

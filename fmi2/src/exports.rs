@@ -1,8 +1,59 @@
 //! The C entry points. [`export_fmi2!`](crate::export_fmi2) expands to one `#[no_mangle]`
-//! function per FMI 2.0 Co-Simulation function, each forwarding to the generic shell for one
-//! model type. A cdylib can export them for one model only.
+//! function per FMI 2.0 function (the common, Co-Simulation and Model Exchange ones: 44), each
+//! forwarding to the generic shell for one model type. A cdylib can export them for one model
+//! only. A model without Model Exchange still exports its functions (they refuse: no instance
+//! of it is ever a Model Exchange one).
 
-/// Exports the FMI 2.0 CS functions for `$model` (an [`FmuModel`](crate::FmuModel)).
+/// The names of the functions [`export_fmi2!`] exports: the full FMI 2.0 set.
+pub const EXPORTED_FUNCTIONS: [&str; 44] = [
+    "fmi2GetTypesPlatform",
+    "fmi2GetVersion",
+    "fmi2SetDebugLogging",
+    "fmi2Instantiate",
+    "fmi2FreeInstance",
+    "fmi2SetupExperiment",
+    "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode",
+    "fmi2Terminate",
+    "fmi2Reset",
+    "fmi2GetReal",
+    "fmi2GetInteger",
+    "fmi2GetBoolean",
+    "fmi2GetString",
+    "fmi2SetReal",
+    "fmi2SetInteger",
+    "fmi2SetBoolean",
+    "fmi2SetString",
+    "fmi2GetFMUstate",
+    "fmi2SetFMUstate",
+    "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize",
+    "fmi2SerializeFMUstate",
+    "fmi2DeSerializeFMUstate",
+    "fmi2GetDirectionalDerivative",
+    "fmi2SetRealInputDerivatives",
+    "fmi2GetRealOutputDerivatives",
+    "fmi2DoStep",
+    "fmi2CancelStep",
+    "fmi2GetStatus",
+    "fmi2GetRealStatus",
+    "fmi2GetIntegerStatus",
+    "fmi2GetBooleanStatus",
+    "fmi2GetStringStatus",
+    "fmi2EnterEventMode",
+    "fmi2NewDiscreteStates",
+    "fmi2EnterContinuousTimeMode",
+    "fmi2CompletedIntegratorStep",
+    "fmi2SetTime",
+    "fmi2SetContinuousStates",
+    "fmi2GetDerivatives",
+    "fmi2GetEventIndicators",
+    "fmi2GetContinuousStates",
+    "fmi2GetNominalsOfContinuousStates",
+];
+
+/// Exports the FMI 2.0 functions (Co-Simulation and Model Exchange) for `$model` (an
+/// [`FmuModel`](crate::FmuModel)).
 #[macro_export]
 macro_rules! export_fmi2 {
     ($model:ty) => {
@@ -362,6 +413,102 @@ macro_rules! export_fmi2 {
                 // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
                 // point and of the shell function it forwards to.
                 unsafe { sh::get_string_status::<M>(c, kind, value) }
+            }
+
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2EnterEventMode(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::enter_event_mode::<M>(c) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2NewDiscreteStates(
+                c: Fmi2Component,
+                event_info: *mut Fmi2EventInfo,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::new_discrete_states::<M>(c, event_info) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: Fmi2Component) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::enter_continuous_time_mode::<M>(c) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
+                c: Fmi2Component,
+                no_set_fmu_state_prior: Fmi2Boolean,
+                enter_event_mode: *mut Fmi2Boolean,
+                terminate_simulation: *mut Fmi2Boolean,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe {
+                    sh::completed_integrator_step::<M>(
+                        c,
+                        no_set_fmu_state_prior,
+                        enter_event_mode,
+                        terminate_simulation,
+                    )
+                }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2SetTime(c: Fmi2Component, time: Fmi2Real) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::set_time::<M>(c, time) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2SetContinuousStates(
+                c: Fmi2Component,
+                x: *const Fmi2Real,
+                nx: usize,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::set_continuous_states::<M>(c, x, nx) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2GetDerivatives(
+                c: Fmi2Component,
+                derivatives: *mut Fmi2Real,
+                nx: usize,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::get_derivatives::<M>(c, derivatives, nx) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2GetEventIndicators(
+                c: Fmi2Component,
+                indicators: *mut Fmi2Real,
+                ni: usize,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::get_event_indicators::<M>(c, indicators, ni) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2GetContinuousStates(
+                c: Fmi2Component,
+                x: *mut Fmi2Real,
+                nx: usize,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::get_continuous_states::<M>(c, x, nx) }
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
+                c: Fmi2Component,
+                x_nominal: *mut Fmi2Real,
+                nx: usize,
+            ) -> Fmi2Status {
+                // SAFETY: the importer keeps the FMI 2.0 pointer rules, the contract of this entry
+                // point and of the shell function it forwards to.
+                unsafe { sh::get_nominals_of_continuous_states::<M>(c, x_nominal, nx) }
             }
         };
     };

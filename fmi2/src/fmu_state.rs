@@ -69,6 +69,7 @@ fn apply_blob<M: FmuModel>(me: &mut Instance<M>, fname: &str, bytes: &[u8]) -> F
     me.last_successful_time = snap.last_successful_time;
     me.terminated = snap.terminated;
     me.refused.clear();
+    me.inputs_changed = false;
     me.event(|| {
         format!(
             "{fname}: restored state at t = {} ({:?})",

@@ -11,7 +11,7 @@ use crate::logging::{
     Logger, LOG_CATEGORIES, LOG_STATUS_DISCARD, LOG_STATUS_ERROR, LOG_STATUS_FATAL,
     LOG_STATUS_WARNING,
 };
-use crate::model::{FmuModel, InstantiateArgs, StepResult};
+use crate::model::{FmuModel, InstantiateArgs, Interface, StepResult};
 use crate::variable::{Causality, VarType};
 use std::collections::HashMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -19,6 +19,11 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 pub use crate::fmu_state::{
     deserialize_fmu_state, free_fmu_state, get_fmu_state, serialize_fmu_state,
     serialized_fmu_state_size, set_fmu_state,
+};
+pub use crate::model_exchange::{
+    completed_integrator_step, enter_continuous_time_mode, enter_event_mode, get_continuous_states,
+    get_derivatives, get_event_indicators, get_nominals_of_continuous_states, new_discrete_states,
+    set_continuous_states, set_time,
 };
 pub use crate::values::{
     get_boolean, get_integer, get_real, get_string, set_boolean, set_integer, set_real, set_string,
@@ -113,20 +118,30 @@ unsafe fn instantiate_inner<M: FmuModel>(
         }
         None => return fail("", "the instance name is not valid UTF-8".into()),
     };
-    if fmu_type != FMI2_CO_SIMULATION {
-        return fail(
-            &name,
-            format!(
-                "fmuType = {fmu_type} ({}): {} supports Co-Simulation (fmi2CoSimulation = 1) only",
-                if fmu_type == FMI2_MODEL_EXCHANGE {
-                    "fmi2ModelExchange"
-                } else {
-                    "unknown"
-                },
-                M::MODEL_IDENTIFIER
-            ),
-        );
-    }
+    let interface = match fmu_type {
+        FMI2_CO_SIMULATION => Interface::CoSimulation,
+        FMI2_MODEL_EXCHANGE if M::MODEL_EXCHANGE => Interface::ModelExchange,
+        _ => {
+            return fail(
+                &name,
+                format!(
+                    "fmuType = {fmu_type} ({}): {} supports {}",
+                    if fmu_type == FMI2_MODEL_EXCHANGE {
+                        "fmi2ModelExchange"
+                    } else {
+                        "unknown"
+                    },
+                    M::MODEL_IDENTIFIER,
+                    if M::MODEL_EXCHANGE {
+                        "Model Exchange (fmi2ModelExchange = 0) and Co-Simulation \
+                         (fmi2CoSimulation = 1)"
+                    } else {
+                        "Co-Simulation (fmi2CoSimulation = 1) only"
+                    }
+                ),
+            )
+        }
+    };
     // SAFETY: fmuGUID is NULL or a C string (this function's contract).
     let Some(guid) = (unsafe { opt_str(fmu_guid) }) else {
         return fail(&name, "the GUID is NULL or not valid UTF-8".into());
@@ -145,6 +160,7 @@ unsafe fn instantiate_inner<M: FmuModel>(
         instance_name: name.clone(),
         resource_dir,
         logging_on: logging_on != 0,
+        interface,
     };
     let logger = Logger::new(cb, &name, logging_on != 0);
     let model = match M::instantiate(&args, &logger) {
@@ -173,6 +189,7 @@ unsafe fn instantiate_inner<M: FmuModel>(
     }
     let inst = Box::new(Instance {
         magic: INSTANCE_MAGIC,
+        interface,
         logger,
         initial_logging: logging_on != 0,
         state: CallState::Instantiated,
@@ -186,10 +203,12 @@ unsafe fn instantiate_inner<M: FmuModel>(
         terminated: false,
         strings: Vec::new(),
         refused: Vec::new(),
+        inputs_changed: false,
     });
     inst.event(|| {
         format!(
-            "fmi2Instantiate: instance '{name}' of {} created (GUID {guid})",
+            "fmi2Instantiate: {} instance '{name}' of {} created (GUID {guid})",
+            interface.name(),
             M::MODEL_IDENTIFIER
         )
     });
@@ -383,11 +402,16 @@ pub unsafe fn exit_initialization_mode<M: FmuModel>(c: Fmi2Component) -> Fmi2Sta
                     format!("{e} (the instance is now in the Error state; fmi2Reset to retry)"),
                 );
             }
-            me.state = CallState::StepComplete;
+            me.state = match me.interface {
+                Interface::CoSimulation => CallState::StepComplete,
+                // Model Exchange: the event mode of the initial event iteration.
+                Interface::ModelExchange => CallState::EventMode,
+            };
             me.time = me.start_time;
             me.last_successful_time = me.start_time;
             me.terminated = false;
-            me.event(|| format!("{F}: ready at t = {}", me.time));
+            me.inputs_changed = false;
+            me.event(|| format!("{F}: ready at t = {} ({:?})", me.time, me.state));
             Fmi2Status::Ok
         })
     }
@@ -697,7 +721,7 @@ pub unsafe fn cancel_step<M: FmuModel>(c: Fmi2Component) -> Fmi2Status {
 unsafe fn unsupported<M: FmuModel>(
     c: Fmi2Component,
     function: &'static str,
-    allowed: u8,
+    allowed: u16,
     why: &'static str,
 ) -> Fmi2Status {
     // SAFETY: the caller keeps the FMI 2.0 pointer rules (this function's contract): `c` is
@@ -736,6 +760,9 @@ unsafe fn status_query<M: FmuModel, T>(
     unsafe {
         with_instance::<M>(c, fname, |me| {
             if let Err(s) = me.check_state(fname, mask::STATUS) {
+                return s;
+            }
+            if let Err(s) = me.check_interface(fname, Interface::CoSimulation) {
                 return s;
             }
             if value.is_null() {

@@ -1,17 +1,20 @@
-//! The instance and its FMI 2.0 Co-Simulation call-state machine: one call-state mask per
-//! function (as in the Modelica Reference-FMUs' `fmi2Functions.c`), and the argument checks
-//! every function shares.
+//! The instance and its FMI 2.0 call-state machine, Co-Simulation and Model Exchange: one
+//! call-state mask per function (as in the Modelica Reference-FMUs' `fmi2Functions.c`), and the
+//! argument checks every function shares.
 
 use crate::bindings::Fmi2Status;
 use crate::logging::{Logger, LOG_EVENTS, LOG_STATUS_ERROR};
-use crate::model::FmuModel;
+use crate::model::{FmuModel, Interface};
 use crate::variable::{Causality, VarType, Variability};
 use std::collections::HashMap;
 use std::ffi::CString;
 
-/// FMI 2.0 Co-Simulation call states (bit flags so allowed sets are masks).
+/// FMI 2.0 call states of both interfaces (bit flags so allowed sets are masks). The states
+/// of one interface are never reached by an instance of the other (`StepComplete` … only in
+/// Co-Simulation, `EventMode` and `ContinuousTimeMode` only in Model Exchange), so one mask per
+/// function serves both.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u8)]
+#[repr(u16)]
 pub enum CallState {
     /// After `fmi2Instantiate` (and `fmi2Reset`).
     Instantiated = 1,
@@ -29,10 +32,16 @@ pub enum CallState {
     Error = 64,
     /// A panic was caught; only `fmi2FreeInstance` is possible.
     Fatal = 128,
+    /// Model Exchange: after `fmi2ExitInitializationMode` and `fmi2EnterEventMode` (discrete
+    /// changes are made here, by `fmi2NewDiscreteStates`).
+    EventMode = 256,
+    /// Model Exchange: after `fmi2EnterContinuousTimeMode`, where the importer integrates the
+    /// continuous states.
+    ContinuousTimeMode = 512,
 }
 
 impl CallState {
-    pub(crate) fn from_u8(b: u8) -> Option<Self> {
+    pub(crate) fn from_u16(b: u16) -> Option<Self> {
         Some(match b {
             1 => CallState::Instantiated,
             2 => CallState::InitializationMode,
@@ -42,56 +51,104 @@ impl CallState {
             32 => CallState::Terminated,
             64 => CallState::Error,
             128 => CallState::Fatal,
+            256 => CallState::EventMode,
+            512 => CallState::ContinuousTimeMode,
             _ => return None,
         })
     }
+
+    /// Whether an instance of `interface` can be in this state.
+    pub fn belongs_to(self, interface: Interface) -> bool {
+        let only_cs = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED;
+        let only_me = EVENT_MODE | CONTINUOUS_TIME_MODE;
+        match interface {
+            Interface::CoSimulation => self as u16 & only_me == 0,
+            Interface::ModelExchange => self as u16 & only_cs == 0,
+        }
+    }
 }
 
-const INSTANTIATED: u8 = CallState::Instantiated as u8;
-const INIT_MODE: u8 = CallState::InitializationMode as u8;
-const STEP_COMPLETE: u8 = CallState::StepComplete as u8;
-const STEP_FAILED: u8 = CallState::StepFailed as u8;
-const STEP_CANCELED: u8 = CallState::StepCanceled as u8;
-const TERMINATED: u8 = CallState::Terminated as u8;
-const ERROR: u8 = CallState::Error as u8;
+const INSTANTIATED: u16 = CallState::Instantiated as u16;
+const INIT_MODE: u16 = CallState::InitializationMode as u16;
+const STEP_COMPLETE: u16 = CallState::StepComplete as u16;
+const STEP_FAILED: u16 = CallState::StepFailed as u16;
+const STEP_CANCELED: u16 = CallState::StepCanceled as u16;
+const TERMINATED: u16 = CallState::Terminated as u16;
+const ERROR: u16 = CallState::Error as u16;
+const EVENT_MODE: u16 = CallState::EventMode as u16;
+const CONTINUOUS_TIME_MODE: u16 = CallState::ContinuousTimeMode as u16;
 
 /// The call states in which each FMI function is allowed, as masks of [`CallState`] bits.
 pub(crate) mod mask {
     use super::*;
-    pub const SET_DEBUG_LOGGING: u8 =
-        INSTANTIATED | INIT_MODE | STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
-    pub const SETUP_EXPERIMENT: u8 = INSTANTIATED;
-    pub const ENTER_INIT: u8 = INSTANTIATED;
-    pub const EXIT_INIT: u8 = INIT_MODE;
-    pub const TERMINATE: u8 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED;
-    pub const RESET: u8 = SET_DEBUG_LOGGING;
-    pub const GET: u8 =
-        INIT_MODE | STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
-    pub const SET: u8 = INSTANTIATED | INIT_MODE | STEP_COMPLETE;
-    pub const FMU_STATE: u8 = SET_DEBUG_LOGGING;
-    pub const DIRECTIONAL: u8 = GET;
-    pub const SET_INPUT_DERIVATIVES: u8 = INSTANTIATED | INIT_MODE | STEP_COMPLETE;
-    pub const GET_OUTPUT_DERIVATIVES: u8 =
+    pub const SET_DEBUG_LOGGING: u16 = INSTANTIATED
+        | INIT_MODE
+        | STEP_COMPLETE
+        | STEP_FAILED
+        | STEP_CANCELED
+        | TERMINATED
+        | ERROR
+        | EVENT_MODE
+        | CONTINUOUS_TIME_MODE;
+    pub const SETUP_EXPERIMENT: u16 = INSTANTIATED;
+    pub const ENTER_INIT: u16 = INSTANTIATED;
+    pub const EXIT_INIT: u16 = INIT_MODE;
+    pub const TERMINATE: u16 =
+        STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | EVENT_MODE | CONTINUOUS_TIME_MODE;
+    pub const RESET: u16 = SET_DEBUG_LOGGING;
+    pub const GET: u16 = INIT_MODE
+        | STEP_COMPLETE
+        | STEP_FAILED
+        | STEP_CANCELED
+        | TERMINATED
+        | ERROR
+        | EVENT_MODE
+        | CONTINUOUS_TIME_MODE;
+    /// `fmi2SetReal`: in continuous-time mode only continuous inputs ([`Instance::check_settable`]).
+    pub const SET_REAL: u16 =
+        INSTANTIATED | INIT_MODE | STEP_COMPLETE | EVENT_MODE | CONTINUOUS_TIME_MODE;
+    /// `fmi2SetInteger`, `fmi2SetBoolean`, `fmi2SetString`: not in continuous-time mode.
+    pub const SET: u16 = INSTANTIATED | INIT_MODE | STEP_COMPLETE | EVENT_MODE;
+    pub const FMU_STATE: u16 = SET_DEBUG_LOGGING;
+    pub const DIRECTIONAL: u16 = GET;
+    pub const SET_INPUT_DERIVATIVES: u16 = INSTANTIATED | INIT_MODE | STEP_COMPLETE;
+    pub const GET_OUTPUT_DERIVATIVES: u16 =
         STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED | ERROR;
-    pub const DO_STEP: u8 = STEP_COMPLETE;
-    pub const CANCEL_STEP: u8 = 0; // no step is ever in progress (synchronous FMU)
-    pub const STATUS: u8 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED;
+    pub const DO_STEP: u16 = STEP_COMPLETE;
+    pub const CANCEL_STEP: u16 = 0; // no step is ever in progress (synchronous FMU)
+    pub const STATUS: u16 = STEP_COMPLETE | STEP_FAILED | STEP_CANCELED | TERMINATED;
+
+    // Model Exchange.
+    pub const SET_TIME: u16 = EVENT_MODE | CONTINUOUS_TIME_MODE;
+    pub const SET_CONTINUOUS_STATES: u16 = CONTINUOUS_TIME_MODE;
+    pub const ENTER_EVENT_MODE: u16 = EVENT_MODE | CONTINUOUS_TIME_MODE;
+    pub const NEW_DISCRETE_STATES: u16 = EVENT_MODE;
+    pub const ENTER_CONTINUOUS_TIME_MODE: u16 = EVENT_MODE;
+    pub const COMPLETED_INTEGRATOR_STEP: u16 = CONTINUOUS_TIME_MODE;
+    pub const GET_EVENT_INDICATORS: u16 =
+        INIT_MODE | EVENT_MODE | CONTINUOUS_TIME_MODE | TERMINATED | ERROR;
+    pub const GET_CONTINUOUS_STATES: u16 = GET_EVENT_INDICATORS;
+    pub const GET_DERIVATIVES: u16 = EVENT_MODE | CONTINUOUS_TIME_MODE | TERMINATED | ERROR;
+    pub const GET_NOMINALS: u16 =
+        INSTANTIATED | EVENT_MODE | CONTINUOUS_TIME_MODE | TERMINATED | ERROR;
 }
 
 /// The states of `mask`, for messages.
-pub(crate) fn mask_names(mask: u8) -> String {
+pub(crate) fn mask_names(mask: u16) -> String {
     let all = [
         CallState::Instantiated,
         CallState::InitializationMode,
         CallState::StepComplete,
         CallState::StepFailed,
         CallState::StepCanceled,
+        CallState::EventMode,
+        CallState::ContinuousTimeMode,
         CallState::Terminated,
         CallState::Error,
     ];
     let v: Vec<String> = all
         .iter()
-        .filter(|s| mask & (**s as u8) != 0)
+        .filter(|s| mask & (**s as u16) != 0)
         .map(|s| format!("{s:?}"))
         .collect();
     if v.is_empty() {
@@ -111,6 +168,8 @@ pub const STOP_EPS: f64 = 1e-9;
 /// One FMU instance (owned by the importer through an opaque pointer).
 pub struct Instance<M: FmuModel> {
     pub(crate) magic: u64,
+    /// The interface the instance was created for (`fmuType`).
+    pub(crate) interface: Interface,
     pub(crate) logger: Logger,
     pub(crate) initial_logging: bool,
     pub(crate) state: CallState,
@@ -129,6 +188,9 @@ pub struct Instance<M: FmuModel> {
     /// run on them until they are set again (a master that ignores a setter's status learns
     /// it there).
     pub(crate) refused: Vec<(usize, String)>,
+    /// Model Exchange: an input was set in continuous-time mode since the last completed
+    /// integrator step (the model decides whether that needs an event).
+    pub(crate) inputs_changed: bool,
 }
 
 impl<M: FmuModel> Instance<M> {
@@ -140,9 +202,13 @@ impl<M: FmuModel> Instance<M> {
     pub fn call_state(&self) -> CallState {
         self.state
     }
-    /// The current communication point.
+    /// The current communication point (Co-Simulation) or the time last set (Model Exchange).
     pub fn time(&self) -> f64 {
         self.time
+    }
+    /// The interface the instance was created for.
+    pub fn interface(&self) -> Interface {
+        self.interface
     }
 
     pub(crate) fn error(&self, fname: &str, message: impl AsRef<str>) -> Fmi2Status {
@@ -160,8 +226,8 @@ impl<M: FmuModel> Instance<M> {
         }
     }
 
-    pub(crate) fn check_state(&self, fname: &str, allowed: u8) -> Result<(), Fmi2Status> {
-        if self.state as u8 & allowed != 0 {
+    pub(crate) fn check_state(&self, fname: &str, allowed: u16) -> Result<(), Fmi2Status> {
+        if self.state as u16 & allowed != 0 {
             Ok(())
         } else {
             Err(self.error(
@@ -209,7 +275,21 @@ impl<M: FmuModel> Instance<M> {
                 ),
             ));
         }
-        if self.state == CallState::StepComplete
+        if self.state == CallState::ContinuousTimeMode
+            && !(v.causality == Causality::Input && v.variability == Variability::Continuous)
+        {
+            return Err(self.error(
+                fname,
+                format!(
+                    "'{}' is a {} {}: in continuous-time mode only continuous inputs can be set \
+                     (set it in event mode)",
+                    v.name,
+                    v.variability.name(),
+                    v.causality.name()
+                ),
+            ));
+        }
+        if matches!(self.state, CallState::StepComplete | CallState::EventMode)
             && v.causality == Causality::Parameter
             && v.variability != Variability::Tunable
         {
@@ -263,6 +343,28 @@ impl<M: FmuModel> Instance<M> {
         self.terminated = false;
         self.strings.clear();
         self.refused.clear();
+        self.inputs_changed = false;
+    }
+
+    /// Refuses a function of the other interface (`fname` belongs to `interface` only).
+    pub(crate) fn check_interface(
+        &self,
+        fname: &str,
+        interface: Interface,
+    ) -> Result<(), Fmi2Status> {
+        if self.interface == interface {
+            Ok(())
+        } else {
+            Err(self.error(
+                fname,
+                format!(
+                    "illegal call: {fname} is a {} function, and this instance was instantiated \
+                     for {}",
+                    interface.name(),
+                    self.interface.name()
+                ),
+            ))
+        }
     }
 
     /// Records that a `fmi2Set*` call refused the values of `indices` (all of its values are

@@ -1,5 +1,5 @@
-//! A generic FMI 2.0 Co-Simulation shell: everything an FMU needs around a model, and no
-//! physics.
+//! A generic FMI 2.0 shell, Co-Simulation and Model Exchange: everything an FMU needs around a
+//! model, and no physics.
 //!
 //! A model implements [`FmuModel`] (its variable table, its step, its own part of the FMU
 //! state); [`export_fmi2!`] generates the `#[no_mangle] fmi2*` C entry points of a cdylib, which
@@ -11,6 +11,7 @@
 //! - [`model`]: the [`FmuModel`] trait;
 //! - [`instance`]: the instance and its call-state machine (one mask per function);
 //! - [`functions`], [`values`], [`fmu_state`]: the FMI functions, generic over the model;
+//!   [`model_exchange`]: the Model Exchange functions (`fmi2SetTime` … `fmi2CompletedIntegratorStep`);
 //! - [`state_format`]: the serialized FMU-state format (header, shell part, model part,
 //!   checksum);
 //! - [`exports`]: the [`export_fmi2!`] macro;
@@ -45,6 +46,7 @@ pub mod functions;
 pub mod instance;
 pub mod logging;
 pub mod model;
+pub mod model_exchange;
 pub mod sha256;
 pub mod state_format;
 pub mod table;
@@ -58,5 +60,5 @@ pub use logging::{
     Logger, LOG_ALL, LOG_CATEGORIES, LOG_EVENTS, LOG_SOLVER, LOG_STATUS_DISCARD, LOG_STATUS_ERROR,
     LOG_STATUS_FATAL, LOG_STATUS_WARNING,
 };
-pub use model::{FmuModel, InstantiateArgs, StepResult};
+pub use model::{EventUpdate, FmuModel, InstantiateArgs, Interface, StepEnd, StepResult};
 pub use variable::{Causality, Initial, Start, VarType, Variability, Variable};

@@ -4,6 +4,32 @@ use crate::logging::Logger;
 use crate::variable::Variable;
 use std::path::PathBuf;
 
+/// The FMI 2.0 interface an instance runs (`fmuType` of `fmi2Instantiate`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interface {
+    /// `fmi2ModelExchange`: the importer integrates the continuous states.
+    ModelExchange,
+    /// `fmi2CoSimulation`: the FMU integrates itself in `fmi2DoStep`.
+    CoSimulation,
+}
+
+impl Interface {
+    /// The interface's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Interface::ModelExchange => "Model Exchange",
+            Interface::CoSimulation => "Co-Simulation",
+        }
+    }
+    /// The other interface.
+    pub fn other(self) -> Self {
+        match self {
+            Interface::ModelExchange => Interface::CoSimulation,
+            Interface::CoSimulation => Interface::ModelExchange,
+        }
+    }
+}
+
 /// What `fmi2Instantiate` hands to [`FmuModel::instantiate`].
 #[derive(Debug, Clone)]
 pub struct InstantiateArgs {
@@ -13,6 +39,39 @@ pub struct InstantiateArgs {
     pub resource_dir: Option<PathBuf>,
     /// The `loggingOn` of `fmi2Instantiate`.
     pub logging_on: bool,
+    /// The interface the instance is for (Model Exchange only if
+    /// [`FmuModel::MODEL_EXCHANGE`]).
+    pub interface: Interface,
+}
+
+/// What [`FmuModel::new_discrete_states`] reports: the `fmi2EventInfo` of
+/// `fmi2NewDiscreteStates`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EventUpdate {
+    /// Another `fmi2NewDiscreteStates` is needed (the event iteration has not converged).
+    pub new_discrete_states_needed: bool,
+    /// The model asks the importer to stop.
+    pub terminate_simulation: bool,
+    /// The nominals of the continuous states changed.
+    pub nominals_changed: bool,
+    /// The values of the continuous states changed (the importer reads them again).
+    pub states_changed: bool,
+    /// The next time event, absolute time (`None`: none known).
+    pub next_event_time: Option<f64>,
+    /// Warnings the model raised (logged with status fmi2Warning; the call returns fmi2Warning).
+    pub warnings: Vec<String>,
+}
+
+/// What [`FmuModel::completed_integrator_step`] reports.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StepEnd {
+    /// The model asks for an event (e.g. an input changed in continuous-time mode in a way
+    /// that needs a discrete change).
+    pub enter_event_mode: bool,
+    /// The model asks the importer to stop.
+    pub terminate_simulation: bool,
+    /// Warnings the model raised (logged with status fmi2Warning; the call returns fmi2Warning).
+    pub warnings: Vec<String>,
 }
 
 /// Outcome of one communication step.
@@ -39,9 +98,17 @@ pub enum StepResult {
 /// A model behind the shell. Indices are positions in [`FmuModel::variables`]; the shell has
 /// already checked the value reference, the type, the causality and the call state, that reals
 /// are finite, and the declared min/max.
+///
+/// Model Exchange is optional: a model that sets [`FmuModel::MODEL_EXCHANGE`] provides the
+/// functions from [`FmuModel::number_of_continuous_states`] on (their defaults refuse); the
+/// others are refused at `fmi2Instantiate` with `fmuType = fmi2ModelExchange`. The shell checks
+/// the call state, the interface, the array lengths (equal to the declared numbers) and that
+/// states and times are finite before it calls them. Times are absolute.
 pub trait FmuModel: Send + Sized + 'static {
     /// `modelIdentifier`.
     const MODEL_IDENTIFIER: &'static str;
+    /// Whether the model provides Model Exchange (the `<ModelExchange>` element).
+    const MODEL_EXCHANGE: bool = false;
 
     /// Builds the model for a new instance (reads resources); an `Err` makes `fmi2Instantiate`
     /// return NULL with that message.
@@ -126,6 +193,64 @@ pub trait FmuModel: Send + Sized + 'static {
         _dv_unknown: &mut [f64],
     ) -> Result<(), String> {
         Err("not provided by this FMU (providesDirectionalDerivative=\"false\")".into())
+    }
+
+    /// Model Exchange: the number of continuous states of the model description (fixed for the
+    /// FMU; a model with fewer states in some configuration pads).
+    fn number_of_continuous_states(&self) -> usize {
+        0
+    }
+    /// Model Exchange: `numberOfEventIndicators` of the model description (fixed likewise).
+    fn number_of_event_indicators(&self) -> usize {
+        0
+    }
+    /// `fmi2SetTime` (event or continuous-time mode).
+    fn set_time(&mut self, _t: f64) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2SetContinuousStates` (continuous-time mode; finite values, the declared number).
+    fn set_continuous_states(&mut self, _x: &[f64]) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2GetContinuousStates` (from initialization mode on).
+    fn get_continuous_states(&mut self, _x: &mut [f64]) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2GetDerivatives` at the current time, states and inputs.
+    fn get_derivatives(&mut self, _dx: &mut [f64]) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2GetEventIndicators` at the current time, states and inputs (from initialization
+    /// mode on).
+    fn get_event_indicators(&mut self, _g: &mut [f64]) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2GetNominalsOfContinuousStates` (also in the instantiated state).
+    fn get_nominals(&mut self, _n: &mut [f64]) -> Result<(), String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2EnterEventMode` (from continuous-time mode, or again in event mode).
+    fn enter_event_mode(&mut self) -> Result<(), String> {
+        Ok(())
+    }
+    /// `fmi2NewDiscreteStates`: the event update at the current time and states (after
+    /// `fmi2ExitInitializationMode` and every `fmi2EnterEventMode`).
+    fn new_discrete_states(&mut self, _log: &Logger) -> Result<EventUpdate, String> {
+        Err("Model Exchange is not provided by this FMU".into())
+    }
+    /// `fmi2EnterContinuousTimeMode`.
+    fn enter_continuous_time_mode(&mut self) -> Result<(), String> {
+        Ok(())
+    }
+    /// `fmi2CompletedIntegratorStep`: the importer accepted a step at the current time and
+    /// states; `inputs_changed` says whether an input was set in continuous-time mode since
+    /// the last call (or since continuous-time mode was entered).
+    fn completed_integrator_step(
+        &mut self,
+        _inputs_changed: bool,
+        _log: &Logger,
+    ) -> Result<StepEnd, String> {
+        Err("Model Exchange is not provided by this FMU".into())
     }
 
     /// The model's own part of an FMU state (pointer-free bytes).

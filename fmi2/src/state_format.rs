@@ -11,7 +11,8 @@ pub(crate) const FMU_STATE_MAGIC: u64 = 0x5241_4345_5741_5953; // "RACEWAYS"
 /// Magic bytes and version of the serialized FMU state.
 pub const STATE_MAGIC: &[u8; 8] = b"RWYFMUST";
 /// Version of the format written by this shell.
-pub const STATE_FORMAT_VERSION: u32 = 1;
+// 2: the call state as a u32 (the Model Exchange states are bits 8 and 9).
+pub const STATE_FORMAT_VERSION: u32 = 2;
 
 /// A saved FMU state (what `fmi2FMUstate` points to): the serialized bytes.
 pub(crate) struct SavedState {
@@ -27,7 +28,7 @@ impl<M: FmuModel> Instance<M> {
             .u32(STATE_FORMAT_VERSION)
             .str(M::MODEL_IDENTIFIER)
             .str(self.model.guid())
-            .u8(self.state as u8)
+            .u32(self.state as u32)
             .f64(self.time)
             .f64(self.start_time)
             .opt_f64(self.stop_time)
@@ -77,10 +78,20 @@ impl<M: FmuModel> Instance<M> {
                 self.model.guid()
             ));
         }
-        let state_byte = r.u8("call state")?;
-        let state = CallState::from_u8(state_byte)
+        let state_code = r.u32("call state")?;
+        let state = u16::try_from(state_code)
+            .ok()
+            .and_then(CallState::from_u16)
             .filter(|s| *s != CallState::Fatal)
-            .ok_or_else(|| format!("corrupt state: call state {state_byte}"))?;
+            .ok_or_else(|| format!("corrupt state: call state {state_code}"))?;
+        if !state.belongs_to(self.interface) {
+            return Err(format!(
+                "the state was saved by a {} instance (call state {state:?}); this instance is \
+                 {}",
+                self.interface.other().name(),
+                self.interface.name()
+            ));
+        }
         let snap = ShellSnapshot {
             state,
             time: r.f64("time")?,

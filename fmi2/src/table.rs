@@ -49,6 +49,7 @@ impl<A> Row<A> {
             start,
             min: self.min,
             max: self.max,
+            derivative_of: None,
         }
     }
 }

@@ -151,6 +151,7 @@ pub unsafe fn get_string<M: FmuModel>(
 unsafe fn set_values<M: FmuModel, T: Copy>(
     c: Fmi2Component,
     fname: &'static str,
+    allowed: u16,
     vt: VarType,
     vr: *const Fmi2ValueReference,
     n: usize,
@@ -163,7 +164,7 @@ unsafe fn set_values<M: FmuModel, T: Copy>(
     // for its length, which is what with_instance, slice_in/slice_out and the writes need.
     unsafe {
         with_instance::<M>(c, fname, |me| {
-            if let Err(s) = me.check_state(fname, mask::SET) {
+            if let Err(s) = me.check_state(fname, allowed) {
                 return s;
             }
             let (Some(vrs), Some(vals)) = (slice_in(vr, n), slice_in(value, n)) else {
@@ -207,6 +208,9 @@ unsafe fn set_values<M: FmuModel, T: Copy>(
                 }
             }
             me.refused.retain(|(i, _)| !idx.contains(i));
+            if me.state == CallState::ContinuousTimeMode && !idx.is_empty() {
+                me.inputs_changed = true;
+            }
             Fmi2Status::Ok
         })
     }
@@ -229,6 +233,7 @@ pub unsafe fn set_real<M: FmuModel>(
         set_values::<M, f64>(
             c,
             "fmi2SetReal",
+            mask::SET_REAL,
             VarType::Real,
             vr,
             n,
@@ -256,6 +261,7 @@ pub unsafe fn set_integer<M: FmuModel>(
         set_values::<M, i32>(
             c,
             "fmi2SetInteger",
+            mask::SET,
             VarType::Integer,
             vr,
             n,
@@ -283,6 +289,7 @@ pub unsafe fn set_boolean<M: FmuModel>(
         set_values::<M, Fmi2Boolean>(
             c,
             "fmi2SetBoolean",
+            mask::SET,
             VarType::Boolean,
             vr,
             n,
@@ -310,6 +317,7 @@ pub unsafe fn set_string<M: FmuModel>(
         set_values::<M, Fmi2String>(
             c,
             "fmi2SetString",
+            mask::SET,
             VarType::String,
             vr,
             n,

@@ -151,6 +151,9 @@ pub struct Variable {
     pub min: Option<f64>,
     /// Inclusive upper bound (see `min`).
     pub max: Option<f64>,
+    /// Model Exchange: the value reference of the continuous state this variable is the
+    /// derivative of (the XML's `derivative` attribute, written as that state's index).
+    pub derivative_of: Option<u32>,
 }
 
 impl Variable {

@@ -1,4 +1,5 @@
-//! `modelDescription.xml` writer (FMI 2.0 Co-Simulation), driven by a variable table.
+//! `modelDescription.xml` writer (FMI 2.0 Co-Simulation, and Model Exchange when the model
+//! provides it), driven by a variable table.
 
 use crate::sha256::guid_from;
 use crate::{Causality, Initial, Start, VarType, Variable, LOG_CATEGORIES};
@@ -32,6 +33,11 @@ pub struct ModelInfo {
     /// `providesDirectionalDerivative` (the model implements
     /// [`crate::FmuModel::directional_derivative`]).
     pub provides_directional_derivative: bool,
+    /// Model Exchange: `Some(numberOfEventIndicators)` writes the `<ModelExchange>` element
+    /// (same `modelIdentifier`) and the `Derivatives` of the model structure: the continuous
+    /// states are the variables that the derivatives (those with
+    /// [`Variable::derivative_of`]) name. `None`: Co-Simulation only.
+    pub model_exchange: Option<usize>,
 }
 
 /// Placeholder for the GUID while hashing.
@@ -117,14 +123,31 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
   license="{}"
   generationTool="{}"
   variableNamingConvention="structured"
-  numberOfEventIndicators="0">"#,
+  numberOfEventIndicators="{}">"#,
         esc(&info.model_name),
         esc(&info.description),
         esc(&info.author),
         esc(&info.version),
         esc(&info.license),
         esc(&info.generation_tool),
+        info.model_exchange.unwrap_or(0),
     );
+    if info.model_exchange.is_some() {
+        let _ = writeln!(
+            w,
+            r#"  <ModelExchange
+    modelIdentifier="{}"
+    needsExecutionTool="false"
+    completedIntegratorStepNotNeeded="false"
+    canBeInstantiatedOnlyOncePerProcess="false"
+    canNotUseMemoryManagementFunctions="true"
+    canGetAndSetFMUstate="true"
+    canSerializeFMUstate="true"
+    providesDirectionalDerivative="{}"/>"#,
+            esc(&info.model_identifier),
+            info.provides_directional_derivative
+        );
+    }
     let _ = writeln!(
         w,
         r#"  <CoSimulation
@@ -230,6 +253,19 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
         num(info.step_size)
     );
 
+    // Index (1-based) of the variable with value reference `vr`.
+    let index_of = |vr: u32| {
+        vars.iter()
+            .position(|v| v.vr == vr)
+            .map(|i| i + 1)
+            .expect("a derivative names the value reference of a variable of the table")
+    };
+    // Model Exchange: the derivatives and their states, by index.
+    let derivatives: Vec<(usize, usize)> = vars
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| v.derivative_of.map(|s| (i + 1, index_of(s))))
+        .collect();
     let _ = writeln!(w, "  <ModelVariables>");
     for (i, v) in vars.iter().enumerate() {
         let _ = writeln!(w, "    <!-- index {} -->", i + 1);
@@ -251,6 +287,9 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
         }
         if let Some(u) = &v.unit {
             let _ = write!(attrs, r#" unit="{}""#, esc(u));
+        }
+        if let Some(state) = v.derivative_of {
+            let _ = write!(attrs, r#" derivative="{}""#, index_of(state));
         }
         if let Some(d) = &v.display_unit {
             let _ = write!(attrs, r#" displayUnit="{}""#, esc(d));
@@ -287,12 +326,17 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
 
     // Outputs depend on every input (conservative: the bearing forces respond to the loads
     // and the speed through the state, and some levels are algebraic in the inputs).
-    let inputs: Vec<usize> = vars
+    // With Model Exchange the outputs depend on the continuous states too (its knowns are the
+    // inputs and the states, in index order).
+    let mut inputs: Vec<usize> = vars
         .iter()
         .enumerate()
         .filter(|(_, v)| v.causality == Causality::Input)
         .map(|(i, _)| i + 1)
         .collect();
+    inputs.extend(derivatives.iter().map(|&(_, s)| s));
+    inputs.sort_unstable();
+    inputs.dedup();
     let deps = inputs
         .iter()
         .map(|i| i.to_string())
@@ -311,13 +355,26 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
         }
     }
     let _ = writeln!(w, "    </Outputs>");
-    // Every calculated output is an initial unknown; no `dependencies` attribute = it may
+    if !derivatives.is_empty() {
+        // No `dependencies`: each derivative may depend on every state and input.
+        let _ = writeln!(w, "    <Derivatives>");
+        for &(d, _) in &derivatives {
+            let _ = writeln!(w, r#"      <Unknown index="{d}"/>"#);
+        }
+        let _ = writeln!(w, "    </Derivatives>");
+    }
+    // Every calculated output is an initial unknown, and so are the continuous states and
+    // their derivatives (computed at initialization); no `dependencies` attribute = it may
     // depend on all knowns (inputs and parameters), which is the honest statement.
     let _ = writeln!(w, "    <InitialUnknowns>");
     for (i, v) in vars.iter().enumerate() {
         let calculated = matches!(v.initial, Some(Initial::Calculated) | Some(Initial::Approx));
+        let me_unknown = derivatives
+            .iter()
+            .any(|&(d, s)| d == i + 1 || s == i + 1);
         if (v.causality == Causality::Output && calculated)
             || v.causality == Causality::CalculatedParameter
+            || me_unknown
         {
             let _ = writeln!(w, r#"      <Unknown index="{}"/>"#, i + 1);
         }

@@ -52,6 +52,7 @@ fn var(
         start,
         min: None,
         max: None,
+        derivative_of: None,
     }
 }
 

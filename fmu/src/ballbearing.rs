@@ -4,7 +4,10 @@
 
 use crate::variables::{journal_get, journal_set, params, table, Access, Config, ROWS};
 use fmi2::codec::{ByteReader, ByteWriter};
-use fmi2::{FmuModel, InstantiateArgs, Logger, StepResult, Variable, LOG_EVENTS, LOG_SOLVER};
+use fmi2::{
+    EventUpdate, FmuModel, InstantiateArgs, Interface, Logger, StepEnd, StepResult, Variable,
+    LOG_EVENTS, LOG_SOLVER,
+};
 use raceway::{
     out, BearingFile, CouplingMode, Journal, OperatingPoint, RingLoad, Scene, SimError, Simulation,
 };
@@ -16,7 +19,8 @@ pub const BEARING_RESOURCE: &str = "bearing.toml";
 /// Version of the model part of the serialized FMU state.
 // 3: the operating point in SI units (shaft speed in rad/s, force components).
 // 4: the transmission-line inputs and the line's force at the start.
-const MODEL_STATE_VERSION: u32 = 4;
+// 5: Model Exchange's mode flags (continuous-time mode, an event asked for by an input).
+const MODEL_STATE_VERSION: u32 = 5;
 
 /// Reads `resources/bearing.toml`, or the default preset when there is none.
 pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
@@ -61,6 +65,7 @@ pub struct SetUndo {
     journal_by_master: bool,
     line: [f64; 5],
     line_by_master: bool,
+    me_input_event: bool,
     /// The live simulation's state, if the call sets two or more values that reach it (each
     /// input reaches it as it is set, as before this call-level undo existed).
     sim: Option<Vec<u8>>,
@@ -108,6 +113,18 @@ pub struct BallBearing {
     outputs_valid: bool,
     /// Where a step computes the outputs at its end before it accepts them.
     step_outputs: Vec<f64>,
+    /// The interface of the instance (`fmuType`).
+    interface: Interface,
+    /// Model Exchange: the numbers of continuous states and event indicators the model
+    /// description declares (the most of any level on this bearing; see
+    /// [`raceway::model_exchange_capacity`]).
+    me_nx: usize,
+    me_ni: usize,
+    /// Model Exchange: in continuous-time mode (inputs then act without changing the discrete
+    /// mode), and whether an input set there needs an event (asked for at the next completed
+    /// integrator step).
+    me_continuous: bool,
+    me_input_event: bool,
 }
 
 fn sim_err(e: SimError) -> String {
@@ -125,6 +142,7 @@ impl BallBearing {
             .iter()
             .filter(|e| matches!(e.role, Access::Output(_)))
             .count();
+        let (me_nx, me_ni) = raceway::model_exchange_capacity(bearing.bearing.z as usize);
         Self {
             guid,
             vars: entries.iter().map(|e| e.var.clone()).collect(),
@@ -148,7 +166,18 @@ impl BallBearing {
             outputs: vec![0.0; n_out],
             outputs_valid: false,
             step_outputs: vec![0.0; n_out],
+            interface: Interface::CoSimulation,
+            me_nx,
+            me_ni,
+            me_continuous: false,
+            me_input_event: false,
         }
+    }
+
+    /// Model Exchange: the live simulation (after initialization; before it, the provisional
+    /// one that answers queries in initialization mode).
+    fn me_live(&mut self) -> Result<&mut Live, String> {
+        self.ensure_live()
     }
 
     /// Inputs the master has set that `coupling` ignores, each kind reported once per instance:
@@ -395,7 +424,9 @@ impl FmuModel for BallBearing {
                 ),
             );
         }
-        Ok(Self::new(&bearing))
+        let mut m = Self::new(&bearing);
+        m.interface = args.interface;
+        Ok(m)
     }
 
     fn guid(&self) -> &str {
@@ -428,8 +459,22 @@ impl FmuModel for BallBearing {
     }
 
     fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        if self.interface == Interface::ModelExchange && self.cfg.tlm {
+            return Err(
+                "Model Exchange: coupling = 2 (tlm) is refused: the transmission line exchanges \
+                 waves over communication steps, a co-simulation device; in Model Exchange \
+                 couple by force (coupling = 0) and let the importer integrate the bearing and \
+                 its partner together"
+                    .into(),
+            );
+        }
         // Always rebuild: the provisional simulation may predate the last parameter change.
         let mut live = self.build()?;
+        if self.interface == Interface::ModelExchange {
+            live.sim
+                .begin_model_exchange()
+                .map_err(|e| format!("Model Exchange: {}", sim_err(e)))?;
+        }
         let mut warnings = live.sim.take_warnings();
         warnings.extend(self.ignored_inputs(live.scene.coupling));
         for w in warnings {
@@ -466,6 +511,8 @@ impl FmuModel for BallBearing {
         self.outputs_valid = false;
         self.stable_step = None;
         self.stable_step_reported = false;
+        self.me_continuous = false;
+        self.me_input_event = false;
         if let Some(note) = self.coupling_note() {
             if log.enabled(LOG_EVENTS) {
                 log.log(fmi2::bindings::Fmi2Status::Ok, LOG_EVENTS, &note);
@@ -600,6 +647,8 @@ impl FmuModel for BallBearing {
         self.initialized = false;
         self.live = None;
         self.outputs_valid = false;
+        self.me_continuous = false;
+        self.me_input_event = false;
         Ok(())
     }
 
@@ -627,6 +676,16 @@ impl FmuModel for BallBearing {
                 self.refresh_outputs()?;
                 Ok(self.outputs[i])
             }
+            Access::State(i) => {
+                let live = self.ensure_live()?;
+                Ok(live.sim.state().get(i).copied().unwrap_or(0.0))
+            }
+            Access::Derivative(i) => {
+                let live = self.ensure_live()?;
+                let mut d = vec![0.0; live.sim.state_dim()];
+                live.sim.derivatives(&mut d);
+                Ok(d.get(i).copied().unwrap_or(0.0))
+            }
             Access::Stat(_) => Err("not a Real".into()),
         }
     }
@@ -643,7 +702,20 @@ impl FmuModel for BallBearing {
                         fz: next.fz + oz,
                         ..next
                     };
-                    live.sim.set_inputs(model).map_err(sim_err)?;
+                    match (self.interface, self.me_continuous) {
+                        (Interface::CoSimulation, _) => {
+                            live.sim.set_inputs(model).map_err(sim_err)?
+                        }
+                        // Model Exchange, continuous-time mode: the inputs act at once, the
+                        // discrete mode waits for an event (asked for when needed).
+                        (Interface::ModelExchange, true) => {
+                            self.me_input_event |=
+                                live.sim.set_inputs_continuous(model).map_err(sim_err)?
+                        }
+                        (Interface::ModelExchange, false) => {
+                            live.sim.set_inputs_at_event(model).map_err(sim_err)?
+                        }
+                    }
                 } else {
                     next.check().map_err(|m| sim_err(SimError::Input(m)))?;
                 }
@@ -789,6 +861,7 @@ impl FmuModel for BallBearing {
             journal_by_master: self.journal_by_master,
             line: self.line,
             line_by_master: self.line_by_master,
+            me_input_event: self.me_input_event,
             sim,
         }
     }
@@ -804,6 +877,7 @@ impl FmuModel for BallBearing {
         self.journal_by_master = undo.journal_by_master;
         self.line = undo.line;
         self.line_by_master = undo.line_by_master;
+        self.me_input_event = undo.me_input_event;
         self.invalidate();
         if let (Some(bytes), Some(live)) = (undo.sim, self.live.as_mut()) {
             live.sim.restore_state(&bytes).map_err(sim_err)?;
@@ -833,7 +907,9 @@ impl FmuModel for BallBearing {
         w.bool(self.journal_set);
         w.f64(self.start_time)
             .opt_f64(self.tolerance)
-            .bool(self.initialized);
+            .bool(self.initialized)
+            .bool(self.me_continuous)
+            .bool(self.me_input_event);
         match (&self.live, self.initialized) {
             (Some(live), true) => {
                 let op = &live.scene.operating;
@@ -898,6 +974,8 @@ impl FmuModel for BallBearing {
         let start_time = r.f64("start time")?;
         let tolerance = r.opt_f64("tolerance")?;
         let initialized = r.bool("initialized flag")?;
+        let me_continuous = r.bool("continuous-time mode flag")?;
+        let me_input_event = r.bool("input event flag")?;
         let live = if r.bool("simulation flag")? {
             let operating = OperatingPoint {
                 shaft_speed: r.f64("operating shaft speed")?,
@@ -935,8 +1013,128 @@ impl FmuModel for BallBearing {
         self.start_time = start_time;
         self.tolerance = tolerance;
         self.initialized = initialized;
+        self.me_continuous = me_continuous;
+        self.me_input_event = me_input_event;
         self.live = live;
         self.outputs_valid = false;
         Ok(())
+    }
+
+    const MODEL_EXCHANGE: bool = true;
+
+    fn number_of_continuous_states(&self) -> usize {
+        self.me_nx
+    }
+
+    fn number_of_event_indicators(&self) -> usize {
+        self.me_ni
+    }
+
+    fn set_time(&mut self, t: f64) -> Result<(), String> {
+        let start = self.start_time;
+        self.me_live()?.sim.set_time(t - start).map_err(sim_err)?;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    /// The level's states are the first [`raceway::Simulation::state_dim`]; the padding ones
+    /// are ignored (their derivative is 0: they keep the 0 they start with).
+    fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), String> {
+        let live = self.me_live()?;
+        let (t, n) = (live.sim.time(), live.sim.state_dim());
+        live.sim.set_state(t, &x[..n]).map_err(sim_err)?;
+        self.outputs_valid = false;
+        Ok(())
+    }
+
+    fn get_continuous_states(&mut self, x: &mut [f64]) -> Result<(), String> {
+        let live = self.me_live()?;
+        let y = live.sim.state();
+        x[..y.len()].copy_from_slice(y);
+        x[y.len()..].fill(0.0);
+        Ok(())
+    }
+
+    fn get_derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
+        let live = self.me_live()?;
+        let n = live.sim.state_dim();
+        live.sim.derivatives(&mut dx[..n]);
+        dx[n..].fill(0.0);
+        Ok(())
+    }
+
+    /// The level's event functions, then constant 1.0 for the padding indicators.
+    fn get_event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
+        let live = self.me_live()?;
+        let n = live.sim.n_event_functions();
+        live.sim.event_functions(&mut g[..n]);
+        g[n..].fill(1.0);
+        Ok(())
+    }
+
+    fn get_nominals(&mut self, nominal: &mut [f64]) -> Result<(), String> {
+        let live = self.me_live()?;
+        let n = live.sim.state_dim();
+        live.sim.nominals(&mut nominal[..n]);
+        nominal[n..].fill(1.0);
+        Ok(())
+    }
+
+    fn enter_event_mode(&mut self) -> Result<(), String> {
+        self.me_continuous = false;
+        Ok(())
+    }
+
+    /// The event update: the indicators that changed sign since the last reference fire, the
+    /// discrete mode is re-derived, and the next time event (a ball reaching a spall edge, a
+    /// jitter revolution, a pulse kink) is predicted from the state and inputs now.
+    fn new_discrete_states(&mut self, log: &Logger) -> Result<EventUpdate, String> {
+        let start = self.start_time;
+        let live = self.me_live()?;
+        let fired = live.sim.event_update().map_err(sim_err)?;
+        let t = live.sim.time();
+        let next = live.sim.next_time_event().map(|tn| tn + start);
+        let coupling = live.scene.coupling;
+        let mut warnings = live.sim.take_warnings();
+        if log.enabled(LOG_EVENTS) {
+            log.log(
+                fmi2::bindings::Fmi2Status::Ok,
+                LOG_EVENTS,
+                &format!(
+                    "event update at t = {}: indicators fired {fired:?}; next time event {next:?}",
+                    t + start
+                ),
+            );
+        }
+        warnings.extend(self.ignored_inputs(coupling));
+        self.me_input_event = false;
+        self.outputs_valid = false;
+        Ok(EventUpdate {
+            next_event_time: next,
+            warnings,
+            ..EventUpdate::default()
+        })
+    }
+
+    fn enter_continuous_time_mode(&mut self) -> Result<(), String> {
+        self.me_continuous = true;
+        Ok(())
+    }
+
+    /// Asks for an event when an indicator changed sign over the step (the importer may not
+    /// locate roots itself) or an input set in continuous-time mode needs a discrete change.
+    fn completed_integrator_step(
+        &mut self,
+        _inputs_changed: bool,
+        _log: &Logger,
+    ) -> Result<StepEnd, String> {
+        let live = self.me_live()?;
+        let crossed = live.sim.step_completed();
+        let warnings = live.sim.take_warnings();
+        Ok(StepEnd {
+            enter_event_mode: crossed || self.me_input_event,
+            terminate_simulation: false,
+            warnings,
+        })
     }
 }

@@ -54,7 +54,18 @@ pub enum Access {
     Stat(fn(&WorkStats) -> u64),
     /// Position in the simulation's output vector (Real output; generated rows only).
     Output(usize),
+    /// Model Exchange: continuous state `i` (`state[i + 1]`, a local Real; beyond the level's
+    /// number of states a padding state, 0).
+    State(usize),
+    /// Model Exchange: the derivative of continuous state `i` (`der(state[i + 1])`; 0 for a
+    /// padding state).
+    Derivative(usize),
 }
+
+/// Value reference of `state[i + 1]` (Model Exchange); its derivative is `DERIVATIVE_VR + i`.
+pub const STATE_VR: u32 = 2000;
+/// Value reference of `der(state[i + 1])`.
+pub const DERIVATIVE_VR: u32 = 3000;
 
 /// One row of the table.
 pub type VarRow = Row<Access>;
@@ -929,7 +940,14 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             (Access::Param { get, .. }, Integer) => Start::Integer(get(&cfg) as i32),
             (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
             (Access::Line(_), _) => Start::Real(0.0),
-            (Access::Stat(_) | Access::Output(_) | Access::RingVelocity(_), _) => Start::None,
+            (
+                Access::Stat(_)
+                | Access::Output(_)
+                | Access::RingVelocity(_)
+                | Access::State(_)
+                | Access::Derivative(_),
+                _,
+            ) => Start::None,
         };
         let mut var = with_unit(r.variable(start));
         if r.name == "fidelity" {
@@ -961,6 +979,7 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             start: Start::None,
             min: None,
             max: None,
+            derivative_of: None,
         };
         t.push(Entry {
             var: with_unit(var),
@@ -972,6 +991,50 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             .filter(|r| matches!(r.access, Access::Stat(_)))
             .map(entry),
     );
+    // Model Exchange: the continuous states and their derivatives, as many as the level with
+    // the most states has on this bearing (the others pad).
+    let (nx, _) = raceway::model_exchange_capacity(z);
+    for i in 0..nx {
+        let state = Variable {
+            vr: STATE_VR + i as u32,
+            name: format!("state[{}]", i + 1),
+            ty: Real,
+            causality: Causality::Local,
+            variability: Variability::Continuous,
+            initial: Some(Initial::Calculated),
+            description: format!(
+                "Model Exchange: continuous state {} of the level's state vector (its meaning \
+                 depends on the level, see the documentation); a level with fewer states pads \
+                 with states that stay 0 (derivative 0)",
+                i + 1
+            ),
+            unit: None,
+            declared_type: None,
+            display_unit: None,
+            start: Start::None,
+            min: None,
+            max: None,
+            derivative_of: None,
+        };
+        let der = Variable {
+            vr: DERIVATIVE_VR + i as u32,
+            name: format!("der(state[{}])", i + 1),
+            description: format!(
+                "Model Exchange: the derivative of state[{}] (0 for a padding state)",
+                i + 1
+            ),
+            derivative_of: Some(STATE_VR + i as u32),
+            ..state.clone()
+        };
+        t.push(Entry {
+            var: state,
+            role: Access::State(i),
+        });
+        t.push(Entry {
+            var: der,
+            role: Access::Derivative(i),
+        });
+    }
     t
 }
 
@@ -989,7 +1052,8 @@ mod tests {
         let names: HashSet<&str> = t.iter().map(|e| e.var.name.as_str()).collect();
         assert_eq!(names.len(), t.len(), "unique names");
         let z = b.bearing.z as usize;
-        assert_eq!(t.len(), ROWS.len() + output_table(z).len());
+        let (nx, _) = raceway::model_exchange_capacity(z);
+        assert_eq!(t.len(), ROWS.len() + output_table(z).len() + 2 * nx);
         assert_eq!(params().count(), 28);
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {

@@ -393,6 +393,7 @@ fn var(vr: u32, name: &str, ty: VarType, c: Causality, v: Variability, desc: &st
         start: Start::None,
         min: None,
         max: None,
+        derivative_of: None,
     }
 }
 
