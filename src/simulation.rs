@@ -1137,7 +1137,9 @@ impl Simulation {
         }
         let me = snap.model_exchange.unwrap_or_default();
         let ne = self.model.n_events();
-        if !(me.g_ref.is_empty() || me.g_ref.len() == ne) || !(me.fired.is_empty() || me.fired.len() == ne) {
+        if !(me.g_ref.is_empty() || me.g_ref.len() == ne)
+            || !(me.fired.is_empty() || me.fired.len() == ne)
+        {
             return Err(SimError::State(format!(
                 "the snapshot's event memory has {} values for {ne} event functions",
                 me.g_ref.len()

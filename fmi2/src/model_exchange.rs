@@ -181,7 +181,10 @@ pub unsafe fn set_continuous_states<M: FmuModel>(
                 return me.error(F, format!("x is NULL with nx = {nx}"));
             };
             if let Some(i) = x.iter().position(|v| !v.is_finite()) {
-                return me.error(F, format!("x[{i}] = {} is not finite; states rejected", x[i]));
+                return me.error(
+                    F,
+                    format!("x[{i}] = {} is not finite; states rejected", x[i]),
+                );
             }
             match me.model.set_continuous_states(x) {
                 Ok(()) => Fmi2Status::Ok,
@@ -330,10 +333,7 @@ pub unsafe fn new_discrete_states<M: FmuModel>(
                 Ok(u) => u,
                 Err(e) => {
                     me.state = CallState::Error;
-                    return me.error(
-                        F,
-                        format!("{e} (the instance is now in the Error state)"),
-                    );
+                    return me.error(F, format!("{e} (the instance is now in the Error state)"));
                 }
             };
             let next = u.next_event_time.filter(|t| t.is_finite());
@@ -405,10 +405,7 @@ pub unsafe fn completed_integrator_step<M: FmuModel>(
                 Ok(r) => r,
                 Err(e) => {
                     me.state = CallState::Error;
-                    return me.error(
-                        F,
-                        format!("{e} (the instance is now in the Error state)"),
-                    );
+                    return me.error(F, format!("{e} (the instance is now in the Error state)"));
                 }
             };
             me.inputs_changed = false;

@@ -369,9 +369,7 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
     let _ = writeln!(w, "    <InitialUnknowns>");
     for (i, v) in vars.iter().enumerate() {
         let calculated = matches!(v.initial, Some(Initial::Calculated) | Some(Initial::Approx));
-        let me_unknown = derivatives
-            .iter()
-            .any(|&(d, s)| d == i + 1 || s == i + 1);
+        let me_unknown = derivatives.iter().any(|&(d, s)| d == i + 1 || s == i + 1);
         if (v.causality == Causality::Output && calculated)
             || v.causality == Causality::CalculatedParameter
             || me_unknown

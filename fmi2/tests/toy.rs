@@ -9,9 +9,11 @@ use std::ffi::{CStr, CString};
 use std::os::raw::{c_char, c_void};
 use std::sync::Mutex;
 
-/// x'' = −k x − c x' + u, integrated by RK4 with sub-steps ≤ 1 ms ending exactly at t_end.
+/// x'' = −k x − c x' + u, integrated by RK4 with sub-steps ≤ 1 ms ending exactly at t_end
+/// (Co-Simulation), or by the importer (Model Exchange when `ME`: states x, v; one event
+/// indicator, x; `steps` counts the event updates).
 #[derive(Clone)]
-struct Toy {
+struct ToyModel<const ME: bool> {
     vars: Vec<Variable>,
     guid: String,
     k: f64,
@@ -56,7 +58,12 @@ fn var(
     }
 }
 
-impl Toy {
+/// The toy with Model Exchange.
+type Toy = ToyModel<true>;
+/// The toy without it (Co-Simulation only).
+type CsToy = ToyModel<false>;
+
+impl<const ME: bool> ToyModel<ME> {
     fn fresh() -> Self {
         use Causality::*;
         use Variability::*;
@@ -125,8 +132,9 @@ impl Toy {
     }
 }
 
-impl FmuModel for Toy {
+impl<const ME: bool> FmuModel for ToyModel<ME> {
     const MODEL_IDENTIFIER: &'static str = "Toy";
+    const MODEL_EXCHANGE: bool = ME;
 
     fn instantiate(args: &InstantiateArgs, _log: &Logger) -> Result<Self, String> {
         if args.instance_name == "refuse" {
@@ -232,11 +240,11 @@ impl FmuModel for Toy {
         self.label = v.to_string();
         Ok(())
     }
-    type Undo = Box<Toy>;
-    fn begin_set(&self, _indices: &[usize]) -> Box<Toy> {
+    type Undo = Box<Self>;
+    fn begin_set(&self, _indices: &[usize]) -> Box<Self> {
         Box::new(self.clone())
     }
-    fn rollback_set(&mut self, undo: Box<Toy>) -> Result<(), String> {
+    fn rollback_set(&mut self, undo: Box<Self>) -> Result<(), String> {
         *self = *undo;
         Ok(())
     }
@@ -278,6 +286,75 @@ impl FmuModel for Toy {
         r.finish("toy state")?;
         *self = n;
         Ok(())
+    }
+
+    fn number_of_continuous_states(&self) -> usize {
+        2
+    }
+    fn number_of_event_indicators(&self) -> usize {
+        1
+    }
+    fn set_time(&mut self, t: f64) -> Result<(), String> {
+        self.t = t;
+        Ok(())
+    }
+    fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), String> {
+        if x[0] > 1e6 {
+            return Err(format!("x = {} is refused by the model", x[0]));
+        }
+        self.x = x[0];
+        self.v = x[1];
+        Ok(())
+    }
+    fn get_continuous_states(&mut self, x: &mut [f64]) -> Result<(), String> {
+        x.copy_from_slice(&[self.x, self.v]);
+        Ok(())
+    }
+    fn get_derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
+        if self.t > self.panic_at {
+            panic!("toy panic requested at {}", self.t);
+        }
+        let (a, b) = self.rhs(self.x, self.v);
+        // A derivative the model cannot compute: NaN past fail_at.
+        dx.copy_from_slice(&[a, if self.t > self.fail_at { f64::NAN } else { b }]);
+        Ok(())
+    }
+    fn get_event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
+        g[0] = self.x;
+        Ok(())
+    }
+    fn get_nominals(&mut self, n: &mut [f64]) -> Result<(), String> {
+        n.copy_from_slice(&[1.0, 10.0]);
+        Ok(())
+    }
+    fn new_discrete_states(&mut self, log: &Logger) -> Result<EventUpdate, String> {
+        if self.t > self.fail_at {
+            return Err(format!("event update failed at t = {}", self.t));
+        }
+        self.steps += 1;
+        log.log(Fmi2Status::Ok, LOG_EVENTS, &format!("event {}", self.steps));
+        Ok(EventUpdate {
+            // one extra iteration at the first event, a time event every second
+            new_discrete_states_needed: self.steps == 1,
+            next_event_time: Some(self.t.floor() + 1.0),
+            warnings: if self.u != 0.0 {
+                vec![format!("u = {}", self.u)]
+            } else {
+                vec![]
+            },
+            ..EventUpdate::default()
+        })
+    }
+    fn completed_integrator_step(
+        &mut self,
+        inputs_changed: bool,
+        _log: &Logger,
+    ) -> Result<StepEnd, String> {
+        Ok(StepEnd {
+            enter_event_mode: inputs_changed,
+            terminate_simulation: self.t > 100.0,
+            warnings: vec![],
+        })
     }
 }
 
@@ -639,7 +716,7 @@ fn instantiate_checks() {
     // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
     // and strings passed outlive the call (FMI 2.0 pointer rules).
     unsafe {
-        let me = sh::instantiate::<Toy>(
+        let me = sh::instantiate::<CsToy>(
             c"x".as_ptr(),
             FMI2_MODEL_EXCHANGE,
             c"{toy-oscillator-1}".as_ptr(),
@@ -989,5 +1066,534 @@ fn setters_apply_all_values_or_none() {
     let s = unsafe { sh::set_real::<Toy>(c, [4u32, 5].as_ptr(), 2, [50.0, 2.0].as_ptr()) };
     assert_eq!(s, Fmi2Status::Ok);
     assert_eq!(get(c, &[4, 5]), [50.0, 2.0]);
+    free(c);
+}
+
+// --- Model Exchange ------------------------------------------------------------------------
+
+impl Harness {
+    fn inst_me(&self) -> Fmi2Component {
+        // SAFETY: test importer: the strings and the callbacks outlive the call.
+        unsafe {
+            sh::instantiate::<Toy>(
+                c"toy-me".as_ptr(),
+                FMI2_MODEL_EXCHANGE,
+                c"{toy-oscillator-1}".as_ptr(),
+                std::ptr::null(),
+                &*self.cb,
+                0,
+                0,
+            )
+        }
+    }
+}
+
+fn state_of(c: Fmi2Component) -> CallState {
+    // SAFETY: c is a live instance of Toy from instantiate, and no call is running on it.
+    unsafe { &*(c as *const Instance<Toy>) }.call_state()
+}
+
+/// An ME instance in event mode right after fmi2ExitInitializationMode.
+fn me_ready(h: &Harness) -> Fmi2Component {
+    let c = h.inst_me();
+    assert!(!c.is_null(), "{}", h.last());
+    // SAFETY: test importer: the component comes from instantiate and is live.
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+    }
+    assert_eq!(state_of(c), CallState::EventMode);
+    c
+}
+
+fn new_discrete_states(c: Fmi2Component) -> (Fmi2Status, Fmi2EventInfo) {
+    let mut info = Fmi2EventInfo::default();
+    // SAFETY: test importer: live component, info outlives the call.
+    let s = unsafe { sh::new_discrete_states::<Toy>(c, &mut info) };
+    (s, info)
+}
+
+fn me_states(c: Fmi2Component) -> [f64; 2] {
+    let mut x = [0.0; 2];
+    // SAFETY: test importer: live component, x holds 2 values.
+    let s = unsafe { sh::get_continuous_states::<Toy>(c, x.as_mut_ptr(), 2) };
+    assert_eq!(s, Fmi2Status::Ok);
+    x
+}
+
+fn indicator(c: Fmi2Component) -> f64 {
+    let mut g = [0.0];
+    // SAFETY: test importer: live component, g holds 1 value.
+    let s = unsafe { sh::get_event_indicators::<Toy>(c, g.as_mut_ptr(), 1) };
+    assert_eq!(s, Fmi2Status::Ok);
+    g[0]
+}
+
+/// One RK4 step of the importer from (t, x) over h through the FMU's derivatives.
+fn rk4(c: Fmi2Component, t: f64, x: [f64; 2], h: f64) -> [f64; 2] {
+    let f = |t: f64, x: [f64; 2]| {
+        let mut d = [0.0; 2];
+        // SAFETY: test importer: live component, the arrays hold 2 values.
+        unsafe {
+            assert_eq!(sh::set_time::<Toy>(c, t), Fmi2Status::Ok);
+            assert_eq!(
+                sh::set_continuous_states::<Toy>(c, x.as_ptr(), 2),
+                Fmi2Status::Ok
+            );
+            assert_eq!(
+                sh::get_derivatives::<Toy>(c, d.as_mut_ptr(), 2),
+                Fmi2Status::Ok
+            );
+        }
+        d
+    };
+    let add = |x: [f64; 2], k: [f64; 2], s: f64| [x[0] + s * k[0], x[1] + s * k[1]];
+    let k1 = f(t, x);
+    let k2 = f(t + h / 2.0, add(x, k1, h / 2.0));
+    let k3 = f(t + h / 2.0, add(x, k2, h / 2.0));
+    let k4 = f(t + h, add(x, k3, h));
+    [
+        x[0] + h / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
+        x[1] + h / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
+    ]
+}
+
+fn set_states(c: Fmi2Component, t: f64, x: [f64; 2]) {
+    // SAFETY: test importer: live component, x holds 2 values.
+    unsafe {
+        assert_eq!(sh::set_time::<Toy>(c, t), Fmi2Status::Ok);
+        assert_eq!(
+            sh::set_continuous_states::<Toy>(c, x.as_ptr(), 2),
+            Fmi2Status::Ok
+        );
+    }
+}
+
+fn completed(c: Fmi2Component) -> (Fmi2Status, bool, bool) {
+    let (mut e, mut t) = (7, 7);
+    // SAFETY: test importer: live component, e and t outlive the call.
+    let s = unsafe { sh::completed_integrator_step::<Toy>(c, 1, &mut e, &mut t) };
+    (s, e != 0, t != 0)
+}
+
+#[test]
+fn model_exchange_importer_loop_locates_the_state_event_and_follows_the_oscillator() {
+    let h = Harness::new();
+    let c = me_ready(&h);
+    // The initial event iteration: the model asks for a second round once.
+    let (s, info) = new_discrete_states(c);
+    assert_eq!((s, info.new_discrete_states_needed), (Fmi2Status::Ok, 1));
+    let (s, info) = new_discrete_states(c);
+    assert_eq!((s, info.new_discrete_states_needed), (Fmi2Status::Ok, 0));
+    assert_eq!(info.next_event_time_defined, 1);
+    assert_eq!(info.next_event_time, 1.0);
+    assert_eq!(info.terminate_simulation, 0);
+    // SAFETY: test importer: live component.
+    assert_eq!(
+        unsafe { sh::enter_continuous_time_mode::<Toy>(c) },
+        Fmi2Status::Ok
+    );
+    assert_eq!(state_of(c), CallState::ContinuousTimeMode);
+    // Integrate to the first zero of x (t = asin-free: x = e^(-t/2)(cos wt + sin wt/(2w))),
+    // locating it by bisection on the indicator.
+    let (mut t, mut x, hstep) = (0.0, me_states(c), 1e-3);
+    assert_eq!(x, [1.0, 0.0]);
+    let mut event_at = None;
+    while t < 0.5 {
+        let g0 = indicator(c);
+        let xn = rk4(c, t, x, hstep);
+        set_states(c, t + hstep, xn);
+        if (indicator(c) > 0.0) != (g0 > 0.0) {
+            let (mut a, mut b) = (0.0, hstep);
+            while b - a > 1e-13 {
+                let m = 0.5 * (a + b);
+                let xm = rk4(c, t, x, m);
+                set_states(c, t + m, xm);
+                if (indicator(c) > 0.0) == (g0 > 0.0) {
+                    a = m
+                } else {
+                    b = m
+                }
+            }
+            let xb = rk4(c, t, x, b);
+            set_states(c, t + b, xb);
+            event_at = Some(t + b);
+            break;
+        }
+        t += hstep;
+        x = xn;
+        assert_eq!(completed(c), (Fmi2Status::Ok, false, false));
+    }
+    let te = event_at.expect("x crosses zero before t = 0.5");
+    let w = (100.0f64 - 0.25).sqrt();
+    // x = 0 where tan(w t) = -2 w
+    let exact = (std::f64::consts::PI - (2.0 * w).atan()) / w;
+    assert!((te - exact).abs() < 1e-9, "{te} vs {exact}");
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(completed(c).0, Fmi2Status::Ok);
+        assert_eq!(sh::enter_event_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(state_of(c), CallState::EventMode);
+        // fmi2SetTime is allowed in event mode, fmi2SetContinuousStates is not
+        assert_eq!(sh::set_time::<Toy>(c, te), Fmi2Status::Ok);
+        let x = [0.5, 0.5];
+        assert_eq!(
+            sh::set_continuous_states::<Toy>(c, x.as_ptr(), 2),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("illegal call sequence"), "{}", h.last());
+    }
+    let (s, info) = new_discrete_states(c);
+    assert_eq!((s, info.new_discrete_states_needed), (Fmi2Status::Ok, 0));
+    assert_eq!(get_steps(c), 3, "three event updates");
+    assert!(h.messages().iter().all(|m| !m.contains("Error")));
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(sh::terminate::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(state_of(c), CallState::Terminated);
+        // in Terminated the values can still be read
+        let mut d = [0.0; 2];
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, d.as_mut_ptr(), 2),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::reset::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(state_of(c), CallState::Instantiated);
+    }
+    free(c);
+}
+
+fn get_steps(c: Fmi2Component) -> i32 {
+    let mut v = 0;
+    // SAFETY: test importer: live component.
+    assert_eq!(
+        unsafe { sh::get_integer::<Toy>(c, &8, 1, &mut v) },
+        Fmi2Status::Ok
+    );
+    v
+}
+
+/// Calls every Model Exchange function on `c`; the statuses in a fixed order.
+fn every_me_call(c: Fmi2Component) -> Vec<Fmi2Status> {
+    let mut x = [0.0; 2];
+    let mut g = [0.0; 1];
+    let mut info = Fmi2EventInfo::default();
+    let (mut e, mut t) = (0, 0);
+    // SAFETY: test importer: live component, the arrays hold their lengths.
+    unsafe {
+        vec![
+            sh::set_time::<Toy>(c, 0.25),
+            sh::set_continuous_states::<Toy>(c, [0.5, 0.5].as_ptr(), 2),
+            sh::get_continuous_states::<Toy>(c, x.as_mut_ptr(), 2),
+            sh::get_derivatives::<Toy>(c, x.as_mut_ptr(), 2),
+            sh::get_event_indicators::<Toy>(c, g.as_mut_ptr(), 1),
+            sh::get_nominals_of_continuous_states::<Toy>(c, x.as_mut_ptr(), 2),
+            sh::new_discrete_states::<Toy>(c, &mut info),
+            sh::completed_integrator_step::<Toy>(c, 0, &mut e, &mut t),
+            sh::enter_continuous_time_mode::<Toy>(c),
+            sh::enter_event_mode::<Toy>(c),
+        ]
+    }
+}
+
+#[test]
+fn model_exchange_call_sequences_are_checked_and_refused_calls_have_no_effect() {
+    use Fmi2Status::{Error as E, Ok as O};
+    let h = Harness::new();
+    let c = h.inst_me();
+    let steps0 = 0;
+    // Instantiated: only the nominals.
+    assert_eq!(every_me_call(c), vec![E, E, E, E, E, O, E, E, E, E]);
+    assert_eq!(state_of(c), CallState::Instantiated);
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        // fmi2DoStep is a Co-Simulation function
+        assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::do_step::<Toy>(c, 0.0, 0.1, 0), Fmi2Status::Error);
+        assert!(h.last().contains("illegal call sequence"), "{}", h.last());
+        let mut st = Fmi2Status::Ok;
+        assert_eq!(sh::get_status::<Toy>(c, 0, &mut st), Fmi2Status::Error);
+        assert_eq!(sh::reset::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(
+            sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+    }
+    // Initialization mode: states and indicators can be read, nothing else.
+    assert_eq!(every_me_call(c), vec![E, E, O, E, O, E, E, E, E, E]);
+    assert_eq!(state_of(c), CallState::InitializationMode);
+    assert_eq!(me_states(c), [1.0, 0.0]);
+    // SAFETY: test importer: live component.
+    unsafe { assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok) };
+    // Event mode: set_time, the getters, new_discrete_states, enter_continuous_time_mode.
+    // (every_me_call ends in event mode again: its enter_continuous_time_mode then
+    // enter_event_mode both succeed.)
+    assert_eq!(every_me_call(c), vec![O, E, O, O, O, O, O, E, O, O]);
+    assert_eq!(me_states(c), [1.0, 0.0], "the refused set had no effect");
+    assert_eq!(get_steps(c), steps0 + 1);
+    // SAFETY: test importer: live component.
+    unsafe { assert_eq!(sh::enter_continuous_time_mode::<Toy>(c), Fmi2Status::Ok) };
+    // Continuous-time mode: all but new_discrete_states (enter_event_mode last leaves it).
+    assert_eq!(every_me_call(c), vec![O, O, O, O, O, O, E, O, E, O]);
+    assert_eq!(
+        get_steps(c),
+        steps0 + 1,
+        "no event update in continuous time"
+    );
+    assert_eq!(me_states(c), [0.5, 0.5]);
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(sh::terminate::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::terminate::<Toy>(c), Fmi2Status::Error);
+    }
+    // Terminated: the getters only (not the nominals' setters, no mode changes).
+    assert_eq!(every_me_call(c), vec![E, E, O, O, O, O, E, E, E, E]);
+    assert_eq!(state_of(c), CallState::Terminated);
+    free(c);
+
+    // A Co-Simulation instance refuses the Model Exchange functions, even where its state
+    // would allow them (the nominals in Instantiated).
+    let c = h.inst();
+    assert_eq!(every_me_call(c), vec![E; 10]);
+    assert!(
+        h.last().contains(
+            "is a Model Exchange function, and this instance was instantiated for Co-Simulation"
+        ) || h
+            .messages()
+            .iter()
+            .any(|m| m.contains("is a Model Exchange function")),
+        "{:?}",
+        h.messages()
+    );
+    free(c);
+}
+
+#[test]
+fn model_exchange_arguments_are_checked() {
+    let h = Harness::new();
+    let c = me_ready(&h);
+    // SAFETY: test importer: live component; the NULL pointers are the point of the test.
+    unsafe {
+        let mut x = [0.0; 3];
+        assert_eq!(
+            sh::get_continuous_states::<Toy>(c, x.as_mut_ptr(), 3),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("nx = 3"), "{}", h.last());
+        assert_eq!(
+            sh::get_event_indicators::<Toy>(c, x.as_mut_ptr(), 2),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("ni = 2"), "{}", h.last());
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, std::ptr::null_mut(), 2),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("NULL"), "{}", h.last());
+        assert_eq!(
+            sh::new_discrete_states::<Toy>(c, std::ptr::null_mut()),
+            Fmi2Status::Error
+        );
+        assert_eq!(sh::set_time::<Toy>(c, f64::NAN), Fmi2Status::Error);
+        assert_eq!(sh::set_time::<Toy>(c, -1.0), Fmi2Status::Error);
+        assert!(h.last().contains("before the start time"), "{}", h.last());
+        assert_eq!(sh::enter_continuous_time_mode::<Toy>(c), Fmi2Status::Ok);
+        let (mut e, mut t) = (0, 0);
+        assert_eq!(
+            sh::completed_integrator_step::<Toy>(c, 0, std::ptr::null_mut(), &mut t),
+            Fmi2Status::Error
+        );
+        assert_eq!(
+            sh::completed_integrator_step::<Toy>(c, 0, &mut e, std::ptr::null_mut()),
+            Fmi2Status::Error
+        );
+        for bad in [[f64::NAN, 0.0], [0.0, f64::INFINITY]] {
+            assert_eq!(
+                sh::set_continuous_states::<Toy>(c, bad.as_ptr(), 2),
+                Fmi2Status::Error
+            );
+            assert!(h.last().contains("is not finite"), "{}", h.last());
+        }
+        assert_eq!(
+            sh::set_continuous_states::<Toy>(c, [0.5].as_ptr(), 1),
+            Fmi2Status::Error
+        );
+        assert_eq!(
+            sh::set_continuous_states::<Toy>(c, std::ptr::null(), 2),
+            Fmi2Status::Error
+        );
+        // a state the model refuses
+        assert_eq!(
+            sh::set_continuous_states::<Toy>(c, [2e6, 0.0].as_ptr(), 2),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("refused by the model"), "{}", h.last());
+        assert_eq!(
+            me_states(c),
+            [1.0, 0.0],
+            "no refused call changed the states"
+        );
+        assert_eq!(state_of(c), CallState::ContinuousTimeMode);
+        // the NULL component
+        let n = std::ptr::null_mut();
+        assert_eq!(sh::set_time::<Toy>(n, 0.0), Fmi2Status::Error);
+        assert_eq!(sh::enter_event_mode::<Toy>(n), Fmi2Status::Error);
+    }
+    free(c);
+}
+
+#[test]
+fn model_exchange_setters_in_continuous_time_and_event_mode() {
+    let h = Harness::new();
+    let c = me_ready(&h);
+    // Event mode: inputs and tunable parameters, not fixed ones.
+    assert_eq!(set(c, 3, 2.0), Fmi2Status::Ok);
+    assert_eq!(set(c, 5, 2.0), Fmi2Status::Ok);
+    assert_eq!(set(c, 4, 50.0), Fmi2Status::Error);
+    assert!(h.last().contains("fixed parameter"), "{}", h.last());
+    // a warning from the model's event update is passed on
+    let (s, _) = new_discrete_states(c);
+    assert_eq!(s, Fmi2Status::Warning);
+    assert!(h.last().contains("u = 2"), "{}", h.last());
+    // SAFETY: test importer: live component, the values outlive the calls.
+    unsafe {
+        assert_eq!(sh::enter_continuous_time_mode::<Toy>(c), Fmi2Status::Ok);
+        // continuous time: continuous inputs only, and only fmi2SetReal
+        assert_eq!(completed(c), (Fmi2Status::Ok, false, false));
+        assert_eq!(set(c, 3, 3.0), Fmi2Status::Ok);
+        assert_eq!(set(c, 5, 3.0), Fmi2Status::Error);
+        assert!(h.last().contains("only continuous inputs"), "{}", h.last());
+        assert_eq!(get(c, &[3, 5]), vec![3.0, 2.0]);
+        assert_eq!(
+            sh::set_boolean::<Toy>(c, &9, 1, &1),
+            Fmi2Status::Error,
+            "fmi2SetBoolean is not allowed in continuous-time mode"
+        );
+        // the input change reaches the model at the completed step (once)
+        assert_eq!(completed(c), (Fmi2Status::Ok, true, false));
+        assert_eq!(completed(c), (Fmi2Status::Ok, false, false));
+        // and the model may ask to stop
+        assert_eq!(sh::set_time::<Toy>(c, 101.0), Fmi2Status::Ok);
+        assert_eq!(completed(c), (Fmi2Status::Ok, false, true));
+    }
+    free(c);
+}
+
+#[test]
+fn model_exchange_failures_error_and_fatal() {
+    let h = Harness::new();
+    // A non-finite derivative is an error with no effect.
+    let c = me_ready(&h);
+    assert_eq!(set(c, 6, 0.5), Fmi2Status::Error, "fail_at is fixed");
+    // SAFETY: test importer: live component, the arrays hold their lengths.
+    unsafe {
+        assert_eq!(sh::reset::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(set(c, 6, 0.5), Fmi2Status::Ok);
+        assert_eq!(set(c, 7, 0.75), Fmi2Status::Ok);
+        assert_eq!(
+            sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::set_time::<Toy>(c, 0.6), Fmi2Status::Ok);
+        let mut d = [7.0; 2];
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, d.as_mut_ptr(), 2),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("element 1 is NaN"), "{}", h.last());
+        assert_eq!(d, [7.0; 2], "the importer's array is untouched");
+        assert_eq!(state_of(c), CallState::EventMode);
+        // a failed event update: Error state, from which reset leads out
+        let mut info = Fmi2EventInfo::default();
+        assert_eq!(
+            sh::new_discrete_states::<Toy>(c, &mut info),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("event update failed"), "{}", h.last());
+        assert_eq!(state_of(c), CallState::Error);
+        assert_eq!(sh::enter_continuous_time_mode::<Toy>(c), Fmi2Status::Error);
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, d.as_mut_ptr(), 2),
+            Fmi2Status::Error,
+            "still NaN at t = 0.6"
+        );
+        assert_eq!(sh::reset::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(set(c, 7, 0.75), Fmi2Status::Ok);
+        assert_eq!(
+            sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+        // a panic in the model becomes fmi2Fatal
+        assert_eq!(sh::set_time::<Toy>(c, 0.8), Fmi2Status::Ok);
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, d.as_mut_ptr(), 2),
+            Fmi2Status::Fatal
+        );
+        assert_eq!(state_of(c), CallState::Fatal);
+        assert_eq!(sh::set_time::<Toy>(c, 0.1), Fmi2Status::Error);
+    }
+    free(c);
+}
+
+#[test]
+fn model_exchange_fmu_state_round_trip_and_interface_check() {
+    let h = Harness::new();
+    let c = me_ready(&h);
+    let _ = new_discrete_states(c);
+    let _ = new_discrete_states(c);
+    // SAFETY: test importer: live components, the states are ours.
+    unsafe {
+        assert_eq!(sh::enter_continuous_time_mode::<Toy>(c), Fmi2Status::Ok);
+        set_states(c, 0.3, [0.25, -1.0]);
+        let mut s: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(sh::get_fmu_state::<Toy>(c, &mut s), Fmi2Status::Ok);
+        set_states(c, 0.4, [0.5, 2.0]);
+        assert_eq!(sh::enter_event_mode::<Toy>(c), Fmi2Status::Ok);
+        assert_eq!(sh::set_fmu_state::<Toy>(c, s), Fmi2Status::Ok);
+        assert_eq!(state_of(c), CallState::ContinuousTimeMode);
+        assert_eq!(me_states(c), [0.25, -1.0]);
+        // SAFETY: as above.
+        let inst = &*(c as *const Instance<Toy>);
+        assert_eq!(inst.time(), 0.3);
+        assert_eq!(inst.interface(), Interface::ModelExchange);
+        // serialized, into a Co-Simulation instance: refused (its call state is an ME one)
+        let mut size = 0;
+        assert_eq!(
+            sh::serialized_fmu_state_size::<Toy>(c, s, &mut size),
+            Fmi2Status::Ok
+        );
+        let mut bytes = vec![0 as c_char; size];
+        assert_eq!(
+            sh::serialize_fmu_state::<Toy>(c, s, bytes.as_mut_ptr(), size),
+            Fmi2Status::Ok
+        );
+        let cs = ready(&h);
+        let mut s2: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(
+            sh::deserialize_fmu_state::<Toy>(cs, bytes.as_ptr(), size, &mut s2),
+            Fmi2Status::Error
+        );
+        assert!(
+            h.last().contains("saved by a Model Exchange instance"),
+            "{}",
+            h.last()
+        );
+        assert_eq!(sh::free_fmu_state::<Toy>(c, &mut s), Fmi2Status::Ok);
+        free(cs);
+    }
     free(c);
 }

@@ -50,8 +50,8 @@ use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::table::Row;
 use fmi2::xml;
 use fmi2::{
-    Causality, FmuModel, Initial, InstantiateArgs, Logger, Start, StepResult, VarType, Variability,
-    Variable, LOG_EVENTS, LOG_SOLVER, LOG_STATUS_WARNING,
+    Causality, EventUpdate, FmuModel, Initial, InstantiateArgs, Interface, Logger, Start, StepEnd,
+    StepResult, VarType, Variability, Variable, LOG_EVENTS, LOG_SOLVER, LOG_STATUS_WARNING,
 };
 use raceway_solver::IntegratorState;
 
@@ -87,7 +87,29 @@ pub enum Role {
     /// Journal velocity received in coupling mode tlm, axis 0 = y, 1 = z.
     TlmV(usize),
     Out(O),
+    /// Model Exchange: continuous state `i` of coupling mode force (`state[i + 1]`).
+    State(usize),
+    /// Model Exchange: its derivative (`der(state[i + 1])`).
+    Derivative(usize),
 }
+
+/// Value reference of `state[i + 1]` (Model Exchange); its derivative is `DERIVATIVE_VR + i`.
+pub const STATE_VR: u32 = 2000;
+/// Value reference of `der(state[i + 1])`.
+pub const DERIVATIVE_VR: u32 = 3000;
+/// What the rotor's continuous states are (coupling mode force), in order.
+pub const STATE_NAMES: [&str; crate::jeffcott::DIM] = [
+    "journal displacement x",
+    "journal displacement y",
+    "journal displacement z",
+    "journal velocity x",
+    "journal velocity y",
+    "journal velocity z",
+    "disk displacement y",
+    "disk displacement z",
+    "disk velocity y",
+    "disk velocity z",
+];
 
 /// What a parameter row reads and writes in [`RotorParams`].
 #[derive(Debug, Clone, Copy)]
@@ -523,6 +545,29 @@ pub fn table() -> Vec<(Variable, Role)> {
         v.start = Start::Real(0.0);
         t.push((v, Role::TlmV(i)));
     }
+    for (i, what) in STATE_NAMES.iter().enumerate() {
+        let mut v = var(
+            STATE_VR + i as u32,
+            &format!("state[{}]", i + 1),
+            VarType::Real,
+            Local,
+            Continuous,
+            &format!("Model Exchange: continuous state {} of coupling mode force, the {what} (0 in coupling mode tlm)", i + 1),
+        );
+        v.initial = Some(Initial::Calculated);
+        let mut d = var(
+            DERIVATIVE_VR + i as u32,
+            &format!("der(state[{}])", i + 1),
+            VarType::Real,
+            Local,
+            Continuous,
+            &format!("Model Exchange: the derivative of state[{}]", i + 1),
+        );
+        d.initial = Some(Initial::Calculated);
+        d.derivative_of = Some(STATE_VR + i as u32);
+        t.push((v, Role::State(i)));
+        t.push((d, Role::Derivative(i)));
+    }
     t
 }
 
@@ -540,6 +585,7 @@ pub fn model_info() -> xml::ModelInfo {
         tolerance: DEFAULT_TOLERANCE,
         step_size: DEFAULT_STEP_SIZE,
         provides_directional_derivative: false,
+        model_exchange: Some(0),
     }
 }
 
@@ -647,6 +693,8 @@ pub struct JeffcottRotor {
     ignored_set: [bool; 2],
     /// Which of them have been reported.
     ignored_reported: [bool; 2],
+    /// The interface of the instance (`fmuType`).
+    interface: Interface,
 }
 
 impl JeffcottRotor {
@@ -665,6 +713,19 @@ impl JeffcottRotor {
             initialized: false,
             ignored_set: [false; 2],
             ignored_reported: [false; 2],
+            interface: Interface::CoSimulation,
+        }
+    }
+
+    /// Model Exchange: the rotor of coupling mode force (built provisionally before
+    /// initialization, to answer queries in initialization mode).
+    fn me_rotor(&mut self) -> Result<&mut Rotor, String> {
+        if self.live.is_none() {
+            self.live = Some(self.build()?);
+        }
+        match self.live.as_mut() {
+            Some(Live::Force(r)) => Ok(r),
+            _ => Err("Model Exchange needs coupling = 0 (force)".into()),
         }
     }
 
@@ -868,8 +929,10 @@ fn short(x: f64) -> String {
 impl FmuModel for JeffcottRotor {
     const MODEL_IDENTIFIER: &'static str = MODEL_IDENTIFIER;
 
-    fn instantiate(_args: &InstantiateArgs, _log: &Logger) -> Result<Self, String> {
-        Ok(Self::new())
+    fn instantiate(args: &InstantiateArgs, _log: &Logger) -> Result<Self, String> {
+        let mut m = Self::new();
+        m.interface = args.interface;
+        Ok(m)
     }
     fn guid(&self) -> &str {
         &self.guid
@@ -896,6 +959,14 @@ impl FmuModel for JeffcottRotor {
         Ok(())
     }
     fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        if self.interface == Interface::ModelExchange && self.params.coupling == Coupling::Tlm {
+            return Err(
+                "Model Exchange: coupling = 1 (tlm) is refused: the transmission line exchanges \
+                 waves over communication steps of tlm.delay, a co-simulation device; use \
+                 coupling = 0 (force) in Model Exchange"
+                    .into(),
+            );
+        }
         let r = self.build()?;
         if log.enabled(LOG_EVENTS) {
             let p = &self.params;
@@ -976,7 +1047,9 @@ impl FmuModel for JeffcottRotor {
         }
     }
     fn reset(&mut self) -> Result<(), String> {
+        let interface = self.interface;
         *self = Self::new();
+        self.interface = interface;
         Ok(())
     }
     fn get_real(&mut self, index: usize) -> Result<f64, String> {
@@ -988,6 +1061,20 @@ impl FmuModel for JeffcottRotor {
             Role::Param(k) => Ok((PARAMS[k].access.get)(&self.params)),
             Role::Delay => Ok((TLM_DELAY.access.get)(&self.params)),
             Role::TlmV(i) => Ok(self.tlm_v[i]),
+            Role::State(i) | Role::Derivative(i) => {
+                if self.live.is_none() {
+                    self.live = Some(self.build()?);
+                }
+                match self.live.as_mut() {
+                    Some(Live::Force(r)) if matches!(role, Role::State(_)) => Ok(r.state()[i]),
+                    Some(Live::Force(r)) => {
+                        let mut d = [0.0; crate::jeffcott::DIM];
+                        r.derivatives(&mut d);
+                        Ok(d[i])
+                    }
+                    _ => Ok(0.0),
+                }
+            }
             Role::Out(o) => {
                 if self.live.is_none() {
                     self.live = Some(self.build()?);
@@ -1020,7 +1107,7 @@ impl FmuModel for JeffcottRotor {
                 }
                 Ok(())
             }
-            Role::Out(_) | Role::Coupling => {
+            Role::Out(_) | Role::Coupling | Role::State(_) | Role::Derivative(_) => {
                 Err(format!("'{}' cannot be set", self.vars[index].name))
             }
             _ => {
@@ -1229,6 +1316,62 @@ impl FmuModel for JeffcottRotor {
         self.ignored_set = ignored_set;
         self.ignored_reported = ignored_reported;
         Ok(())
+    }
+
+    const MODEL_EXCHANGE: bool = true;
+
+    fn number_of_continuous_states(&self) -> usize {
+        crate::jeffcott::DIM
+    }
+
+    fn set_time(&mut self, t: f64) -> Result<(), String> {
+        let r = self.me_rotor()?;
+        let mut y = [0.0; crate::jeffcott::DIM];
+        y.copy_from_slice(r.state());
+        r.set_state(t, &y)
+    }
+
+    fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), String> {
+        let r = self.me_rotor()?;
+        let t = r.t();
+        r.set_state(t, x)
+    }
+
+    fn get_continuous_states(&mut self, x: &mut [f64]) -> Result<(), String> {
+        x.copy_from_slice(self.me_rotor()?.state());
+        Ok(())
+    }
+
+    fn get_derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
+        self.me_rotor()?.derivatives(dx);
+        Ok(())
+    }
+
+    fn get_event_indicators(&mut self, _g: &mut [f64]) -> Result<(), String> {
+        Ok(())
+    }
+
+    fn get_nominals(&mut self, nominal: &mut [f64]) -> Result<(), String> {
+        Rotor::nominals(nominal);
+        Ok(())
+    }
+
+    /// Nothing discrete changes; the next time event is the end of the speed ramp.
+    fn new_discrete_states(&mut self, _log: &Logger) -> Result<EventUpdate, String> {
+        let next = self.me_rotor()?.next_time_event();
+        Ok(EventUpdate {
+            next_event_time: next,
+            warnings: self.ignored_inputs(),
+            ..EventUpdate::default()
+        })
+    }
+
+    fn completed_integrator_step(
+        &mut self,
+        _inputs_changed: bool,
+        _log: &Logger,
+    ) -> Result<StepEnd, String> {
+        Ok(StepEnd::default())
     }
 }
 

@@ -532,6 +532,41 @@ impl Rotor {
         (s.steps, s.rejected, s.rhs_evals)
     }
 
+    /// Model Exchange: sets the time and the state (`DIM` finite values) of the next
+    /// evaluations; the importer integrates. The interface force law keeps its anchor (the time
+    /// and state at which it was last set).
+    pub fn set_state(&mut self, t: f64, y: &[f64]) -> Result<(), String> {
+        self.integ.try_set_state(t, y).map_err(|e| e.to_string())
+    }
+
+    /// Model Exchange: the derivatives of the state at the current time and state.
+    pub fn derivatives(&mut self, d: &mut [f64]) {
+        let t = self.integ.t();
+        let mut y = [0.0; DIM];
+        y.copy_from_slice(self.integ.y());
+        self.rhs.rhs(t, &y, d);
+    }
+
+    /// Nominal magnitudes of the states (displacements 1e-5 m, velocities 1e-2 m/s, as the
+    /// bearing's lumped level).
+    pub fn nominals(out: &mut [f64]) {
+        for (i, v) in out.iter_mut().enumerate() {
+            *v = if matches!(i, 0..=2 | 6 | 7) {
+                1e-5
+            } else {
+                1e-2
+            };
+        }
+    }
+
+    /// Model Exchange: the end of the speed ramp if it lies after the current time (the
+    /// unbalance force's rate jumps there).
+    pub fn next_time_event(&self) -> Option<f64> {
+        let tr = self.rhs.p.ramp_time();
+        let end = self.rhs.t0 + tr;
+        (tr > 0.0 && end > self.integ.t()).then_some(end)
+    }
+
     /// The outputs at the current time.
     pub fn outputs(&mut self) -> RotorOutputs {
         let t = self.integ.t();
