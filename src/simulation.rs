@@ -126,6 +126,12 @@ struct MeMemory {
     fired: Vec<bool>,
 }
 
+/// Model Exchange: how far ahead (in seconds, times 1 + |t|) of an event the simulation looks
+/// for the side an event function goes to ([`Simulation::event_update`]): a hundred times the
+/// integrator's own event location tolerance, far below the bearing's time scales (a contact
+/// lasts microseconds).
+pub const EVENT_HAIR: f64 = 1e-11;
+
 /// The most continuous states and event functions any level has on a bearing with `z` balls:
 /// what a Model Exchange FMU, whose numbers are fixed in its model description whatever the
 /// level, declares (a level with fewer pads). The full level has the most of both: 9 states per
@@ -1259,28 +1265,52 @@ impl Simulation {
             .next_stop(self.integrator.t(), self.integrator.y(), f64::INFINITY)
     }
 
-    /// Takes the event functions at the current state as the reference of the next sign
-    /// changes (after the mode was re-derived).
+    /// The event functions a hair ahead of the current point along the motion (`t + δ`, `y +
+    /// δ y'` in the frozen mode, δ = [`EVENT_HAIR`] (1 + |t|)): at a located root the importer's
+    /// state sits within its location tolerance of 0 on either side by round-off, and the sign
+    /// a hair ahead is the side the trajectory goes to.
+    fn events_ahead(&mut self, g: &mut [f64]) {
+        let n = self.model.dim();
+        let t = self.integrator.t();
+        let dt = EVENT_HAIR * (1.0 + t.abs());
+        let mut f = vec![0.0; n];
+        self.model.rhs(t, self.integrator.y(), &mut f);
+        let y: Vec<f64> = self
+            .integrator
+            .y()
+            .iter()
+            .zip(&f)
+            .map(|(y, f)| y + dt * f)
+            .collect();
+        self.model.events(t + dt, &y, g);
+    }
+
+    /// Takes the event functions a hair ahead of the current state (after the mode was
+    /// re-derived) as the reference of the next sign changes.
     fn me_reference(&mut self) {
         let ne = self.model.n_events();
         let mut g = std::mem::take(&mut self.me.g_ref);
         g.resize(ne, 0.0);
-        self.event_functions(&mut g);
+        self.events_ahead(&mut g);
         self.me.g_ref = g;
         self.me.fired.clear();
         self.me.fired.resize(ne, false);
     }
 
-    /// Notes the sign changes of the event functions since the reference and takes the
-    /// current values as the new reference; true if any changed.
-    fn me_note_crossings(&mut self) -> bool {
+    /// Notes the sign changes of the event functions (at the current state, or `ahead`) since
+    /// the reference, and takes those values as the new reference; true if any changed.
+    fn me_note_crossings(&mut self, ahead: bool) -> bool {
         let ne = self.model.n_events();
         if self.me.g_ref.len() != ne {
             self.me_reference();
             return false;
         }
         let mut g = vec![0.0; ne];
-        self.event_functions(&mut g);
+        if ahead {
+            self.events_ahead(&mut g);
+        } else {
+            self.event_functions(&mut g);
+        }
         let mut any = false;
         for ((r, &now), fired) in self.me.g_ref.iter_mut().zip(&g).zip(&mut self.me.fired) {
             if (*r > 0.0) != (now > 0.0) {
@@ -1296,16 +1326,18 @@ impl Simulation {
     /// changed sign since the last step are noted as fired (the importer may not have located
     /// the root itself); true if any did, i.e. an event is due.
     pub fn step_completed(&mut self) -> bool {
-        self.me_note_crossings()
+        self.me_note_crossings(false)
     }
 
     /// The event update at the current time and state (a located state event, a time event,
     /// or inputs that changed the discrete state): the event functions that changed sign since
-    /// the last reference are reported fired ([`Model::event_fired`]), the discrete mode is
-    /// re-derived ([`Model::update_mode`]), and the contacts are checked against the pressure
-    /// limits. Returns the indices that fired.
+    /// the last reference, at the state or a hair ahead of it (a root located on the old side
+    /// by round-off still fires: the importer does not say which function it located), are
+    /// reported fired ([`Model::event_fired`]), the discrete mode is re-derived
+    /// ([`Model::update_mode`]), and the contacts are checked against the pressure limits.
+    /// Returns the indices that fired.
     pub fn event_update(&mut self) -> Result<Vec<usize>, SimError> {
-        self.me_note_crossings();
+        self.me_note_crossings(true);
         let fired: Vec<usize> = (0..self.me.fired.len())
             .filter(|&i| self.me.fired[i])
             .collect();

@@ -187,6 +187,40 @@ impl Api {
     }
 }
 
+/// Checks that the shared library at `path` exports the whole FMI 2.0 function set (Model
+/// Exchange and Co-Simulation: [`fmi2::exports::EXPORTED_FUNCTIONS`]); an importer of either
+/// interface resolves every function at load time.
+fn check_exports(path: &Path) -> Result<(), String> {
+    let cpath = CString::new(path.as_os_str().to_string_lossy().as_bytes())
+        .map_err(|_| "path contains NUL".to_string())?;
+    // SAFETY: plain dlopen/dlsym of a library this program just built; nothing is called.
+    unsafe {
+        let h = dlopen(cpath.as_ptr(), RTLD_NOW | RTLD_LOCAL);
+        if h.is_null() {
+            return Err(format!("dlopen {} failed", path.display()));
+        }
+        let missing: Vec<&str> = fmi2::exports::EXPORTED_FUNCTIONS
+            .iter()
+            .copied()
+            .filter(|name| {
+                let c = CString::new(*name).expect("no NUL");
+                dlsym(h, c.as_ptr()).is_null()
+            })
+            .collect();
+        if missing.is_empty() {
+            Ok(())
+        } else {
+            Err(format!(
+                "{} does not export {} of the {} FMI 2.0 functions: {}",
+                path.display(),
+                missing.len(),
+                fmi2::exports::EXPORTED_FUNCTIONS.len(),
+                missing.join(", ")
+            ))
+        }
+    }
+}
+
 /// Logger for the reference run. With the format "%s" the message is the sixth argument,
 /// which the C ABIs of linux64 (x86-64, aarch64) pass like a fixed argument.
 unsafe extern "C" fn print_logger(
@@ -487,6 +521,7 @@ fn build_rotor_fmu() {
         fail(format!("{} was not produced", lib.display()));
     }
     let staged = stage_library(&lib, "JeffcottRotor.so");
+    check_exports(&staged).unwrap_or_else(|e| fail(e));
     let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
     let out = target_dir().join("fmu").join("JeffcottRotor.fmu");
     let tmp = out.with_extension("fmu.part");
@@ -570,6 +605,7 @@ fn main() {
 
     let lib = args.lib.clone().unwrap_or_else(build_cdylib);
     let staged = stage_library(&lib, "BallBearing.so");
+    check_exports(&staged).unwrap_or_else(|e| fail(e));
     let so = std::fs::read(&staged).unwrap_or_else(|e| fail(format!("{}: {e}", staged.display())));
 
     let xml = ballbearing_fmu::model_description_xml(&bearing);
