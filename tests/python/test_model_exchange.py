@@ -108,6 +108,10 @@ def test_cvode_reproduces_the_co_simulation_of_the_default_scene():
     cs = signature(run(fmu, "CoSimulation", STOP, output=["pedestal.a.z"]), bpfo)
     me = signature(run(fmu, "ModelExchange", STOP, output=["pedestal.a.z"]), bpfo)
     assert me["samples"] == cs["samples"] == round((STOP - SKIP) / DT) + 1
+    # `pytest tests/python/test_model_exchange.py -k default_scene -s` prints the comparison
+    for k in ["peak_hz", "peak_amplitude", "rms"]:
+        print(f"{k}: Co-Simulation {cs[k]:.6g}, Model Exchange (CVODE rtol {RTOL:g}) {me[k]:.6g}, "
+              f"{100 * (me[k] / cs[k] - 1):+.4f} %")
     for k in ["peak_hz", "peak_amplitude", "rms"]:
         assert me[k] == pytest.approx(cs[k], rel=0.01), (k, me, cs)
     # the peak is the spall's: within 2 % of the kinematic BPFO (the model's cage slips)
@@ -129,23 +133,21 @@ def test_cvode_follows_the_co_simulation_sample_by_sample_on_the_smooth_levels(f
         _, b = on_grid(me, name, skip=0)
         assert len(a) == len(b)
         err = np.max(np.abs(a - b)) / scale
-        assert err < 0.05, (name, err)
+        assert err < 1e-3, (name, err)
 
 
-def test_the_kinematic_level_and_tlm_coupling_are_refused_in_model_exchange():
-    fmu = bearing_fmu()
-    logged = []
-
-    def logger(*args):
-        logged.append(str(args[-1]))
-
-    with pytest.raises(Exception, match="exitInitializationMode|status 3"):
-        run(fmu, "ModelExchange", 0.001, start_values={"fidelity": 0}, logger=logger,
-            debug_logging=False)
-    with pytest.raises(Exception, match="exitInitializationMode|status 3"):
-        run(fmu, "ModelExchange", 0.001, start_values={"coupling": 2})
-    with pytest.raises(Exception, match="exitInitializationMode|status 3"):
-        run(rotor_fmu(), "ModelExchange", 0.001, start_values={"coupling": 1})
+def test_the_kinematic_level_and_tlm_coupling_are_refused_in_model_exchange(capfd):
+    """Refused at fmi2ExitInitializationMode with a message naming why (fmpy's logger prints
+    it)."""
+    cases = [
+        (bearing_fmu(), {"fidelity": 0}, "the kinematic level (L0) has no continuous dynamics"),
+        (bearing_fmu(), {"coupling": 2}, "coupling = 2 (tlm) is refused"),
+        (rotor_fmu(), {"coupling": 1}, "coupling = 1 (tlm) is refused"),
+    ]
+    for fmu, sv, why in cases:
+        with pytest.raises(Exception, match="fmi2ExitInitializationMode"):
+            run(fmu, "ModelExchange", 0.001, start_values=sv)
+        assert why in capfd.readouterr().out
 
 
 def test_rotor_model_exchange_reproduces_its_co_simulation():
