@@ -127,10 +127,13 @@ struct MeMemory {
 }
 
 /// Model Exchange: how far ahead (in seconds, times 1 + |t|) of an event the simulation looks
-/// for the side an event function goes to ([`Simulation::event_update`]): a hundred times the
-/// integrator's own event location tolerance, far below the bearing's time scales (a contact
-/// lasts microseconds).
-pub const EVENT_HAIR: f64 = 1e-11;
+/// for the side an event function goes to ([`Simulation::event_update`]). The importer's event
+/// state carries its integration error, so a located root may sit on the old side by more than
+/// the location tolerance (a contact function at 1e-12 with a rate of 0.1/s: 1e-11 s before its
+/// root); a nanosecond covers that and stays a thousand times below the bearing's time scales
+/// (a contact lasts microseconds), so a function that would cross within it switches a
+/// nanosecond early at worst.
+pub const EVENT_HAIR: f64 = 1e-9;
 
 /// The most continuous states and event functions any level has on a bearing with `z` balls:
 /// what a Model Exchange FMU, whose numbers are fixed in its model description whatever the
@@ -1267,8 +1270,8 @@ impl Simulation {
 
     /// The event functions a hair ahead of the current point along the motion (`t + δ`, `y +
     /// δ y'` in the frozen mode, δ = [`EVENT_HAIR`] (1 + |t|)): at a located root the importer's
-    /// state sits within its location tolerance of 0 on either side by round-off, and the sign
-    /// a hair ahead is the side the trajectory goes to.
+    /// state sits near 0 on either side (its location tolerance and integration error), and the
+    /// sign a hair ahead is the side the trajectory goes to.
     fn events_ahead(&mut self, g: &mut [f64]) {
         let n = self.model.dim();
         let t = self.integrator.t();
