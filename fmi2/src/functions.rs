@@ -492,6 +492,10 @@ pub unsafe fn get_directional_derivative<M: FmuModel>(
             if let Err(s) = me.check_state(F, mask::DIRECTIONAL) {
                 return s;
             }
+            // Model Exchange declares providesDirectionalDerivative="false".
+            if let Err(s) = me.check_interface(F, Interface::CoSimulation) {
+                return s;
+            }
             let (Some(vu), Some(vk), Some(dk), Some(du)) = (
                 slice_in(unknown, n_unknown),
                 slice_in(known, n_known),

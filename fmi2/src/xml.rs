@@ -30,8 +30,9 @@ pub struct ModelInfo {
     pub tolerance: f64,
     /// `DefaultExperiment` stepSize.
     pub step_size: f64,
-    /// `providesDirectionalDerivative` (the model implements
-    /// [`crate::FmuModel::directional_derivative`]).
+    /// `providesDirectionalDerivative` of Co-Simulation (the model implements
+    /// [`crate::FmuModel::directional_derivative`]); Model Exchange never provides it (the
+    /// shell refuses `fmi2GetDirectionalDerivative` on a Model Exchange instance).
     pub provides_directional_derivative: bool,
     /// Model Exchange: `Some(numberOfEventIndicators)` writes the `<ModelExchange>` element
     /// (same `modelIdentifier`) and the `Derivatives` of the model structure: the continuous
@@ -143,9 +144,8 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
     canNotUseMemoryManagementFunctions="true"
     canGetAndSetFMUstate="true"
     canSerializeFMUstate="true"
-    providesDirectionalDerivative="{}"/>"#,
+    providesDirectionalDerivative="false"/>"#,
             esc(&info.model_identifier),
-            info.provides_directional_derivative
         );
     }
     let _ = writeln!(

@@ -1193,10 +1193,8 @@ fn model_exchange_importer_loop_locates_the_state_event_and_follows_the_oscillat
     assert_eq!(info.next_event_time, 1.0);
     assert_eq!(info.terminate_simulation, 0);
     // SAFETY: test importer: live component.
-    assert_eq!(
-        unsafe { sh::enter_continuous_time_mode::<Toy>(c) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::enter_continuous_time_mode::<Toy>(c) };
+    assert_eq!(status, Fmi2Status::Ok);
     assert_eq!(state_of(c), CallState::ContinuousTimeMode);
     // Integrate to the first zero of x (t = asin-free: x = e^(-t/2)(cos wt + sin wt/(2w))),
     // locating it by bisection on the indicator.
@@ -1270,10 +1268,8 @@ fn model_exchange_importer_loop_locates_the_state_event_and_follows_the_oscillat
 fn get_steps(c: Fmi2Component) -> i32 {
     let mut v = 0;
     // SAFETY: test importer: live component.
-    assert_eq!(
-        unsafe { sh::get_integer::<Toy>(c, &8, 1, &mut v) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::get_integer::<Toy>(c, &8, 1, &mut v) };
+    assert_eq!(status, Fmi2Status::Ok);
     v
 }
 

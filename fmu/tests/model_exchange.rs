@@ -171,10 +171,8 @@ fn set_point(c: Fmi2Component, t: f64, x: &[f64]) {
 fn reals(c: Fmi2Component, vrs: &[u32]) -> Vec<f64> {
     let mut v = vec![0.0; vrs.len()];
     // SAFETY: test importer: live component, the arrays hold vrs.len() values.
-    assert_eq!(
-        unsafe { sh::get_real::<M>(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr()) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::get_real::<M>(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr()) };
+    assert_eq!(status, Fmi2Status::Ok);
     v
 }
 
@@ -259,10 +257,8 @@ impl System for Host {
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         set_point(self.0, t, y);
         // SAFETY: test importer: live component, dydt holds NX values.
-        assert_eq!(
-            unsafe { sh::get_derivatives::<M>(self.0, dydt.as_mut_ptr(), NX) },
-            Fmi2Status::Ok
-        );
+        let status = unsafe { sh::get_derivatives::<M>(self.0, dydt.as_mut_ptr(), NX) };
+        assert_eq!(status, Fmi2Status::Ok);
     }
 }
 
@@ -273,10 +269,8 @@ impl EventSystem for Host {
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         set_point(self.0, t, y);
         // SAFETY: test importer: live component, g holds NZ values.
-        assert_eq!(
-            unsafe { sh::get_event_indicators::<M>(self.0, g.as_mut_ptr(), NZ) },
-            Fmi2Status::Ok
-        );
+        let status = unsafe { sh::get_event_indicators::<M>(self.0, g.as_mut_ptr(), NZ) };
+        assert_eq!(status, Fmi2Status::Ok);
     }
     fn handle_event(&mut self, _index: usize, _t: f64, _y: &mut [f64]) -> EventAction {
         EventAction::Stop
@@ -440,10 +434,8 @@ fn an_input_set_in_continuous_time_asks_for_an_event_when_the_speed_moves() {
     let complete = || {
         let (mut e, mut t) = (0, 0);
         // SAFETY: test importer: live component.
-        assert_eq!(
-            unsafe { sh::completed_integrator_step::<M>(c, 1, &mut e, &mut t) },
-            Fmi2Status::Ok
-        );
+        let status = unsafe { sh::completed_integrator_step::<M>(c, 1, &mut e, &mut t) };
+        assert_eq!(status, Fmi2Status::Ok);
         e != 0
     };
     assert!(!complete());

@@ -150,10 +150,8 @@ fn reals(c: Fmi2Component, names: &[&str]) -> Vec<f64> {
     let vrs: Vec<u32> = names.iter().map(|n| vr(n)).collect();
     let mut v = vec![0.0; vrs.len()];
     // SAFETY: test importer: live component, the arrays hold vrs.len() values.
-    assert_eq!(
-        unsafe { sh::get_real::<M>(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr()) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::get_real::<M>(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr()) };
+    assert_eq!(status, Fmi2Status::Ok);
     v
 }
 
@@ -166,10 +164,8 @@ impl System for Host {
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         set_point(self.0, t, y);
         // SAFETY: test importer: live component, dydt holds NX values.
-        assert_eq!(
-            unsafe { sh::get_derivatives::<M>(self.0, dydt.as_mut_ptr(), NX) },
-            Fmi2Status::Ok
-        );
+        let status = unsafe { sh::get_derivatives::<M>(self.0, dydt.as_mut_ptr(), NX) };
+        assert_eq!(status, Fmi2Status::Ok);
     }
 }
 
@@ -194,10 +190,8 @@ fn states_round_trip_and_the_derivatives_are_the_state_variables() {
     let vrs: Vec<u32> = (0..NX as u32).map(|i| 3000 + i).collect();
     let mut dv = vec![0.0; NX];
     // SAFETY: test importer: live component.
-    assert_eq!(
-        unsafe { sh::get_real::<M>(c, vrs.as_ptr(), NX, dv.as_mut_ptr()) },
-        Fmi2Status::Ok
-    );
+    let status = unsafe { sh::get_real::<M>(c, vrs.as_ptr(), NX, dv.as_mut_ptr()) };
+    assert_eq!(status, Fmi2Status::Ok);
     assert_eq!(dv, d);
     let y: Vec<f64> = x
         .iter()
