@@ -4,7 +4,7 @@
 //! only. A model without Model Exchange still exports its functions (they refuse: no instance
 //! of it is ever a Model Exchange one).
 
-/// The names of the functions [`export_fmi2!`] exports: the full FMI 2.0 set.
+/// The names of the functions [`export_fmi2!`](crate::export_fmi2) exports: the full FMI 2.0 set.
 pub const EXPORTED_FUNCTIONS: [&str; 44] = [
     "fmi2GetTypesPlatform",
     "fmi2GetVersion",
