@@ -1593,3 +1593,226 @@ fn model_exchange_fmu_state_round_trip_and_interface_check() {
     }
     free(c);
 }
+
+/// The serialized FMU state of `c` (a fresh handle each time).
+fn serialized(c: Fmi2Component) -> Vec<c_char> {
+    // SAFETY: test importer: live component; the state handle is ours and freed here.
+    unsafe {
+        let mut s: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(sh::get_fmu_state::<Toy>(c, &mut s), Fmi2Status::Ok);
+        let mut size = 0;
+        assert_eq!(
+            sh::serialized_fmu_state_size::<Toy>(c, s, &mut size),
+            Fmi2Status::Ok
+        );
+        let mut bytes = vec![0 as c_char; size];
+        assert_eq!(
+            sh::serialize_fmu_state::<Toy>(c, s, bytes.as_mut_ptr(), size),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::free_fmu_state::<Toy>(c, &mut s), Fmi2Status::Ok);
+        bytes
+    }
+}
+
+/// Restores serialized `bytes` into `c`; the status.
+fn restore(c: Fmi2Component, bytes: &[c_char]) -> Fmi2Status {
+    // SAFETY: test importer: live component; the state handle is ours and freed here.
+    unsafe {
+        let mut s: Fmi2FmuState = std::ptr::null_mut();
+        let r = sh::deserialize_fmu_state::<Toy>(c, bytes.as_ptr(), bytes.len(), &mut s);
+        if r != Fmi2Status::Ok {
+            return r;
+        }
+        let r = sh::set_fmu_state::<Toy>(c, s);
+        assert_eq!(sh::free_fmu_state::<Toy>(c, &mut s), Fmi2Status::Ok);
+        r
+    }
+}
+
+#[test]
+fn every_call_state_survives_serialization_within_its_interface_only() {
+    let h = Harness::new();
+    // (instance kind, the states it passes through), serialized in each and restored into a
+    // fresh instance of the same kind and of the other
+    let me = h.inst_me();
+    let cs = h.inst();
+    let mut me_states = Vec::new();
+    let mut cs_states = Vec::new();
+    // SAFETY: test importer: live components.
+    unsafe {
+        for (c, out) in [(me, &mut me_states), (cs, &mut cs_states)] {
+            out.push((state_of(c), serialized(c)));
+            assert_eq!(
+                sh::setup_experiment::<Toy>(c, 0, 0.0, 0.0, 0, 0.0),
+                Fmi2Status::Ok
+            );
+            assert_eq!(sh::enter_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+            out.push((state_of(c), serialized(c)));
+            assert_eq!(sh::exit_initialization_mode::<Toy>(c), Fmi2Status::Ok);
+            out.push((state_of(c), serialized(c)));
+        }
+        assert_eq!(sh::enter_continuous_time_mode::<Toy>(me), Fmi2Status::Ok);
+        me_states.push((state_of(me), serialized(me)));
+        assert_eq!(sh::terminate::<Toy>(me), Fmi2Status::Ok);
+        me_states.push((state_of(me), serialized(me)));
+        // a Co-Simulation step that fails: StepFailed; then Terminated
+        assert_eq!(set(cs, 5, 2e3), Fmi2Status::Error); // refused by the model: no effect
+        assert_eq!(sh::reset::<Toy>(cs), Fmi2Status::Ok);
+        assert_eq!(set(cs, 6, 0.05), Fmi2Status::Ok);
+        assert_eq!(
+            sh::setup_experiment::<Toy>(cs, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(cs), Fmi2Status::Ok);
+        assert_eq!(sh::exit_initialization_mode::<Toy>(cs), Fmi2Status::Ok);
+        assert_eq!(sh::do_step::<Toy>(cs, 0.0, 0.1, 0), Fmi2Status::Discard);
+        // the outputs of the last good point can be read after a discard
+        assert_eq!(get(cs, &[1, 2]), vec![1.0, 0.0]);
+        cs_states.push((state_of(cs), serialized(cs)));
+        assert_eq!(sh::terminate::<Toy>(cs), Fmi2Status::Ok);
+        cs_states.push((state_of(cs), serialized(cs)));
+    }
+    // a failed event update: the Error state (shared by both interfaces)
+    let failed = h.inst_me();
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(set(failed, 6, 0.0), Fmi2Status::Ok);
+        assert_eq!(
+            sh::setup_experiment::<Toy>(failed, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::enter_initialization_mode::<Toy>(failed), Fmi2Status::Ok);
+        assert_eq!(sh::exit_initialization_mode::<Toy>(failed), Fmi2Status::Ok);
+        assert_eq!(sh::set_time::<Toy>(failed, 0.5), Fmi2Status::Ok);
+        let mut info = Fmi2EventInfo::default();
+        assert_eq!(
+            sh::new_discrete_states::<Toy>(failed, &mut info),
+            Fmi2Status::Error
+        );
+    }
+    me_states.push((state_of(failed), serialized(failed)));
+    free(failed);
+    let names = |v: &[(CallState, Vec<c_char>)]| v.iter().map(|s| s.0).collect::<Vec<_>>();
+    use CallState::*;
+    assert_eq!(
+        names(&me_states),
+        [
+            Instantiated,
+            InitializationMode,
+            EventMode,
+            ContinuousTimeMode,
+            Terminated,
+            Error
+        ]
+    );
+    assert_eq!(
+        names(&cs_states),
+        [
+            Instantiated,
+            InitializationMode,
+            StepComplete,
+            StepFailed,
+            Terminated
+        ]
+    );
+    for (state, bytes) in &me_states {
+        let fresh = h.inst_me();
+        assert_eq!(restore(fresh, bytes), Fmi2Status::Ok, "{state:?}");
+        assert_eq!(state_of(fresh), *state);
+        free(fresh);
+        let other = h.inst();
+        let shared = matches!(
+            state,
+            Instantiated | InitializationMode | Terminated | Error
+        );
+        let want = if shared {
+            Fmi2Status::Ok
+        } else {
+            Fmi2Status::Error
+        };
+        assert_eq!(restore(other, bytes), want, "ME {state:?} into CS");
+        free(other);
+    }
+    for (state, bytes) in &cs_states {
+        let fresh = h.inst();
+        assert_eq!(restore(fresh, bytes), Fmi2Status::Ok, "{state:?}");
+        assert_eq!(state_of(fresh), *state);
+        free(fresh);
+        let other = h.inst_me();
+        let shared = matches!(state, Instantiated | InitializationMode | Terminated);
+        let want = if shared {
+            Fmi2Status::Ok
+        } else {
+            Fmi2Status::Error
+        };
+        assert_eq!(restore(other, bytes), want, "CS {state:?} into ME");
+        if !shared {
+            assert!(
+                h.last().contains("saved by a Co-Simulation instance"),
+                "{}",
+                h.last()
+            );
+        }
+        free(other);
+    }
+    free(me);
+    free(cs);
+}
+
+#[test]
+fn refusals_name_the_states_that_allow_the_call_and_event_mode_takes_the_other_setters() {
+    let h = Harness::new();
+    let c = h.inst_me();
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(sh::set_time::<Toy>(c, 0.0), Fmi2Status::Error);
+        assert!(
+            h.last().ends_with(
+                "the instance is in state Instantiated; allowed in: EventMode, ContinuousTimeMode"
+            ),
+            "{}",
+            h.last()
+        );
+        let mut info = Fmi2EventInfo::default();
+        assert_eq!(
+            sh::new_discrete_states::<Toy>(c, &mut info),
+            Fmi2Status::Error
+        );
+        assert!(h.last().ends_with("allowed in: EventMode"), "{}", h.last());
+        let mut x = [0.0; 2];
+        assert_eq!(
+            sh::get_derivatives::<Toy>(c, x.as_mut_ptr(), 2),
+            Fmi2Status::Error
+        );
+        assert!(
+            h.last()
+                .ends_with("allowed in: EventMode, ContinuousTimeMode, Terminated, Error"),
+            "{}",
+            h.last()
+        );
+    }
+    free(c);
+    let c = me_ready(&h);
+    // SAFETY: test importer: live component.
+    unsafe {
+        // event mode lets fmi2SetBoolean/Integer/String through the call-state check: the
+        // refusal is the variable's (a fixed parameter), not the sequence
+        assert_eq!(sh::set_boolean::<Toy>(c, &9, 1, &1), Fmi2Status::Error);
+        assert!(h.last().contains("fixed parameter"), "{}", h.last());
+        assert_eq!(
+            sh::set_string::<Toy>(c, &10, 1, &c"b".as_ptr()),
+            Fmi2Status::Error
+        );
+        assert!(h.last().contains("fixed parameter"), "{}", h.last());
+    }
+    free(c);
+    // and so does StepComplete in Co-Simulation
+    let c = ready(&h);
+    // SAFETY: test importer: live component.
+    unsafe {
+        assert_eq!(sh::set_boolean::<Toy>(c, &9, 1, &1), Fmi2Status::Error);
+        assert!(h.last().contains("fixed parameter"), "{}", h.last());
+    }
+    free(c);
+}
