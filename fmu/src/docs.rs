@@ -159,10 +159,6 @@ pub fn documentation_html(
 
     h.push_str("<h2>Variables</h2>\n<p>Inputs are held constant over a communication step. Parameters are fixed: they can be set after fmi2Instantiate and in initialization mode only (fmi2Reset to change them later). Value references are stable.</p>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th><th>type</th><th>unit (display)</th><th>start</th><th>range</th><th>meaning</th></tr>\n");
     for e in &t {
-        // The Model Exchange states and derivatives have their own section.
-        if matches!(e.role, Access::State(_) | Access::Derivative(_)) {
-            continue;
-        }
         let v = &e.var;
         let unit = match (&v.unit, &v.display_unit) {
             (Some(u), Some(d)) => format!("{u} ({d})"),
@@ -188,7 +184,7 @@ pub fn documentation_html(
             Access::Input { .. } | Access::Journal(_) | Access::Line(_) => "input",
             Access::Param { .. } => "parameter (fixed)",
             Access::Output(_) | Access::Stat(_) | Access::RingVelocity(_) => "output",
-            Access::State(_) | Access::Derivative(_) => "local",
+            Access::State(_) | Access::Derivative(_) => "local (Model Exchange)",
         };
         h.push_str(&format!(
             "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
