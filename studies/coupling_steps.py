@@ -345,7 +345,7 @@ simulators use (0.1–1 ms). In short:
 | your master | coupling | communication step |
 |---|---|---|
 | any master that exchanges values (libcosim, fmpy, an SSP runner, Simulink, Dymola's co-simulation) | **transmission line** through the shaft: BallBearing `coupling = 2` (tlm), JeffcottRotor `coupling = 1` with `tlm.delay` = the step (or your rotor model implementing the line, below) | any: stable from 1 µs to 1 ms; {accuracy} (table below) |
-| a Model Exchange host integrating everything in one solver | not yet: the FMUs are Co-Simulation only (issue 19 item 2 is under way) | – |
+| a Model Exchange host integrating everything in one solver | both FMUs are also Model Exchange FMUs, in force coupling ([fmu.md](fmu.md#model-exchange)); the motion coupling that would let a host integrate rotor and bearing together is not yet available in Model Exchange | the host's |
 | our own master with state rollback (`examples/cosim_master.py`, `implicit`) | the cut at the contact (BallBearing `coupling = 1`, motion) with rolled-back step sensitivities | in the run-up below stable at 0.1 ms but far off at the critical speed, and it ran away at 1 ms; about 5× the work per step: superseded by the line |
 | a value-exchange master with the cut at the contact (`coupling = 1`, the journal's motion in, the reaction out) | avoid | the force held over the step is stable only below 2c/k (c, k the bearing's damping and stiffness at the journal: about 0.6 µs on the default bearing, a little more with the rotor's own damping): the FMU logs this bound at initialization and warns at the first longer step |
 
