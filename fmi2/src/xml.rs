@@ -39,6 +39,11 @@ pub struct ModelInfo {
     /// states are the variables that the derivatives (those with
     /// [`Variable::derivative_of`]) name. `None`: Co-Simulation only.
     pub model_exchange: Option<usize>,
+    /// Value references of outputs that depend on no input and no state at the same instant
+    /// (written with empty `dependencies`, so that a master may read them before it sets the
+    /// inputs of the same communication point). The other outputs depend on every input (and,
+    /// with Model Exchange, every state).
+    pub independent_outputs: Vec<u32>,
 }
 
 /// Placeholder for the GUID while hashing.
@@ -347,9 +352,14 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
     let _ = writeln!(w, "    <Outputs>");
     for (i, v) in vars.iter().enumerate() {
         if v.causality == Causality::Output {
+            let (d, k) = if info.independent_outputs.contains(&v.vr) {
+                ("", "")
+            } else {
+                (deps.as_str(), kinds.as_str())
+            };
             let _ = writeln!(
                 w,
-                r#"      <Unknown index="{}" dependencies="{deps}" dependenciesKind="{kinds}"/>"#,
+                r#"      <Unknown index="{}" dependencies="{d}" dependenciesKind="{k}"/>"#,
                 i + 1
             );
         }

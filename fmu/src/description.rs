@@ -38,6 +38,7 @@ pub fn model_info(bearing: &BearingFile) -> xml::ModelInfo {
         step_size: DEFAULT_STEP_SIZE,
         provides_directional_derivative: true,
         model_exchange: Some(raceway::model_exchange_capacity(bearing.bearing.z as usize).1),
+        independent_outputs: Vec::new(),
     }
 }
 

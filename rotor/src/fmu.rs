@@ -586,45 +586,19 @@ pub fn model_info() -> xml::ModelInfo {
         step_size: DEFAULT_STEP_SIZE,
         provides_directional_derivative: false,
         model_exchange: Some(0),
+        // The tlm.* outputs depend on the rotor's own state and history only (the line's
+        // samples), not on the inputs of the same communication point.
+        independent_outputs: table()
+            .into_iter()
+            .filter(|(_, r)| matches!(r, Role::Out(o) if !o.feedthrough()))
+            .map(|(v, _)| v.vr)
+            .collect(),
     }
 }
 
-/// Placeholder for the GUID while hashing (as the shell's generator does).
-const GUID_PLACEHOLDER: &str = "@GUID@";
-
 fn description_and_guid() -> (String, String) {
-    let t = table();
-    let vars: Vec<Variable> = t.iter().map(|(v, _)| v.clone()).collect();
-    let (text, guid) = xml::model_description(&model_info(), &vars);
-    // The shell's generator declares every output dependent on every input. The tlm.* outputs
-    // depend on the rotor's own state and history only: declare them without dependencies, so
-    // a master may read them before it sets the inputs of the same communication point. The
-    // GUID is then the hash of the text as written (with the placeholder in its place).
-    let own: Vec<String> = t
-        .iter()
-        .enumerate()
-        .filter(|(_, (_, r))| matches!(r, Role::Out(o) if !o.feedthrough()))
-        .map(|(i, _)| format!("      <Unknown index=\"{}\" dependencies=", i + 1))
-        .collect();
-    let mut body = String::with_capacity(text.len());
-    let mut patched = 0;
-    for line in text.replacen(&guid, GUID_PLACEHOLDER, 1).lines() {
-        if let Some(head) = own.iter().find(|h| line.starts_with(h.as_str())) {
-            body.push_str(head);
-            body.push_str("\"\" dependenciesKind=\"\"/>");
-            patched += 1;
-        } else {
-            body.push_str(line);
-        }
-        body.push('\n');
-    }
-    assert_eq!(
-        patched,
-        own.len(),
-        "every tlm.* output has its ModelStructure entry"
-    );
-    let guid = fmi2::sha256::guid_from(body.as_bytes());
-    (body.replacen(GUID_PLACEHOLDER, &guid, 1), guid)
+    let vars: Vec<Variable> = table().into_iter().map(|(v, _)| v).collect();
+    xml::model_description(&model_info(), &vars)
 }
 
 /// The `modelDescription.xml` of the rotor FMU.
