@@ -212,6 +212,8 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
                 error = f"t = {t}: {e}"
                 break
             xhat = xv.copy()
+        if isinstance(bearing, Fmu):  # the rotor's speed (a ramp) drives the bearing's
+            bearing.set(SPEED, rotor.get(SPEED))
         F = bearing.get(BF)
         if scheme == "constant":
             rotor.set(BF, F)
@@ -259,6 +261,7 @@ def run_coupled(rotor, bearing, H, t_end, scheme="constant", t0=0.0, on_step=Non
 
 
 TLM_WAVE = ["tlm.c0.y", "tlm.c0.z", "tlm.c1.y", "tlm.c1.z", "tlm.Zc"]
+SPEED = ["shaft.speed"]
 TLM_V_IN = ["tlm.v.y", "tlm.v.z"]
 RING_V = ["ring.v.y", "ring.v.z"]
 RING_X = ["ring.x", "ring.y", "ring.z"]
@@ -267,7 +270,8 @@ RING_X = ["ring.x", "ring.y", "ring.z"]
 def run_tlm(rotor, bearing, H, t_end, t0=0.0, on_step=None, blowup=1e-2):
     """Jacobi co-simulation through the transmission line (both FMUs in initialization mode,
     parameters set: rotor coupling = 1 and tlm.delay = H, bearing coupling = 2). Plain value
-    exchange at each communication point, as any master does. Returns dict of arrays: t, x (the
+    exchange at each communication point, as any master does: the line's samples and the shaft
+    speed from the rotor, the journal velocity from the bearing. Returns dict of arrays: t, x (the
     journal: bearing ring.x/y/z), disk (rotor disk.y/z), and 'ok', 'error'."""
     rotor.exit_init()
     bearing.set(TLM_WAVE, rotor.get(TLM_WAVE))  # the line's force at rest: the start's equilibrium
@@ -278,7 +282,7 @@ def run_tlm(rotor, bearing, H, t_end, t0=0.0, on_step=None, blowup=1e-2):
     ok, error, t = True, None, t0
     for k in range(n):
         try:
-            bearing.set(TLM_WAVE, rotor.get(TLM_WAVE))
+            bearing.set(TLM_WAVE + SPEED, rotor.get(TLM_WAVE + SPEED))
             rotor.set(TLM_V_IN, bearing.get(RING_V))
             rotor.step(t, H)
             bearing.step(t, H)
