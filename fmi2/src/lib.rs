@@ -38,6 +38,7 @@
 #![warn(missing_docs)]
 
 pub mod bindings;
+pub mod capture;
 pub mod codec;
 pub mod exports;
 mod ffi;

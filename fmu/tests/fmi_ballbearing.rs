@@ -3,51 +3,20 @@
 
 use ballbearing_fmu::ballbearing::BallBearing;
 use fmi2::bindings::*;
+use fmi2::capture::LogCapture;
 use fmi2::functions as sh;
 use raceway::BearingFile;
-use std::ffi::{CStr, CString};
-use std::os::raw::{c_char, c_void};
-use std::sync::Mutex;
-
-type Log = Mutex<Vec<(Fmi2Status, String)>>;
-
-/// With the format "%s", the message is the sixth argument, passed like a fixed argument by
-/// the x86-64 and aarch64 C ABIs.
-unsafe extern "C" fn logger(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    _category: Fmi2String,
-    _fmt: Fmi2String,
-    msg: *const c_char,
-) {
-    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
-    let log = unsafe { &*(env as *const Log) };
-    // SAFETY: the shell passes the message as a NUL-terminated string valid during the call.
-    let m = unsafe { CStr::from_ptr(msg) }
-        .to_string_lossy()
-        .into_owned();
-    log.lock().unwrap().push((status, m));
-}
+use std::ffi::CString;
 
 struct H {
-    log: Box<Log>,
-    cb: Fmi2CallbackFunctions,
+    log: LogCapture,
 }
 
 impl H {
     fn new() -> Self {
-        let log: Box<Log> = Box::default();
-        // SAFETY: the shell always calls the logger with "%s" and one string (fixed_args_logger's contract).
-        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
-        let cb = Fmi2CallbackFunctions {
-            logger: Some(l),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            component_environment: &*log as *const Log as *mut c_void,
-        };
-        Self { log, cb }
+        Self {
+            log: LogCapture::new(),
+        }
     }
     fn inst(&self, guid: &str, resources: Option<&str>) -> Fmi2Component {
         let g = CString::new(guid).unwrap();
@@ -60,23 +29,18 @@ impl H {
                 FMI2_CO_SIMULATION,
                 g.as_ptr(),
                 r.as_ref().map_or(std::ptr::null(), |r| r.as_ptr()),
-                &self.cb,
+                self.log.callbacks(),
                 0,
                 0,
             )
         }
     }
     fn last(&self) -> String {
-        self.last_entry().1
+        self.log.last()
     }
     /// The last message and the status it was logged with.
     fn last_entry(&self) -> (Fmi2Status, String) {
-        self.log
-            .lock()
-            .unwrap()
-            .last()
-            .cloned()
-            .unwrap_or((Fmi2Status::Ok, String::new()))
+        self.log.last_entry()
     }
 }
 
@@ -927,8 +891,8 @@ fn loads_beyond_the_rating_warn_and_absurd_loads_are_refused() {
             .lock()
             .unwrap()
             .iter()
-            .filter(|(s, _)| *s == Fmi2Status::Warning)
-            .map(|(_, m)| m.clone())
+            .filter(|(s, _, _)| *s == Fmi2Status::Warning)
+            .map(|(_, _, m)| m.clone())
             .collect();
         assert!(
             warnings.iter().any(|m| m.contains("static load rating C0")),
@@ -1033,14 +997,7 @@ fn a_refused_value_takes_back_the_earlier_values_of_the_call() {
 fn inputs_the_coupling_mode_ignores_are_reported_once() {
     let b = BearingFile::default_preset();
     let h = H::new();
-    let warnings = |h: &H, what: &str| {
-        h.log
-            .lock()
-            .unwrap()
-            .iter()
-            .filter(|(s, m)| *s == Fmi2Status::Warning && m.contains(what))
-            .count()
-    };
+    let warnings = |h: &H, what: &str| h.log.count(Fmi2Status::Warning, what);
     // Motion mode: a load set after initialization is ignored; the step says so once.
     let (c, t) = ready_at(&h, &b, 2, 1, 2_000_000, 1, None);
     let fz = vr(&b, "load.Fz");
@@ -1313,12 +1270,7 @@ fn a_line_of_constant_force_is_a_load_and_its_impedance_damps() {
             let (c, s) = configured(&h, &b, &[("fidelity", 2), ("coupling", coupling)], &reals);
             assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
             if tlm {
-                assert!(h
-                    .log
-                    .lock()
-                    .unwrap()
-                    .iter()
-                    .any(|(_, m)| m.contains("stable at any")));
+                assert!(h.log.any("stable at any"));
             }
             let set = |name: &str, v: f64| {
                 // SAFETY: c is a live instance; one value.
@@ -1380,13 +1332,7 @@ fn line_inputs_outside_tlm_are_reported_once() {
     let b = BearingFile::default_preset();
     let count = |h: &H| {
         h.log
-            .lock()
-            .unwrap()
-            .iter()
-            .filter(|(s, m)| {
-                *s == Fmi2Status::Warning && m.contains("tlm.* inputs are set but ignored")
-            })
-            .count()
+            .count(Fmi2Status::Warning, "tlm.* inputs are set but ignored")
     };
     let h = H::new();
     let (c, s) = configured(&h, &b, &[("fidelity", 2)], &[("tlm.c1.z", -50.0)]);
@@ -1443,8 +1389,8 @@ fn motion_coupling_logs_its_stable_step_and_warns_once_beyond_it() {
         .lock()
         .unwrap()
         .iter()
-        .find(|(_, m)| m.contains("2c/k ="))
-        .cloned()
+        .find(|(_, _, m)| m.contains("2c/k ="))
+        .map(|(s, _, m)| (*s, m.clone()))
         .expect("the stable-step note");
     // "... stable for H < 2c/k = 6.123e-7 s ..."
     let hs: f64 = note
@@ -1458,14 +1404,7 @@ fn motion_coupling_logs_its_stable_step_and_warns_once_beyond_it() {
         .parse()
         .unwrap();
     assert!(hs > 1e-8 && hs < 1e-4, "{}", note.1);
-    let count = |h: &H| {
-        h.log
-            .lock()
-            .unwrap()
-            .iter()
-            .filter(|(s, m)| *s == Fmi2Status::Warning && m.contains("is longer than"))
-            .count()
-    };
+    let count = |h: &H| h.log.count(Fmi2Status::Warning, "is longer than");
     let mut t = 0.0;
     // SAFETY: c is a live instance.
     unsafe {

@@ -5,58 +5,24 @@
 
 use ballbearing_fmu::ballbearing::BallBearing;
 use fmi2::bindings::*;
+use fmi2::capture::LogCapture;
 use fmi2::functions as sh;
 use raceway::solver::{
     AdvanceOutcome, EventAction, EventSystem, Integrator, Method, Options, System,
 };
 use raceway::BearingFile;
-use std::ffi::{CStr, CString};
-use std::os::raw::{c_char, c_void};
-use std::sync::Mutex;
+use std::ffi::CString;
 
 type M = BallBearing;
-type Log = Mutex<Vec<(Fmi2Status, String)>>;
-
-/// With the format "%s", the message is the sixth argument, passed like a fixed argument by
-/// the x86-64 and aarch64 C ABIs.
-unsafe extern "C" fn logger(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    _category: Fmi2String,
-    _fmt: Fmi2String,
-    msg: *const c_char,
-) {
-    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
-    let log = unsafe { &*(env as *const Log) };
-    // SAFETY: the shell passes the message as a NUL-terminated string valid during the call.
-    let m = unsafe { CStr::from_ptr(msg) }
-        .to_string_lossy()
-        .into_owned();
-    log.lock().unwrap().push((status, m));
-}
-
 struct H {
-    log: Box<Log>,
-    cb: Fmi2CallbackFunctions,
+    log: LogCapture,
     b: BearingFile,
 }
 
 impl H {
     fn new() -> Self {
-        let log: Box<Log> = Box::default();
-        // SAFETY: the shell always calls the logger with "%s" and one string (fixed_args_logger's contract).
-        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
-        let cb = Fmi2CallbackFunctions {
-            logger: Some(l),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            component_environment: &*log as *const Log as *mut c_void,
-        };
         Self {
-            log,
-            cb,
+            log: LogCapture::new(),
             b: BearingFile::default_preset(),
         }
     }
@@ -69,7 +35,7 @@ impl H {
                 kind,
                 g.as_ptr(),
                 std::ptr::null(),
-                &self.cb,
+                self.log.callbacks(),
                 0,
                 1,
             )
@@ -78,20 +44,10 @@ impl H {
         c
     }
     fn last(&self) -> String {
-        self.log
-            .lock()
-            .unwrap()
-            .last()
-            .map(|m| m.1.clone())
-            .unwrap_or_default()
+        self.log.last()
     }
     fn messages(&self) -> Vec<String> {
-        self.log
-            .lock()
-            .unwrap()
-            .iter()
-            .map(|m| m.1.clone())
-            .collect()
+        self.log.messages()
     }
     fn vr(&self, name: &str) -> u32 {
         ballbearing_fmu::variables::table(&self.b)

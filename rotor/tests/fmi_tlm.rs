@@ -3,42 +3,15 @@
 //! the warnings, order independence of a Jacobi master, and the FMU state.
 
 use fmi2::bindings::*;
+use fmi2::capture::LogCapture;
 use fmi2::functions as sh;
 use raceway_rotor::fmu::{guid, table, JeffcottRotor};
-use std::ffi::{CStr, CString};
-use std::os::raw::{c_char, c_void};
-use std::sync::Mutex;
+use std::ffi::CString;
 
 type M = JeffcottRotor;
-type Log = Mutex<Vec<(Fmi2Status, String, String)>>;
-
-/// With the format "%s", the message is the sixth argument, passed like a fixed argument by
-/// the x86-64 and aarch64 C ABIs.
-unsafe extern "C" fn logger(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    category: Fmi2String,
-    _fmt: Fmi2String,
-    msg: *const c_char,
-) {
-    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
-    let log = unsafe { &*(env as *const Log) };
-    // SAFETY: the shell passes the category and the message as NUL-terminated strings valid
-    // during the call.
-    let (c, m) = unsafe {
-        (
-            CStr::from_ptr(category).to_string_lossy().into_owned(),
-            CStr::from_ptr(msg).to_string_lossy().into_owned(),
-        )
-    };
-    log.lock().unwrap().push((status, c, m));
-}
-
 /// One rotor instance with logging on, and what it logged.
 struct Rotor {
-    log: Box<Log>,
-    _cb: Box<Fmi2CallbackFunctions>,
+    log: LogCapture,
     c: Fmi2Component,
 }
 
@@ -53,17 +26,7 @@ fn vr(name: &str) -> u32 {
 
 impl Rotor {
     fn new() -> Self {
-        let log: Box<Log> = Box::default();
-        // SAFETY: the shell always calls the logger with "%s" and one string
-        // (fixed_args_logger's contract).
-        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
-        let cb = Box::new(Fmi2CallbackFunctions {
-            logger: Some(l),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            component_environment: &*log as *const Log as *mut c_void,
-        });
+        let log = LogCapture::new();
         let g = CString::new(guid()).unwrap();
         // SAFETY: test importer: the strings and callbacks outlive the instance (FMI 2.0
         // pointer rules).
@@ -73,7 +36,7 @@ impl Rotor {
                 FMI2_CO_SIMULATION,
                 g.as_ptr(),
                 std::ptr::null(),
-                &*cb,
+                log.callbacks(),
                 0,
                 1,
             )
@@ -82,7 +45,7 @@ impl Rotor {
         // SAFETY: as above; the instance is live.
         let status = unsafe { sh::setup_experiment::<M>(c, 1, 1e-8, 0.0, 0, 0.0) };
         assert_eq!(status, Fmi2Status::Ok);
-        Rotor { log, _cb: cb, c }
+        Rotor { log, c }
     }
 
     /// A rotor in coupling mode tlm with the given Real parameters, initialized.

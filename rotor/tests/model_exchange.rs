@@ -4,15 +4,13 @@
 //! as a time event) ends where the Co-Simulation does, and coupling mode tlm is refused.
 
 use fmi2::bindings::*;
+use fmi2::capture::LogCapture;
 use fmi2::functions as sh;
 use raceway_rotor::fmu::{guid, table, JeffcottRotor};
 use raceway_solver::{Integrator, Method, Options, System};
-use std::ffi::{CStr, CString};
-use std::os::raw::{c_char, c_void};
-use std::sync::Mutex;
+use std::ffi::CString;
 
 type M = JeffcottRotor;
-type Log = Mutex<Vec<String>>;
 const NX: usize = 10;
 /// A speed ramp from 500 to 1000 rad/s over 10 ms (its end is a time event).
 const RAMP: [(&str, f64); 3] = [
@@ -21,28 +19,8 @@ const RAMP: [(&str, f64); 3] = [
     ("speed.rate", 5e4),
 ];
 
-/// With the format "%s", the message is the sixth argument, passed like a fixed argument by
-/// the x86-64 and aarch64 C ABIs.
-unsafe extern "C" fn logger(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    _status: Fmi2Status,
-    _category: Fmi2String,
-    _fmt: Fmi2String,
-    msg: *const c_char,
-) {
-    // SAFETY: env is the Box<Log> this harness registered, alive as long as the harness.
-    let log = unsafe { &*(env as *const Log) };
-    // SAFETY: the shell passes the message as a NUL-terminated string valid during the call.
-    let m = unsafe { CStr::from_ptr(msg) }
-        .to_string_lossy()
-        .into_owned();
-    log.lock().unwrap().push(m);
-}
-
 struct H {
-    log: Box<Log>,
-    cb: Box<Fmi2CallbackFunctions>,
+    log: LogCapture,
 }
 
 fn vr(name: &str) -> u32 {
@@ -56,18 +34,9 @@ fn vr(name: &str) -> u32 {
 
 impl H {
     fn new() -> Self {
-        let log: Box<Log> = Box::default();
-        // SAFETY: the shell always calls the logger with "%s" and one string
-        // (fixed_args_logger's contract).
-        let l: Fmi2CallbackLogger = unsafe { fixed_args_logger(logger) };
-        let cb = Box::new(Fmi2CallbackFunctions {
-            logger: Some(l),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            component_environment: &*log as *const Log as *mut c_void,
-        });
-        Self { log, cb }
+        Self {
+            log: LogCapture::new(),
+        }
     }
 
     /// An initialized instance of `kind` with `coupling` and tolerance 1e-12 (Co-Simulation:
@@ -91,7 +60,7 @@ impl H {
                 kind,
                 g.as_ptr(),
                 std::ptr::null(),
-                &*self.cb,
+                self.log.callbacks(),
                 0,
                 0,
             );
@@ -275,10 +244,5 @@ fn an_importer_loop_ends_where_the_co_simulation_does_and_tlm_is_refused() {
         sh::free_instance::<M>(c);
     }
     assert!(h.ready(FMI2_MODEL_EXCHANGE, 1).is_none());
-    assert!(h
-        .log
-        .lock()
-        .unwrap()
-        .iter()
-        .any(|m| m.contains("coupling = 1 (tlm) is refused")));
+    assert!(h.log.any("coupling = 1 (tlm) is refused"));
 }
