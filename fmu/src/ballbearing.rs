@@ -692,7 +692,7 @@ impl FmuModel for BallBearing {
 
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
         match self.roles[index] {
-            Access::Input { set, .. } => {
+            Access::Input { set, load, .. } => {
                 let mut next = self.inputs;
                 set(&mut next, value);
                 if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
@@ -720,7 +720,7 @@ impl FmuModel for BallBearing {
                     next.check().map_err(|m| sim_err(SimError::Input(m)))?;
                 }
                 self.inputs = next;
-                self.loads_set_running |= self.initialized;
+                self.loads_set_running |= self.initialized && load;
                 self.invalidate();
                 Ok(())
             }

@@ -999,8 +999,24 @@ fn inputs_the_coupling_mode_ignores_are_reported_once() {
     let h = H::new();
     let warnings = |h: &H, what: &str| h.log.count(Fmi2Status::Warning, what);
     // Motion mode: a load set after initialization is ignored; the step says so once.
-    let (c, t) = ready_at(&h, &b, 2, 1, 2_000_000, 1, None);
+    let (c, t0) = ready_at(&h, &b, 2, 1, 2_000_000, 1, None);
     let fz = vr(&b, "load.Fz");
+    // The shaft speed is not a load: setting it (a master passing a rotor's speed) says nothing.
+    let speed = vr(&b, "shaft.speed");
+    // SAFETY: c is a live instance; single values.
+    unsafe {
+        assert_eq!(
+            sh::set_real::<BallBearing>(c, &speed, 1, &1040.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, t0, H_GOOD, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+    }
+    let t = t0 + H_GOOD;
     // SAFETY: c is a live instance; single values.
     unsafe {
         assert_eq!(
