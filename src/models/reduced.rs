@@ -47,14 +47,14 @@ use super::balls::layout::{
     ball_state_name, pedestal_state_name, ring_state_name, Layout, BOM, BR, BTH, BVR, BVX, BW, BX,
     PVY, PVZ, PY, PZ, REDUCED_PER_BALL, RV, RX,
 };
-use super::balls::{BallCore, BallSpin};
+use super::balls::{forward_to_ball_core, BallCore, BallSpin};
 use super::full::{steady::SteadyReport, FullModel, FullOptions};
 use super::Model;
 use crate::contact::TractionCurve;
 use crate::defect::Defect;
 use crate::geometry::Bearing;
-use crate::models::{RingStates, SimError};
-use crate::operating::{OperatingPoint, RingLoad};
+use crate::models::SimError;
+use crate::operating::OperatingPoint;
 use crate::scene::Scene;
 use std::f64::consts::TAU;
 
@@ -346,13 +346,7 @@ impl ReducedModel {
 }
 
 impl Model for ReducedModel {
-    fn dim(&self) -> usize {
-        self.core.lay.dim()
-    }
-
-    fn start_note(&self) -> Option<String> {
-        self.core.start_note.clone()
-    }
+    forward_to_ball_core!();
 
     fn state_name(&self, i: usize) -> String {
         let lay = self.core.lay;
@@ -393,15 +387,6 @@ impl Model for ReducedModel {
         out[p + PVZ] = 1e-2;
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
-    }
-
-    fn initial_state(&self, y: &mut [f64]) {
-        y.copy_from_slice(&self.core.y0);
-    }
-
-    fn set_inputs(&mut self, inputs: &OperatingPoint, _t: f64, _y: &[f64]) -> Result<(), SimError> {
-        self.core.inputs = *inputs;
-        Ok(())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -480,69 +465,5 @@ impl Model for ReducedModel {
         c.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
         self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
-    }
-
-    fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
-        self.core.next_stop(t, t_max)
-    }
-
-    fn update_mode(&mut self, t: f64, y: &[f64]) {
-        self.core.update_mode(t, y);
-    }
-
-    fn begin_step(&mut self) {
-        self.core.sw.begin_step();
-    }
-
-    fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
-        self.core.sw.suspect(t_old, t_new)
-    }
-
-    fn event_fired(&mut self, index: usize) {
-        self.core.sw.event_fired(index);
-    }
-
-    fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
-        self.core.diagnose(y)
-    }
-
-    fn checkpoint(&self, b: &mut Vec<f64>) {
-        self.core.checkpoint(b);
-    }
-
-    fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
-        self.core.rollback(b)
-    }
-
-    fn n_events(&self) -> usize {
-        self.core.n_events()
-    }
-
-    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
-        self.core.events(y, g);
-    }
-
-    fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
-        let mut dydt = std::mem::take(&mut self.core.scratch);
-        self.rhs(t, y, &mut dydt);
-        self.core.outputs(y, &dydt, self.friction_torque(), o);
-        self.core.scratch = dydt;
-    }
-
-    fn cage_speed(&self) -> f64 {
-        self.core.cage_speed()
-    }
-
-    fn ring_states(&self) -> Option<RingStates> {
-        Some(self.core.ring_states())
-    }
-
-    fn set_prescribed_ring(&mut self, on: bool) {
-        self.core.prescribed = on;
-    }
-
-    fn set_ring_load(&mut self, law: Option<RingLoad>) -> bool {
-        self.core.ring_load = law;
-        true
     }
 }

@@ -641,3 +641,97 @@ impl BallCore {
         dydt[self.lay.phi()] = self.inputs.shaft_speed;
     }
 }
+
+/// The [`crate::models::Model`] methods the ball-level models (reduced, full) share, each
+/// forwarding to the model's `core: BallCore`; expanded inside each model's `impl Model`
+/// (`outputs` evaluates that model's own right-hand side and friction torque first).
+macro_rules! forward_to_ball_core {
+    () => {
+        fn dim(&self) -> usize {
+            self.core.lay.dim()
+        }
+
+        fn start_note(&self) -> Option<String> {
+            self.core.start_note.clone()
+        }
+
+        fn initial_state(&self, y: &mut [f64]) {
+            y.copy_from_slice(&self.core.y0);
+        }
+
+        fn set_inputs(
+            &mut self,
+            inputs: &$crate::operating::OperatingPoint,
+            _t: f64,
+            _y: &[f64],
+        ) -> Result<(), $crate::models::SimError> {
+            self.core.inputs = *inputs;
+            Ok(())
+        }
+
+        fn next_stop(&self, t: f64, _y: &[f64], t_max: f64) -> Option<f64> {
+            self.core.next_stop(t, t_max)
+        }
+
+        fn update_mode(&mut self, t: f64, y: &[f64]) {
+            self.core.update_mode(t, y);
+        }
+
+        fn begin_step(&mut self) {
+            self.core.sw.begin_step();
+        }
+
+        fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
+            self.core.sw.suspect(t_old, t_new)
+        }
+
+        fn event_fired(&mut self, index: usize) {
+            self.core.sw.event_fired(index);
+        }
+
+        fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
+            self.core.diagnose(y)
+        }
+
+        fn checkpoint(&self, b: &mut Vec<f64>) {
+            self.core.checkpoint(b);
+        }
+
+        fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
+            self.core.rollback(b)
+        }
+
+        fn n_events(&self) -> usize {
+            self.core.n_events()
+        }
+
+        fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+            self.core.events(y, g);
+        }
+
+        fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
+            let mut dydt = std::mem::take(&mut self.core.scratch);
+            self.rhs(t, y, &mut dydt);
+            self.core.outputs(y, &dydt, self.friction_torque(), o);
+            self.core.scratch = dydt;
+        }
+
+        fn cage_speed(&self) -> f64 {
+            self.core.cage_speed()
+        }
+
+        fn ring_states(&self) -> Option<$crate::models::RingStates> {
+            Some(self.core.ring_states())
+        }
+
+        fn set_prescribed_ring(&mut self, on: bool) {
+            self.core.prescribed = on;
+        }
+
+        fn set_ring_load(&mut self, law: Option<$crate::operating::RingLoad>) -> bool {
+            self.core.ring_load = law;
+            true
+        }
+    };
+}
+pub(crate) use forward_to_ball_core;

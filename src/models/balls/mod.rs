@@ -9,4 +9,5 @@ pub mod layout;
 pub mod pass;
 pub mod switches;
 
+pub(crate) use self::core::forward_to_ball_core;
 pub use self::core::{BallCore, BallSpin};
