@@ -127,6 +127,16 @@ pub struct BallBearing {
     me_input_event: bool,
 }
 
+/// `inputs` plus the line's force at the start (y, z), as the model runs on them in coupling
+/// mode tlm (zero offset otherwise).
+fn with_line_offset(inputs: OperatingPoint, offset: [f64; 2]) -> OperatingPoint {
+    OperatingPoint {
+        fy: inputs.fy + offset[0],
+        fz: inputs.fz + offset[1],
+        ..inputs
+    }
+}
+
 fn sim_err(e: SimError) -> String {
     e.to_string()
 }
@@ -255,11 +265,7 @@ impl BallBearing {
     /// The operating point the model runs on: the inputs plus, in coupling mode tlm, the
     /// line's force at the start (`offset`).
     fn model_inputs(&self, offset: [f64; 2]) -> OperatingPoint {
-        OperatingPoint {
-            fy: self.inputs.fy + offset[0],
-            fz: self.inputs.fz + offset[1],
-            ..self.inputs
-        }
+        with_line_offset(self.inputs, offset)
     }
 
     fn build(&self) -> Result<Live, String> {
@@ -696,12 +702,7 @@ impl FmuModel for BallBearing {
                 let mut next = self.inputs;
                 set(&mut next, value);
                 if let Some(live) = self.live.as_mut().filter(|_| self.initialized) {
-                    let [oy, oz] = live.line_offset;
-                    let model = OperatingPoint {
-                        fy: next.fy + oy,
-                        fz: next.fz + oz,
-                        ..next
-                    };
+                    let model = with_line_offset(next, live.line_offset);
                     match (self.interface, self.me_continuous) {
                         (Interface::CoSimulation, _) => {
                             live.sim.set_inputs(model).map_err(sim_err)?
