@@ -331,17 +331,14 @@ impl BallBearing {
             Ok(j) => j,
             Err(e) => return Some(format!("coupling motion: no stable-step estimate ({e})")),
         };
-        // Per axis, a journal of any mass M on stiffness k and damping c: ω = √(k/M),
-        // ζ = c/(2Mω), and value exchange is stable for ωH < 4ζ, i.e. H < 2c/k.
         let mut h_min = f64::INFINITY;
         let mut parts = Vec::new();
-        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
-            let (kk, cc) = (-jac.dfdx[k][k], -jac.dfdv[k][k]);
-            if kk > 0.0 {
-                let h = 2.0 * cc.max(0.0) / kk;
-                h_min = h_min.min(h);
+        for (lim, axis) in jac.exchange_limits().into_iter().zip(["x", "y", "z"]) {
+            if let Some(l) = lim {
+                h_min = h_min.min(l.step);
                 parts.push(format!(
-                    "{axis}: k = {kk:.4e} N/m, c = {cc:.4} N s/m, 2c/k = {h:.3e} s"
+                    "{axis}: k = {:.4e} N/m, c = {:.4} N s/m, 2c/k = {:.3e} s",
+                    l.k, l.c, l.step
                 ));
             }
         }

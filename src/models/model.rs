@@ -75,6 +75,36 @@ pub struct ReactionJacobian {
     pub dfdv: [[f64; 3]; 3],
 }
 
+/// One axis of [`ReactionJacobian::exchange_limits`]: the reaction's stiffness and damping
+/// along it and the largest stable step of value exchange on them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExchangeLimit {
+    /// Stiffness −∂F_k/∂x_k \[N/m\] (> 0).
+    pub k: f64,
+    /// Damping −∂F_k/∂v_k [N s/m].
+    pub c: f64,
+    /// `2c/k` \[s\] (0 when c ≤ 0: no damping, no stable step).
+    pub step: f64,
+}
+
+impl ReactionJacobian {
+    /// Per axis (x, y, z), where the reaction is stiff (k > 0): the largest communication step at
+    /// which a partner that holds the force over the step (value exchange) is stable on this
+    /// damping alone. A journal of any mass M on stiffness k and damping c has ω = √(k/M) and
+    /// ζ = c/(2Mω), and the constant-input coupling is stable for ωH < 4ζ, that is H < 2c/k
+    /// (docs/model.md#coupling-stability): independent of the mass.
+    pub fn exchange_limits(&self) -> [Option<ExchangeLimit>; 3] {
+        std::array::from_fn(|i| {
+            let (k, c) = (-self.dfdx[i][i], -self.dfdv[i][i]);
+            (k > 0.0).then(|| ExchangeLimit {
+                k,
+                c,
+                step: 2.0 * c.max(0.0) / k,
+            })
+        })
+    }
+}
+
 /// One dynamic model of the ladder.
 ///
 /// Motion coupling (the journal's motion prescribed, issue 6). A level with a dynamic
@@ -255,5 +285,27 @@ pub trait Model: Send {
     /// force (the largest contact force while the ball crosses the spall).
     fn in_spall_zone(&self, _j: usize) -> bool {
         false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 2c/k per stiff axis; an axis without stiffness has no limit, one without damping a zero
+    /// step (value exchange is never stable on it).
+    #[test]
+    fn exchange_limits_are_2c_over_k() {
+        let mut j = ReactionJacobian::default();
+        j.dfdx[0][0] = -2.0e8;
+        j.dfdv[0][0] = -100.0;
+        j.dfdx[1][1] = -4.0e8;
+        j.dfdv[1][1] = 5.0;
+        let l = j.exchange_limits();
+        let x = l[0].unwrap();
+        assert_eq!((x.k, x.c, x.step), (2.0e8, 100.0, 1e-6));
+        let y = l[1].unwrap();
+        assert_eq!((y.c, y.step), (-5.0, 0.0));
+        assert!(l[2].is_none());
     }
 }
