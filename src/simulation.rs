@@ -1181,9 +1181,9 @@ impl Simulation {
 impl Simulation {
     /// Whether the importer can integrate this simulation (Model Exchange): not the kinematic
     /// level (its signal is impulse trains registered lazily, spall pass by spall pass, on the
-    /// way to each output: no continuous dynamics of its own), and coupling mode force only (in
-    /// motion mode the journal's prescribed motion replaces the ring's states at every
-    /// communication point, a co-simulation device).
+    /// way to each output: no continuous dynamics of its own); in coupling mode motion only the
+    /// levels whose ring is a dynamic body (there the journal inputs take the ring's states:
+    /// [`Simulation::set_journal_continuous`]).
     pub fn model_exchange_check(&self) -> Result<(), SimError> {
         if self.scene.fidelity == crate::scene::Fidelity::Kinematic {
             return Err(SimError::Unsupported(
@@ -1194,15 +1194,54 @@ impl Simulation {
                     .into(),
             ));
         }
-        if self.scene.coupling != CouplingMode::Force {
+        if self.scene.coupling == CouplingMode::Motion && self.model.ring_states().is_none() {
             return Err(SimError::Unsupported(
-                "coupling mode motion prescribes the journal over communication steps (a \
-                 co-simulation device); Model Exchange takes coupling mode force, where the \
-                 importer's loads act on the inner ring"
+                "coupling mode motion in Model Exchange needs a level whose inner ring is a \
+                 dynamic body (lumped, reduced or full: the journal inputs take the ring's \
+                 states); at the quasi-static level the reaction is an algebraic solve per \
+                 journal position: use it in Co-Simulation, or couple by force"
                     .into(),
             ));
         }
         Ok(())
+    }
+
+    /// Model Exchange in coupling mode motion: the ring's six states hold the journal inputs
+    /// (written here and by [`Simulation::set_state`], whatever the importer writes there;
+    /// their derivatives are 0). The discrete mode stays frozen until the next
+    /// [`Simulation::event_update`]; a journal that switches a contact is an event the
+    /// indicators show. No allocation.
+    pub fn set_journal_continuous(&mut self, j: Journal) -> Result<(), SimError> {
+        if self.scene.coupling != CouplingMode::Motion {
+            return Err(SimError::Unsupported(
+                "the journal motion is an input in coupling mode 'motion' only (this simulation couples by force)".into(),
+            ));
+        }
+        j.check()?;
+        self.start.undoable = false;
+        self.journal = j;
+        self.journal_t = self.integrator.t();
+        self.journal_into_ring();
+        Ok(())
+    }
+
+    /// Model Exchange, motion mode on a level with ring states: writes the journal inputs into
+    /// the ring's position and velocity states (a no-op otherwise).
+    fn journal_into_ring(&mut self) {
+        if self.scene.coupling != CouplingMode::Motion {
+            return;
+        }
+        let Some(rs) = self.model.ring_states() else {
+            return;
+        };
+        let n = self.model.dim();
+        let t = self.integrator.t();
+        self.y_scratch[..n].copy_from_slice(self.integrator.y());
+        for k in 0..3 {
+            self.y_scratch[rs.pos[k]] = self.journal.x[k];
+            self.y_scratch[rs.vel[k]] = self.journal.v[k];
+        }
+        self.integrator.set_state(t, &self.y_scratch[..n]);
     }
 
     /// Number of continuous states of the level (the importer's vector may be longer: see
@@ -1223,11 +1262,15 @@ impl Simulation {
 
     /// Sets the time and the continuous state (`y` of length [`Simulation::state_dim`], finite)
     /// at which the next evaluations are made. The discrete mode stays as it is.
+    /// In coupling mode motion the ring's states keep the journal inputs.
     pub fn set_state(&mut self, t: f64, y: &[f64]) -> Result<(), SimError> {
         self.start.undoable = false;
         self.integrator
             .try_set_state(t, y)
-            .map_err(|e| SimError::Input(format!("continuous states: {e}")))
+            .map_err(|e| SimError::Input(format!("continuous states: {e}")))?;
+        self.journal_t = t;
+        self.journal_into_ring();
+        Ok(())
     }
 
     /// Sets the time of the next evaluations (the state is kept).
@@ -1244,9 +1287,18 @@ impl Simulation {
 
     /// The derivatives of the state at the current time, state and inputs in the frozen mode
     /// (`dydt` of length [`Simulation::state_dim`]). No allocation.
+    /// In coupling mode motion the ring's states are the journal inputs: their derivatives are 0.
     pub fn derivatives(&mut self, dydt: &mut [f64]) {
         let t = self.integrator.t();
         self.model.rhs(t, self.integrator.y(), dydt);
+        if self.scene.coupling == CouplingMode::Motion {
+            if let Some(rs) = self.model.ring_states() {
+                for k in 0..3 {
+                    dydt[rs.pos[k]] = 0.0;
+                    dydt[rs.vel[k]] = 0.0;
+                }
+            }
+        }
     }
 
     /// The event functions at the current time and state (`g` of length
@@ -1347,6 +1399,8 @@ impl Simulation {
         for &i in &fired {
             self.model.event_fired(i);
         }
+        // Motion mode: the cage speed follows a shaft speed that has moved far enough.
+        self.update_l1_point()?;
         let t = self.integrator.t();
         self.model.update_mode(t, self.integrator.y());
         self.integrator.discontinuity();
@@ -1362,17 +1416,12 @@ impl Simulation {
     /// Returns true when the change needs an event: the level re-solved its quasi-static
     /// operating point (a discrete change of its cage speed) or the shaft speed changed (the
     /// time events were predicted at the old speed). Loads that move within the level's
-    /// re-solve threshold need none. The same checks as [`Simulation::set_inputs`]; on an error
-    /// nothing changes.
+    /// re-solve threshold need none. The same checks as [`Simulation::set_inputs`] (in motion
+    /// mode the loads act only at the start, as there); on an error nothing changes.
     pub fn set_inputs_continuous(&mut self, inputs: OperatingPoint) -> Result<bool, SimError> {
         inputs.check().map_err(SimError::Input)?;
         if inputs == self.inputs {
             return Ok(false);
-        }
-        if self.scene.coupling != CouplingMode::Force {
-            return Err(SimError::Unsupported(
-                "continuous-time inputs exist in coupling mode force only".into(),
-            ));
         }
         let located = self.scene.mounting.axial == crate::scene::AxialMount::Located;
         if located && inputs.fx != self.inputs.fx {
@@ -1382,11 +1431,14 @@ impl Simulation {
                 inputs.fx, self.inputs.fx
             )));
         }
-        self.limits.loads(&inputs, located)?;
+        if self.scene.coupling == CouplingMode::Force {
+            self.limits.loads(&inputs, located)?;
+        }
         self.start.undoable = false;
         let before = self.model.discrete_state();
         let t = self.integrator.t();
-        self.model.set_inputs(&inputs, t, self.integrator.y())?;
+        let (eff, _) = self.effective_inputs(&inputs, t)?;
+        self.model.set_inputs(&eff, t, self.integrator.y())?;
         let speed_changed = inputs.shaft_speed != self.inputs.shaft_speed;
         self.inputs = inputs;
         Ok(speed_changed || self.model.discrete_state() != before)

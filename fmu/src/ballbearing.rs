@@ -516,7 +516,12 @@ impl FmuModel for BallBearing {
         self.stable_step_reported = false;
         self.me_continuous = false;
         self.me_input_event = false;
-        if let Some(note) = self.coupling_note() {
+        // (communication steps exist in Co-Simulation only)
+        let note = match self.interface {
+            Interface::CoSimulation => self.coupling_note(),
+            Interface::ModelExchange => None,
+        };
+        if let Some(note) = note {
             if log.enabled(LOG_EVENTS) {
                 log.log(fmi2::bindings::Fmi2Status::Ok, LOG_EVENTS, &note);
             }
@@ -726,8 +731,14 @@ impl FmuModel for BallBearing {
                 let mut next = self.journal_now();
                 journal_set(&mut next, k, value);
                 match self.live.as_mut().filter(|_| self.initialized) {
+                    // Model Exchange: the journal acts on the derivatives at once; a contact
+                    // it switches is an event the indicators show.
                     Some(live) if live.scene.coupling == CouplingMode::Motion => {
-                        live.sim.set_journal(next).map_err(sim_err)?;
+                        match self.interface {
+                            Interface::ModelExchange => live.sim.set_journal_continuous(next),
+                            Interface::CoSimulation => live.sim.set_journal(next),
+                        }
+                        .map_err(sim_err)?;
                     }
                     _ => next.check().map_err(sim_err)?,
                 }

@@ -60,6 +60,16 @@ impl H {
     /// An instance of `kind` at `fidelity` after fmi2ExitInitializationMode (Model Exchange:
     /// also the initial event update and continuous-time mode); None if the exit is refused.
     fn ready(&self, kind: Fmi2Type, fidelity: i32, coupling: i32) -> Option<Fmi2Component> {
+        self.ready_with(kind, fidelity, coupling, &[])
+    }
+    /// [`H::ready`] with Real start values.
+    fn ready_with(
+        &self,
+        kind: Fmi2Type,
+        fidelity: i32,
+        coupling: i32,
+        start: &[(&str, f64)],
+    ) -> Option<Fmi2Component> {
         let c = self.inst(kind);
         // SAFETY: test importer: live component, the values outlive the calls.
         unsafe {
@@ -72,6 +82,9 @@ impl H {
                     sh::set_integer::<M>(c, &self.vr(name), 1, &v),
                     Fmi2Status::Ok
                 );
+            }
+            for (name, v) in start {
+                assert_eq!(sh::set_real::<M>(c, &self.vr(name), 1, v), Fmi2Status::Ok);
             }
             assert_eq!(sh::enter_initialization_mode::<M>(c), Fmi2Status::Ok);
             if sh::exit_initialization_mode::<M>(c) != Fmi2Status::Ok {
@@ -182,14 +195,84 @@ fn states_round_trip_with_padding_and_derivatives_are_finite_at_every_dynamic_le
     }
 }
 
+fn set_reals(c: Fmi2Component, vrs: &[u32], v: &[f64]) {
+    // SAFETY: test importer: live component, the arrays hold vrs.len() values.
+    let status = unsafe { sh::set_real::<M>(c, vrs.as_ptr(), vrs.len(), v.as_ptr()) };
+    assert_eq!(status, Fmi2Status::Ok);
+}
+
+#[test]
+fn in_motion_coupling_the_journal_inputs_take_the_ring_states_at_every_ring_level() {
+    // The journal inputs are the ring's six states: they follow the inputs, ignore the
+    // importer's writes, have derivative 0, and the reaction's change for a small journal move
+    // is the Co-Simulation instance's directional derivative dF_z/dz (its reaction Jacobian).
+    let h = H::new();
+    let (jz, jvz, fz) = (h.vr("journal.z"), h.vr("journal.v.z"), h.vr("bearing.F.z"));
+    for fidelity in [2, 3, 4] {
+        let cs = h.ready(FMI2_CO_SIMULATION, fidelity, 1).expect("CS motion");
+        let mut k = [0.0];
+        // SAFETY: test importer: live component, the arrays hold one value each.
+        let status = unsafe {
+            sh::get_directional_derivative::<M>(cs, &fz, 1, &jz, 1, &1.0, k.as_mut_ptr())
+        };
+        assert_eq!(status, Fmi2Status::Ok);
+        // SAFETY: test importer: live component.
+        unsafe { sh::free_instance::<M>(cs) };
+
+        let c = h
+            .ready(FMI2_MODEL_EXCHANGE, fidelity, 1)
+            .unwrap_or_else(|| panic!("ME motion at level {fidelity}: {}", h.last()));
+        let [z0, f0] = reals(c, &[jz, fz])[..] else {
+            unreachable!()
+        };
+        let x0 = states(c);
+        let dz = 1e-9;
+        set_reals(c, &[jz, jvz], &[z0 + dz, 0.01]);
+        let x1 = states(c);
+        let moved: Vec<usize> = (0..NX).filter(|&i| x1[i] != x0[i]).collect();
+        assert_eq!(
+            moved.len(),
+            2,
+            "level {fidelity}: the ring's z and v_z slots"
+        );
+        let (iz, iv) = (moved[0], moved[1]);
+        assert_eq!((x1[iz], x1[iv]), (z0 + dz, 0.01));
+        // the importer's writes to the ring slots are ignored
+        let mut y = x1.clone();
+        y[iz] += 1e-6;
+        y[iv] = -3.0;
+        set_point(c, 0.0, &y);
+        let back = states(c);
+        assert_eq!((back[iz], back[iv]), (z0 + dz, 0.01));
+        let d = derivatives(c);
+        assert_eq!((d[iz], d[iv]), (0.0, 0.0));
+        assert!(d.iter().all(|v| v.is_finite()));
+        // the reaction's response against the reaction Jacobian of Co-Simulation (the velocity
+        // term adds c v_z, c ~ 100 N s/m: 1 N; measure it with the velocity back at 0)
+        set_reals(c, &[jvz], &[0.0]);
+        let f1 = reals(c, &[fz])[0];
+        let slope = (f1 - f0) / dz;
+        assert!(k[0] < -1e7, "level {fidelity}: dF_z/dz = {}", k[0]);
+        assert!(
+            (slope / k[0] - 1.0).abs() < 0.02,
+            "level {fidelity}: dF_z/dz {slope:e} (ME) against {:e} (CS)",
+            k[0]
+        );
+        // SAFETY: test importer: live component.
+        unsafe { sh::free_instance::<M>(c) };
+    }
+}
+
 #[test]
 fn the_kinematic_level_and_the_co_simulation_couplings_are_refused_with_reasons() {
     let h = H::new();
     let said = |what: &str| h.messages().iter().any(|m| m.contains(what));
     assert!(h.ready(FMI2_MODEL_EXCHANGE, 0, 0).is_none());
     assert!(said("the kinematic level (L0) has no continuous dynamics"));
-    assert!(h.ready(FMI2_MODEL_EXCHANGE, 2, 1).is_none());
-    assert!(said("coupling mode motion prescribes the journal"));
+    assert!(h.ready(FMI2_MODEL_EXCHANGE, 1, 1).is_none());
+    assert!(said(
+        "coupling mode motion in Model Exchange needs a level whose inner ring is a dynamic body"
+    ));
     assert!(h.ready(FMI2_MODEL_EXCHANGE, 2, 2).is_none());
     assert!(said("coupling = 2 (tlm) is refused"));
     // and the kinematic level still runs in Co-Simulation
@@ -422,5 +505,56 @@ fn an_input_set_in_continuous_time_asks_for_an_event_when_the_speed_moves() {
             Fmi2Status::Error
         );
         sh::free_instance::<M>(c);
+    }
+}
+
+#[test]
+fn in_motion_coupling_a_speed_change_is_an_event_that_moves_the_cage_speed_and_loads_are_ignored() {
+    let h = H::new();
+    let c = h.ready(FMI2_MODEL_EXCHANGE, 2, 1).unwrap();
+    let complete = || {
+        let (mut e, mut t) = (0, 0);
+        // SAFETY: test importer: live component.
+        let status = unsafe { sh::completed_integrator_step::<M>(c, 1, &mut e, &mut t) };
+        assert_eq!(status, Fmi2Status::Ok);
+        e != 0
+    };
+    let (w, cage) = (h.vr("shaft.speed"), h.vr("cage.speed"));
+    let [w0, cage0] = reals(c, &[w, cage])[..] else {
+        unreachable!()
+    };
+    // loads act only at the start in motion coupling: the derivatives do not move
+    let d0 = derivatives(c);
+    set_reals(c, &[h.vr("load.Fz")], &[-3000.0]);
+    assert_eq!(derivatives(c), d0);
+    assert!(!complete());
+    // a speed 5 % up (beyond the 2 % of the L1 point's update) asks for an event, at which the
+    // cage-to-shaft ratio becomes that of a start at the new speed
+    set_reals(c, &[w], &[1.05 * w0]);
+    assert!(complete());
+    event_update(&h, c);
+    let ratio = reals(c, &[cage])[0] / (1.05 * w0);
+    let fresh = h
+        .ready_with(FMI2_MODEL_EXCHANGE, 2, 1, &[("shaft.speed", 1.05 * w0)])
+        .unwrap();
+    let fresh_ratio = reals(fresh, &[cage])[0] / (1.05 * w0);
+    assert!(
+        (ratio / fresh_ratio - 1.0).abs() < 1e-9,
+        "{ratio} against {fresh_ratio} (at the start speed {})",
+        cage0 / w0
+    );
+    assert!(
+        (cage0 / w0 / fresh_ratio - 1.0).abs() > 1e-7,
+        "the ratio moves with the speed"
+    );
+    assert!(
+        h.messages().iter().any(|m| m.contains("load.F")),
+        "the ignored loads are reported: {:?}",
+        h.messages()
+    );
+    // SAFETY: test importer: live components.
+    unsafe {
+        sh::free_instance::<M>(c);
+        sh::free_instance::<M>(fresh);
     }
 }
