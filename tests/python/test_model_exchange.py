@@ -136,11 +136,116 @@ def test_cvode_follows_the_co_simulation_sample_by_sample_on_the_smooth_levels(f
         assert err < 1e-3, (name, err)
 
 
-def test_the_kinematic_level_and_tlm_coupling_are_refused_in_model_exchange(capfd):
+def journal_input(x0, amp, freq, stop):
+    """fmpy input signal: the journal at x0, moving along z as x0 + amp sin(2 pi freq t)."""
+    t = np.arange(0.0, stop + DT / 2, DT / 4)
+    w = 2 * math.pi * freq
+    names = ["journal.x", "journal.y", "journal.z", "journal.v.x", "journal.v.y", "journal.v.z"]
+    sig = np.zeros(len(t), dtype=[("time", float)] + [(n, float) for n in names])
+    sig["time"] = t
+    sig["journal.x"], sig["journal.y"] = x0[0], x0[1]
+    sig["journal.z"] = x0[2] + amp * np.sin(w * t)
+    sig["journal.v.z"] = amp * w * np.cos(w * t)
+    return sig
+
+
+def test_motion_coupling_in_model_exchange_follows_the_co_simulation():
+    """Coupling mode motion (the journal's displacement and velocity in, the reaction out) at
+    the lumped level with the journal moving 1 um at 200 Hz about its start: CVODE through Model
+    Exchange, where the journal inputs take the ring's states at every evaluation, against the
+    Co-Simulation run, where the ring moves linearly over each step. The reaction follows the
+    journal's stiffness (about 3e8 N/m: 1 um is 300 N) in both, sample by sample."""
+    from fmpy import read_model_description
+
+    fmu = bearing_fmu()
+    sv = {"fidelity": 2, "coupling": 1}
+    x0 = [run(fmu, "CoSimulation", DT, output=[f"ring.{a}"], start_values=sv)[f"ring.{a}"][0]
+          for a in "xyz"]
+    sig = journal_input(x0, 1e-6, 200.0, 0.01)
+    out = ["bearing.F.z", "pedestal.z", "ring.z", "cage.speed"]
+    cs = run(fmu, "CoSimulation", 0.01, output=out, start_values=sv, input=sig)
+    me = run(fmu, "ModelExchange", 0.01, output=out, start_values=sv, input=sig)
+    _, rz = on_grid(me, "ring.z", skip=0)
+    assert np.ptp(rz) > 1.9e-6, "the journal input moves the ring in Model Exchange"
+    _, f = on_grid(cs, "bearing.F.z", skip=0)
+    assert np.ptp(f) > 400.0, "the reaction follows the journal"
+    for name, scale in [("bearing.F.z", 1000.0), ("pedestal.z", 1e-6), ("ring.z", 1e-6),
+                        ("cage.speed", 400.0)]:
+        _, a = on_grid(cs, name, skip=0)
+        _, b = on_grid(me, name, skip=0)
+        assert len(a) == len(b)
+        err = np.max(np.abs(a - b)) / scale
+        assert err < 1e-3, (name, err)
+    # the ring's six states hold the inputs: declared as states, they have derivative 0
+    assert read_model_description(str(fmu)).numberOfContinuousStates == 142
+
+
+def test_monolithic_rotor_and_bearing_conserve_momentum_and_match_the_fine_co_simulation():
+    """examples/systems/monolithic.py: the JeffcottRotor (force coupling, it owns the journal)
+    and the BallBearing (motion coupling) integrated as one ODE by CVODE over both Model
+    Exchange FMUs. Checked against (a) the momentum balance of the rotor, sum of m dv = integral
+    of the external forces (bearing force, load, weight, unbalance), and (b) the constant-input
+    co-simulation of the same cut at 1 us, an independent route to the same system."""
+    sys.path.insert(0, str(REPO / "examples" / "systems"))
+    import cosim_master as cm
+    import monolithic
+
+    w, stop, g = 250.0, 0.01, 9.81
+    rotor = {"speed.initial": w, "speed.final": w, "shaft.c": 400.0, "unbalance": 1e-4,
+             "disk.axial": 0}
+    bearing = {"fidelity": 2, "shaft.speed": w, "load.Fx": 4000.0, "load.Fy": 0.0,
+               "load.Fz": -1000.0 - 10.0 * g}
+    rows = []
+    names = ["journal.v.z", "disk.v.z", "unbalance.F.z", "disk.z", "journal.z"]
+    res = monolithic.run(rotor, bearing, stop, output_interval=1e-5,
+                         record=lambda t, r, b: rows.append(
+                             (t, *r.get(names), *b.get(["bearing.F.z"]))),
+                         rotor_fmu=rotor_fmu(), bearing_fmu=bearing_fmu())
+    assert res["events"] > 0
+    t, vj, vd, u, dz, jz, f = np.array(rows).T
+    # (a) 2 kg journal, 8 kg disk (the rotor's defaults); load.Fz -1000 N on the journal
+    dp = 2.0 * (vj[-1] - vj[0]) + 8.0 * (vd[-1] - vd[0])
+    impulse = np.trapezoid(f + u - 1000.0 - 10.0 * g, t)
+    assert abs(dp - impulse) < 1e-3 * np.trapezoid(np.abs(f), t), (dp, impulse)
+    # (b) the contact cut, the force held over steps of 1 and 0.5 us: first order in the step,
+    # it converges to the monolithic run (its error halves), and its extrapolation to step 0
+    # (Richardson, 2 x(H/2) - x(H)) meets it
+    fine = {}
+    for h in (1e-6, 5e-7):
+        b = cm.Fmu(bearing_fmu(), "bearing", {**bearing, "coupling": 1})
+        x0 = b.get(["ring.x", "ring.y", "ring.z"])
+        r = cm.Fmu(rotor_fmu(), "rotor", {**rotor, "coupling": 0,
+                                          **{f"journal.{a}0": v for a, v in zip("xyz", x0)}})
+        rec = []
+
+        def every_10_us(tt, rr, _):
+            if abs(tt / 1e-5 - round(tt / 1e-5)) < 1e-6:
+                rec.append(rr.get(["disk.z"])[0])
+
+        try:
+            out = cm.run_coupled(r, b, h, stop, "constant", feedthrough=True,
+                                 on_step=every_10_us)
+        finally:
+            r.free()
+            b.free()
+        assert out["ok"], out["error"]
+        assert len(rec) == len(t) - 1, len(rec)
+        fine[h] = np.array(rec)
+    mono = dz[1:]
+    e1, e2 = (np.max(np.abs(fine[h] - mono)) for h in (1e-6, 5e-7))
+    assert e2 < 0.6 * e1, (e1, e2)
+    extrapolated = 2 * fine[5e-7] - fine[1e-6]
+    assert np.max(np.abs(extrapolated - mono)) < 5e-4 * np.ptp(dz), (e1, e2)
+
+
+def test_the_kinematic_and_quasi_static_levels_and_tlm_coupling_are_refused_where_they_cannot_run(
+        capfd):
     """Refused at fmi2ExitInitializationMode with a message naming why (fmpy's logger prints
     it)."""
     cases = [
         (bearing_fmu(), {"fidelity": 0}, "the kinematic level (L0) has no continuous dynamics"),
+        (bearing_fmu(), {"fidelity": 1, "coupling": 1},
+         "coupling mode motion in Model Exchange needs a level whose inner ring is a dynamic"),
         (bearing_fmu(), {"coupling": 2}, "coupling = 2 (tlm) is refused"),
         (rotor_fmu(), {"coupling": 1}, "coupling = 1 (tlm) is refused"),
     ]
