@@ -115,7 +115,11 @@ class Fmu:
         self.slave.setReal(self.vr(names), [float(x) for x in values])
 
     def step(self, t, h):
-        self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        try:
+            self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        except Exception:
+            self.failed = True
+            raise
 
     def jacobian(self, outputs, inputs):
         """d outputs / d inputs (dense, one directional derivative per input)."""
@@ -127,11 +131,15 @@ class Fmu:
             cols.append(self.slave.getDirectionalDerivative(vu, vk, seed))
         return np.array(cols).T
 
+    failed = False
+
     def free(self):
-        try:
-            self.slave.terminate()
-        except Exception:
-            pass
+        # After fmi2Error only fmi2FreeInstance is allowed (fmi2Terminate would be refused).
+        if not self.failed:
+            try:
+                self.slave.terminate()
+            except Exception:
+                pass
         self.slave.freeInstance()
 
 
