@@ -265,9 +265,10 @@ pub enum BlendName {
     SemiMinorAxis,
 }
 
+/// Abrupt by default (decision D2, docs/model.md#d2: the paper's eq. 20).
 impl Default for BlendLength {
     fn default() -> Self {
-        BlendLength::Named(BlendName::SemiMinorAxis)
+        BlendLength::Metres(0.0)
     }
 }
 

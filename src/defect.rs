@@ -1010,7 +1010,10 @@ mod tests {
 
     #[test]
     fn blend_slope_matches_finite_differences_of_the_hertz_constant() {
-        let b = Bearing::load("niu2014-table1").unwrap();
+        let mut f = crate::config::BearingFile::default_preset();
+        f.defect.blend_length =
+            crate::config::BlendLength::Named(crate::config::BlendName::SemiMinorAxis);
+        let b = Bearing::new(&f).unwrap();
         let spec = DefectSpec {
             ring: Race::Outer,
             width: 2.0e-3,

@@ -329,11 +329,34 @@ pub struct FullSettings {
     /// Strip traction on (default) or frictionless contacts.
     #[serde(default = "yes")]
     pub traction: bool,
-    /// Hold the inner-ring tilt at zero, as L1 does. Off by default (original C4 (docs/model.md#c4) keeps the tilt);
-    /// on, the spectra match the paper's (docs/validation.md: the free single-row ring rocks
-    /// about its pressure centre at about 1.3 kHz).
-    #[serde(default)]
+    /// Hold the inner-ring tilt at zero, as L1 does (default, decision D1 (docs/model.md#d1): a
+    /// ring pressed on a shaft does not rock on its own; the spectra then match the paper's).
+    /// Off, the ring tilts with the shaft's tilt inertia and tilt stiffness below.
+    #[serde(default = "yes")]
     pub lock_tilt: bool,
+    /// Free tilt only: the shaft's diametral moment of inertia about the bearing that the ring
+    /// carries in addition to its own \[kg m²\] (default [`SHAFT_TILT_INERTIA`]).
+    #[serde(default = "shaft_tilt_inertia")]
+    pub shaft_tilt_inertia: f64,
+    /// Free tilt only: the shaft's tilt stiffness about the bearing (the other bearing, the
+    /// shaft's bending) \[N m/rad\] (default [`TILT_STIFFNESS`]).
+    #[serde(default = "tilt_stiffness")]
+    pub tilt_stiffness: f64,
+}
+
+/// Default shaft tilt inertia \[kg m²\]: a Ø40 mm, 400 mm steel shaft (3.9 kg) pivoting about
+/// its far end, m L²/3 (docs/model.md#d1).
+pub const SHAFT_TILT_INERTIA: f64 = 0.21;
+/// Default tilt stiffness \[N m/rad\]: the other bearing, 2e8 N/m radially, 0.4 m away, k L²
+/// (docs/model.md#d1).
+pub const TILT_STIFFNESS: f64 = 3.2e7;
+
+fn shaft_tilt_inertia() -> f64 {
+    SHAFT_TILT_INERTIA
+}
+
+fn tilt_stiffness() -> f64 {
+    TILT_STIFFNESS
 }
 
 fn yes() -> bool {
@@ -344,7 +367,9 @@ impl Default for FullSettings {
     fn default() -> Self {
         Self {
             traction: true,
-            lock_tilt: false,
+            lock_tilt: true,
+            shaft_tilt_inertia: SHAFT_TILT_INERTIA,
+            tilt_stiffness: TILT_STIFFNESS,
         }
     }
 }
@@ -652,6 +677,15 @@ impl Scene {
                 ))
             }
             _ => {}
+        }
+        for (field, v) in [
+            ("full.shaft_tilt_inertia", self.full.shaft_tilt_inertia),
+            ("full.tilt_stiffness", self.full.tilt_stiffness),
+        ] {
+            finite(field, v)?;
+            if v < 0.0 {
+                return Err(ConfigError::new(field, format!("{v} must be ≥ 0")));
+            }
         }
         positive("solver.rtol", self.solver.rtol)?;
         if self.solver.rtol >= 0.1 {

@@ -32,6 +32,7 @@ fn main() {
         FullOptions {
             traction: true,
             lock_tilt: lock,
+            ..FullOptions::default()
         },
     )
     .unwrap();

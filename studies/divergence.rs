@@ -50,6 +50,7 @@ fn run(
                 FullOptions {
                     traction,
                     lock_tilt: scene.full.lock_tilt,
+                    ..FullOptions::default()
                 },
             )
             .expect("model"),

@@ -77,6 +77,7 @@ fn main() {
     let mut opts = FullOptions {
         lock_tilt: scene.full.lock_tilt,
         traction: scene.full.traction,
+        ..FullOptions::default()
     };
     let mut summary = false;
     let mut trace: Option<(usize, f64, f64)> = None;

@@ -33,6 +33,7 @@ fn main() {
     let opts = FullOptions {
         traction,
         lock_tilt: true,
+        ..FullOptions::default()
     };
     let mut m = FullModel::with_options(&s, &bearing, &inputs, opts).unwrap();
     let n = m.dim();

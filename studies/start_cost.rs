@@ -60,6 +60,7 @@ fn main() {
     let no_traction = FullOptions {
         traction: false,
         lock_tilt: false,
+        ..FullOptions::default()
     };
     FullModel::with_options(&sc, &b, &inputs, no_traction).expect("full model");
     println!(

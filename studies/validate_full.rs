@@ -1,6 +1,6 @@
 //! Long validation runs of the L4 full model (not part of CI): paper Sec. 3.5 outer-race spall.
 //!
-//! `cargo run --release -p raceway-studies --bin validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [lock_tilt]`
+//! `cargo run --release -p raceway-studies --bin validate_full -- [duration_s] [out.md] [c_br] [outer|inner] [free_tilt]`
 //! (`FS_STRIPS=equal:10` or `gauss:6` overrides `contact.strip_rule` and `contact.n_strips`;
 //! `RW_MASSES=0.29,0.77` the inner-ring and pedestal masses, as used for the C12 (docs/model.md#c12) calibration in
 //! docs/research/spec-departures.md)
@@ -77,8 +77,9 @@ fn main() {
         (980.4, "BPFO", "980.4 Hz ± 0.3 %, inside (973.5, 985.9)")
     };
     let skip = 0.02;
-    // Optional fifth argument "lock_tilt": hold the inner-ring tilt (scene `[full] lock_tilt`).
-    let lock_tilt = args.get(5).is_some_and(|s| s == "lock_tilt");
+    // Optional fifth argument "free_tilt": let the inner ring tilt with the shaft's default tilt
+    // inertia and stiffness (scene `[full] lock_tilt = false`); held by default (D1).
+    let lock_tilt = args.get(5).is_none_or(|s| s != "free_tilt");
     let mut t = Vec::new();
     let mut acc = Vec::new();
     let mut qo: Vec<Vec<f64>> = vec![Vec::new(); z];
@@ -196,9 +197,9 @@ fn main() {
     md += &format!(
         "Scene: `{scene_file}` at fidelity full{}.\n\n",
         if lock_tilt {
-            ", inner-ring tilt held (FullOptions::lock_tilt)"
+            ", inner-ring tilt held (the default, D1)"
         } else {
-            ""
+            ", inner-ring tilt free (`[full] lock_tilt = false`, the shaft's default tilt inertia and stiffness)"
         }
     );
     md += &format!(

@@ -26,6 +26,7 @@ fn start(b: &Bearing, i: &OperatingPoint) -> (FullModel, Vec<f64>) {
     let options = FullOptions {
         traction: true,
         lock_tilt: true,
+        ..FullOptions::default()
     };
     let mut m = FullModel::healthy(b, i, options, None).unwrap();
     let mut y = vec![0.0; m.dim()];

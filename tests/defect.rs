@@ -2,7 +2,7 @@
 
 use raceway::contact::{ContactKind, Defect};
 use raceway::contact::{HertzContact, HertzSolution};
-use raceway::{Bearing, BearingFile, BlendLength, DefectMode, DefectSpec, Race};
+use raceway::{Bearing, BearingFile, BlendLength, BlendName, DefectMode, DefectSpec, Race};
 use std::f64::consts::PI;
 
 const MM: f64 = 1e-3;
@@ -18,6 +18,16 @@ fn bearing_with(edit: impl FnOnce(&mut BearingFile)) -> Bearing {
     let mut f = BearingFile::default_preset();
     edit(&mut f);
     Bearing::new(&f).unwrap()
+}
+
+/// The Table-1 bearing with the C9 blend over the semi-minor axis (`blend_length = "b"`; the
+/// default is the abrupt edge, D2).
+fn blended() -> Bearing {
+    bearing_with(|f| f.defect.blend_length = BlendLength::Named(BlendName::SemiMinorAxis))
+}
+
+fn blended_defect(ring: Race, width: f64, depth: f64) -> Defect {
+    Defect::new(&spec(ring, width, depth), &blended(), Q_REF).unwrap()
 }
 
 fn spec(ring: Race, width: f64, depth: f64) -> DefectSpec {
@@ -320,7 +330,7 @@ fn edge_hertz_constant_against_spec_table() {
 #[test]
 fn compliance_blend_over_the_semi_minor_axis() {
     let b = table1();
-    let d = defect(Race::Outer, 2.0 * MM, 0.5 * MM);
+    let d = blended_defect(Race::Outer, 2.0 * MM, 0.5 * MM);
     let k_g = b.k_outer;
     let k_e = d.k_corner();
     let lb = b.hertz_outer.semi_axes(Q_REF).1;
@@ -364,7 +374,7 @@ fn compliance_blend_over_the_semi_minor_axis() {
 #[test]
 fn frozen_zone_law_continues_smoothly_past_the_edges() {
     let b = table1();
-    let d = defect(Race::Outer, 1.0 * MM, 0.2 * MM);
+    let d = blended_defect(Race::Outer, 1.0 * MM, 0.2 * MM);
     let (k_g, k_e, lb) = (b.k_outer, d.k_corner(), d.blend_length());
     let (c_g, c_e) = (k_g.powf(-2.0 / 3.0), k_e.powf(-2.0 / 3.0));
     let slope = 1.5 * (c_e - c_g) / lb / c_g.powf(2.5);
@@ -468,7 +478,7 @@ fn invalid_defects_name_the_field() {
         assert!(e.to_string().starts_with(field));
     }
     // ℓ_b = "b" needs a reference load.
-    let e = Defect::new(&spec(Race::Outer, 1.0 * MM, 0.2 * MM), &b, 0.0).unwrap_err();
+    let e = Defect::new(&spec(Race::Outer, 1.0 * MM, 0.2 * MM), &blended(), 0.0).unwrap_err();
     assert_eq!(e.field, "defect.blend_length", "{e}");
     // Serde: unknown keys refused, theta0 defaults to 0.
     let s: DefectSpec = toml::from_str("ring = \"inner\"\nwidth = 1e-3\ndepth = 2e-4\n").unwrap();

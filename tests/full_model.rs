@@ -46,6 +46,7 @@ fn energy_drift(duration: f64, rtol: f64) -> (f64, f64, f64) {
         FullOptions {
             traction: false,
             lock_tilt: false,
+            ..FullOptions::default()
         },
     )
     .unwrap();
@@ -101,6 +102,7 @@ fn run_static(fa: f64, fr: f64, lock_tilt: bool, duration: f64) -> (Vec<f64>, Ve
         FullOptions {
             traction: true,
             lock_tilt,
+            ..FullOptions::default()
         },
     )
     .unwrap();
@@ -208,14 +210,21 @@ fn scene_full_table_reaches_the_model() {
         )
     };
     let sc = Scene::from_toml_str(
-        &text("[full]\nlock_tilt = true\ntraction = false\n"),
+        &text("[full]\nlock_tilt = false\ntraction = false\nshaft_tilt_inertia = 0.5\ntilt_stiffness = 1e6\n"),
         "t",
         None,
     )
     .unwrap();
-    assert!(sc.full.lock_tilt && !sc.full.traction);
+    assert!(!sc.full.lock_tilt && !sc.full.traction);
+    assert_eq!(
+        (sc.full.shaft_tilt_inertia, sc.full.tilt_stiffness),
+        (0.5, 1e6)
+    );
+    // decision D1: the tilt is held by default
     let dflt = Scene::from_toml_str(&text(""), "t", None).unwrap();
-    assert!(!dflt.full.lock_tilt && dflt.full.traction);
+    assert!(dflt.full.lock_tilt && dflt.full.traction);
+    let e = Scene::from_toml_str(&text("[full]\ntilt_stiffness = -1.0\n"), "t", None).unwrap_err();
+    assert!(e.to_string().contains("full.tilt_stiffness"), "{e}");
     let e = Scene::from_toml_str(&text("[full]\ntilt = 1\n"), "t", None).unwrap_err();
     assert!(e.to_string().contains("tilt"), "{e}");
     // Normal forces act through planes containing the shaft axis: without traction the

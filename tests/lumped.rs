@@ -271,7 +271,9 @@ fn communication_step_does_not_change_the_result() {
             (x.0 - y.0).abs() < 1e-10 && (x.0 - w.0).abs() < 1e-10,
             "{x:?} {y:?} {w:?}"
         );
-        assert!((x.1 - y.1).abs() < 1e-3 * (1.0 + x.1.abs()), "{x:?} {y:?}");
+        // (2e-3 for the acceleration: the abrupt spall edge, D2, jumps the force at events
+        // the runs reach from different steps)
+        assert!((x.1 - y.1).abs() < 2e-3 * (1.0 + x.1.abs()), "{x:?} {y:?}");
         assert!((x.2 - w.2).abs() < 1e-3 * (1.0 + x.2.abs()), "{x:?} {w:?}");
     }
     let _ = t_end;

@@ -1168,16 +1168,25 @@ fn a_step_with_more_internal_steps_than_warn_steps_says_so() {
     // 0: never.
     let never = warn_instance(&h, &b, 0, 0.0);
     assert_eq!(step(never, 0.0).1, Fmi2Status::Ok);
-    // A start time other than 0: the same steps and, to round-off in the times, the same
-    // outputs as from 0.
+    // A start time other than 0: about the same steps and, to the integrator's tolerance, the
+    // same outputs as from 0.
+    // (With the abrupt spall edge, D2, the force jumps at the edges' time events: round-off in
+    // the times moves the step-size control's restarts, so the step count is close, not equal.)
     let later = warn_instance(&h, &b, 1_000_000, 1.5);
-    assert_eq!(step(later, 1.5), (Fmi2Status::Ok, Fmi2Status::Ok, n));
+    let (l1, l2, nl) = step(later, 1.5);
+    assert_eq!((l1, l2), (Fmi2Status::Ok, Fmi2Status::Ok));
+    assert!((nl - n).abs() * 10 < n, "{nl} steps from 1.5 s, {n} from 0");
     let ((r1, i1), (r0, i0)) = (all_outputs(later, &b), all_outputs(quiet, &b));
-    assert_eq!(i1, i0);
+    // (the Integer outputs are the work counters: close, as the step count)
+    assert_eq!(i1.len(), i0.len());
+    for (a, c) in i1.iter().zip(&i0) {
+        assert!((a - c).abs() * 10 <= *c, "{i1:?} against {i0:?}");
+    }
     for (x1, x0) in r1.iter().zip(&r0) {
         let (x1, x0) = (f64::from_bits(*x1), f64::from_bits(*x0));
+        // (different step sequences: the integrator's tolerance, not round-off)
         assert!(
-            (x1 - x0).abs() <= 1e-6 * x0.abs().max(1.0),
+            (x1 - x0).abs() <= 1e-4 * x0.abs().max(1.0),
             "{x1} against {x0}"
         );
     }
@@ -1581,7 +1590,9 @@ fn the_line_force_is_linear_over_the_step() {
             .fold(0.0f64, |m, v| m.max(v.abs()));
         for k in (parity..one.len()).step_by(2) {
             let (a, b) = (one[k], two[k]);
-            assert!((a - b).abs() < 1e-5 * range, "sample {k}: {a} vs {b}");
+            // (to the integrator's tolerance; the abrupt spall edge, D2, jumps the force at
+            // events the two runs land on from different steps)
+            assert!((a - b).abs() < 3e-5 * range, "sample {k}: {a} vs {b}");
         }
     }
     // the ramp moves the ring: 40 N per step against the start's equilibrium

@@ -346,7 +346,11 @@ fn event_update(h: &H, c: Fmi2Component) -> (Option<f64>, String) {
 #[test]
 fn an_importer_locates_a_spall_edge_crossing_and_ends_where_the_co_simulation_does() {
     let h = H::new();
-    let (fidelity, t_end, rtol) = (3, 1.2e-3, 1e-6);
+    // The importer at rtol 1e-8: its error norm also counts the padding states, so at the
+    // Co-Simulation's 1e-6 its steps are longer, and after the abrupt spall edge (D2) the ball
+    // rattles: a contact open for less than a step between two step ends is missed, as by any
+    // importer that tests signs at step ends (at 1e-6 one was, and the end state was 0.5 % off).
+    let (fidelity, t_end, rtol) = (3, 1.2e-3, 1e-8);
     let c = h.ready(FMI2_MODEL_EXCHANGE, fidelity, 0).unwrap();
     // SAFETY: test importer: live component, the categories outlive the call.
     unsafe {

@@ -46,6 +46,7 @@ pub fn traction_cage_speed(
     let options = FullOptions {
         traction: true,
         lock_tilt: true,
+        ..FullOptions::default()
     };
     let mut m = FullModel::healthy(bearing, inputs, options, l1)?;
     let mut y = vec![0.0; m.dim()];

@@ -84,6 +84,8 @@ pub const LEVELS: &[Level] = &[
             let options = full::FullOptions {
                 traction: s.full.traction,
                 lock_tilt: s.full.lock_tilt,
+                shaft_tilt_inertia: s.full.shaft_tilt_inertia,
+                tilt_stiffness: s.full.tilt_stiffness,
             };
             Ok(Box::new(full::FullModel::with_options(s, b, i, options)?))
         },

@@ -181,6 +181,7 @@ impl ReducedModel {
             FullOptions {
                 traction: options.traction,
                 lock_tilt: true,
+                ..FullOptions::default()
             },
         )?;
         let traction = if options.traction {

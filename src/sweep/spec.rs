@@ -39,6 +39,9 @@ enum KeyKind {
     Fidelity,
     /// `lumped.seed`: an integer ≥ 0, or `"run"` (derived from the run id).
     Seed,
+    /// `defect.blend_length`: a length in metres, or `"b"` (the contact ellipse's semi-minor
+    /// axis), as in the bearing file.
+    Blend,
 }
 
 /// The keys an axis may sweep, with what they accept.
@@ -47,7 +50,7 @@ const KEYS: &[(&str, KeyKind)] = &[
     ("defect.width", KeyKind::Number),
     ("defect.depth", KeyKind::Number),
     ("defect.theta0", KeyKind::Number),
-    ("defect.blend_length", KeyKind::Number),
+    ("defect.blend_length", KeyKind::Blend),
     ("operating.speed_rpm", KeyKind::Number),
     ("operating.fa", KeyKind::Number),
     ("operating.fr", KeyKind::Number),
@@ -129,6 +132,14 @@ fn normalize(key: &str, v: &AxisValue) -> Result<AxisValue, SweepError> {
             AxisValue::Text(s) if s == "run" => Ok(v.clone()),
             AxisValue::Text(s) => Err(format!(
                 "{key} = \"{s}\": expected an integer or \"run\" (a seed derived from the run id)"
+            )),
+        },
+        KeyKind::Blend => match v {
+            AxisValue::Num(_) => Ok(v.clone()),
+            AxisValue::Text(s) if s == "b" => Ok(v.clone()),
+            AxisValue::Text(s) => Err(format!(
+                "{key} = \"{s}\": expected a length in metres (0 = abrupt) or \"b\" (the contact \
+                 ellipse's semi-minor axis)"
             )),
         },
     };
@@ -542,7 +553,12 @@ impl Sweep {
                 // C9 (docs/model.md#c9) edge-stiffness blend length [m] of the bearing's [defect] table (0 = the
                 // paper's abrupt change of the Hertz constant).
                 "defect.blend_length" => {
-                    scene.bearing.defect.blend_length = crate::config::BlendLength::Metres(num()?)
+                    scene.bearing.defect.blend_length = match v {
+                        AxisValue::Text(_) => crate::config::BlendLength::Named(
+                            crate::config::BlendName::SemiMinorAxis,
+                        ),
+                        AxisValue::Num(_) => crate::config::BlendLength::Metres(num()?),
+                    }
                 }
                 "operating.speed_rpm" => {
                     scene.operating.shaft_speed = crate::operating::rpm_to_rad_s(num()?)

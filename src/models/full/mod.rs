@@ -35,15 +35,22 @@ use crate::scene::{Pulse, Scene};
 pub struct FullOptions {
     /// Strip traction on (default) or frictionless contacts.
     pub traction: bool,
-    /// Hold the inner-ring tilt at zero (as L1 does); off by default (the paper's model).
+    /// Hold the inner-ring tilt at zero (as L1 does; the default, decision D1).
     pub lock_tilt: bool,
+    /// Free tilt: the shaft's tilt inertia the ring carries besides its own \[kg m²\].
+    pub shaft_tilt_inertia: f64,
+    /// Free tilt: the shaft's tilt stiffness \[N m/rad\].
+    pub tilt_stiffness: f64,
 }
 
 impl Default for FullOptions {
     fn default() -> Self {
+        let s = crate::scene::FullSettings::default();
         Self {
-            traction: true,
-            lock_tilt: false,
+            traction: s.traction,
+            lock_tilt: s.lock_tilt,
+            shaft_tilt_inertia: s.shaft_tilt_inertia,
+            tilt_stiffness: s.tilt_stiffness,
         }
     }
 }
@@ -55,7 +62,10 @@ pub struct FullModel {
     traction: Option<(TractionCurve, Strips)>,
     lock_tilt: bool,
     i_polar: f64,
+    /// Diametral inertia of the tilt: the ring's own plus the shaft's \[kg m²\].
     i_diam: f64,
+    /// Tilt stiffness of the shaft \[N m/rad\].
+    k_tilt: f64,
     /// The steady-rotation solve of the start ([`FullModel::settle_report`]).
     settle: Option<steady::SteadyReport>,
     /// Each ball's orbital rate under L1's outer-race control [rad/s] (where the
@@ -149,7 +159,8 @@ impl FullModel {
             traction,
             lock_tilt: options.lock_tilt,
             i_polar: file.inner_ring.i_polar,
-            i_diam: file.inner_ring.i_diam,
+            i_diam: file.inner_ring.i_diam + options.shaft_tilt_inertia,
+            k_tilt: options.tilt_stiffness,
             settle: None,
             l1_orbit: vec![0.0; z],
             ring_moment: [0.0; 3],
@@ -313,7 +324,7 @@ impl FullModel {
     }
 
     /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and
-    /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts + pedestal springs
+    /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts + pedestal and tilt springs
     /// − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
     /// the prescribed spin does no work.
     pub fn energy(&self, y: &[f64]) -> f64 {
@@ -336,6 +347,7 @@ impl FullModel {
         let p = c.lay.pedestal();
         e += 0.5 * c.m_ir * dot(inner.v, inner.v)
             + 0.5 * self.i_diam * (y[r + RWY].powi(2) + y[r + RWZ].powi(2))
+            + 0.5 * self.k_tilt * (y[r + RBY].powi(2) + y[r + RBZ].powi(2))
             + 0.5 * c.m_p * (y[p + PVY].powi(2) + y[p + PVZ].powi(2))
             + 0.5 * c.k_py * y[p + PY].powi(2)
             + 0.5 * c.k_pz * y[p + PZ].powi(2)
@@ -468,8 +480,12 @@ impl Model for FullModel {
         let om = c.inputs.shaft_speed;
         dydt[r + RBY] = y[r + RWY];
         dydt[r + RBZ] = y[r + RWZ];
-        dydt[r + RWY] = (m_ring[1] - self.i_polar * om * y[r + RWZ]) / self.i_diam;
-        dydt[r + RWZ] = (m_ring[2] + self.i_polar * om * y[r + RWY]) / self.i_diam;
+        // The ring's spin carries its own polar inertia; the shaft's tilt inertia and
+        // stiffness act on the tilt (decision D1).
+        dydt[r + RWY] =
+            (m_ring[1] - self.k_tilt * y[r + RBY] - self.i_polar * om * y[r + RWZ]) / self.i_diam;
+        dydt[r + RWZ] =
+            (m_ring[2] - self.k_tilt * y[r + RBZ] + self.i_polar * om * y[r + RWY]) / self.i_diam;
         if self.lock_tilt {
             dydt[r + RWY] = 0.0;
             dydt[r + RWZ] = 0.0;
