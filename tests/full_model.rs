@@ -272,3 +272,63 @@ fn impact_test_fel_is_the_pedestal_mode() {
     assert!((fel / sdof - 1.0).abs() < 0.01, "fel {fel} vs {sdof}");
     assert!((fel / 593.7 - 1.0).abs() < 0.02, "fel {fel} vs paper 593.7");
 }
+
+/// Decision D1, free tilt: the ring carries the shaft's tilt inertia I_s and tilt stiffness k_t,
+/// (I_d + I_s) β̈ = M − k_t β (docs/model.md#d1). The change of β̈_y between tilts ±ε, less the
+/// same change with k_t = 0 (which leaves the contacts' own moment), is −2 k_t ε / (I_d + I_s).
+#[test]
+fn the_free_tilt_carries_the_shafts_inertia_and_stiffness() {
+    let sc = Scene::from_toml_str(
+        "fidelity = \"full\"\n[operating]\nspeed_rpm = 9900.0\nfa = 4000.0\nfr = 1000.0\n",
+        "t",
+        None,
+    )
+    .unwrap();
+    let bearing = Bearing::new(&sc.bearing).unwrap();
+    let (i_s, k_t, eps) = (0.3, 2.0e7, 1e-6);
+    let accel_with = |i_s: f64, k: f64, beta: f64| {
+        let mut m = FullModel::with_options(
+            &sc,
+            &bearing,
+            &sc.operating,
+            FullOptions {
+                traction: false,
+                lock_tilt: false,
+                shaft_tilt_inertia: i_s,
+                tilt_stiffness: k,
+            },
+        )
+        .unwrap();
+        let n = m.dim();
+        let find = |name: &str| (0..n).find(|&i| m.state_name(i) == name).unwrap();
+        let (iby, iwy) = (
+            find("inner-ring tilt β_y"),
+            find("inner-ring tilt rate β̇_y"),
+        );
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        y[iby] = beta;
+        m.update_mode(0.0, &y);
+        let mut d = vec![0.0; n];
+        m.rhs(0.0, &y, &mut d);
+        d[iwy]
+    };
+    let accel = |k: f64, beta: f64| accel_with(i_s, k, beta);
+    let i_d = sc.bearing.inner_ring.i_diam + i_s;
+    let with = accel(k_t, eps) - accel(k_t, -eps);
+    let without = accel(0.0, eps) - accel(0.0, -eps);
+    let expected = -2.0 * k_t * eps / i_d;
+    assert!(
+        ((with - without) / expected - 1.0).abs() < 1e-9,
+        "{} against {expected}",
+        with - without
+    );
+    // and the contacts' own moment is divided by the same inertia: against the ring alone
+    let ring = sc.bearing.inner_ring.i_diam;
+    let alone = accel_with(0.0, 0.0, eps) - accel_with(0.0, 0.0, -eps);
+    assert!(without.abs() > 0.0, "the contacts resist the tilt");
+    assert!(
+        (without / alone - ring / i_d).abs() < 1e-9,
+        "{without} / {alone} against {ring} / {i_d}"
+    );
+}
