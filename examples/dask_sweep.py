@@ -6,12 +6,15 @@ Usage:
     python examples/dask_sweep.py STUDY.toml --out DIR --workers 4 --raceway target/release/raceway
 
 Each task is one run of the grid: the worker calls
-`raceway sweep STUDY.toml --runs INDEX --jobs 1 --out TMP` and returns the single row of TMP's
-results.csv, so a row is computed by exactly the code of the rayon sweep (same run index, run id,
-seeded noise and metrics). Rows are appended to DIR/results.csv as tasks finish; ids already in
-the file are skipped, so an interrupted study resumes. DIR/results.sorted.csv is the canonical
-copy (sorted by run index), comparable with a rayon sweep's results.sorted.csv once the
-`wall_s` column is dropped.
+`raceway sweep STUDY.toml --runs INDEX --jobs 1 --out TMP` and returns TMP's results.csv, so a
+row is computed by exactly the code of the rayon sweep (same run index, run id, run key, seeded
+noise and metrics). The table is read and written only by the CLI, with the reader of the rayon
+sweep: `--pending` lists the runs DIR/results.csv does not have yet (it drops a last line cut
+short by a kill and any row failing its check, and refuses a table of another study or model
+version, saying what changed; `--new-table` keeps that one aside), and `--merge` appends each
+finished task's row (checked against the run's key) and rewrites DIR/results.sorted.csv, the
+canonical copy sorted by run index, comparable with a rayon sweep's once the `wall_s` and `check`
+columns are dropped. An interrupted study resumes.
 
 Without --scheduler a LocalCluster with --workers processes (1 thread each) is started. With a
 scheduler address on many machines, every worker must see the raceway binary, the sweep file and
@@ -40,34 +43,29 @@ def default_raceway() -> Path:
     return target / "release" / "raceway"
 
 
-def list_runs(raceway: str, sweep: str):
-    """(header, rows) of `raceway sweep --list`: run_index, run_id and the parameters."""
-    out = subprocess.run(
-        [raceway, "sweep", sweep, "--list"], capture_output=True, text=True, check=True
-    ).stdout
-    rows = list(csv.reader(io.StringIO(out)))
-    return rows[0], rows[1:]
+def cli(raceway: str, *args) -> str:
+    """Runs the raceway CLI; its stdout (an error carries its stderr)."""
+    proc = subprocess.run([raceway, *args], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"raceway {' '.join(args[:2])}: {proc.stderr.strip()}")
+    return proc.stdout
+
+
+def pending_runs(raceway: str, sweep: str, out: Path, new_table=False):
+    """Indices of the runs out/results.csv does not have yet (the CLI's reader decides)."""
+    args = ["sweep", sweep, "--out", str(out), "--pending"] + (["--new-table"] if new_table else [])
+    rows = list(csv.reader(io.StringIO(cli(raceway, *args))))
+    return [int(r[0]) for r in rows[1:]]
 
 
 def run_one(raceway: str, sweep: str, index: int):
-    """One task: run one grid point with the CLI and return (header, row) of its results.csv."""
+    """One task: run one grid point with the CLI and return its results.csv as text."""
     with tempfile.TemporaryDirectory(prefix="raceway-dask-") as tmp:
-        proc = subprocess.run(
-            [raceway, "sweep", sweep, "--runs", str(index), "--jobs", "1", "--quiet",
-             "--out", tmp],
-            capture_output=True,
-            text=True,
-        )
-        if proc.returncode != 0:
-            raise RuntimeError(f"run {index}: raceway sweep failed: {proc.stderr.strip()}")
-        with open(Path(tmp) / "results.csv", newline="") as f:
-            rows = list(csv.reader(f))
-    if len(rows) != 2:
-        raise RuntimeError(f"run {index}: expected one result row, got {len(rows) - 1}")
-    return rows[0], rows[1]
+        cli(raceway, "sweep", sweep, "--runs", str(index), "--jobs", "1", "--quiet", "--out", tmp)
+        return (Path(tmp) / "results.csv").read_text()
 
 
-def run_study(client, sweep, out, raceway=None, progress=True):
+def run_study(client, sweep, out, raceway=None, progress=True, new_table=False):
     """Runs every run of `sweep` not yet in out/results.csv on the cluster of `client`.
 
     Returns (ran, skipped). Writes out/results.csv (append order) and out/results.sorted.csv.
@@ -78,39 +76,23 @@ def run_study(client, sweep, out, raceway=None, progress=True):
     sweep = str(Path(sweep).resolve())
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    _, grid = list_runs(raceway, sweep)
-    results = out / "results.csv"
-    done, header = set(), None
-    if results.exists() and results.stat().st_size > 0:
-        with open(results, newline="") as f:
-            rows = list(csv.reader(f))
-        header = rows[0]
-        done = {r[1] for r in rows[1:] if len(r) == len(header)}
-    todo = [int(r[0]) for r in grid if r[1] not in done]
+    total = len(list(csv.reader(io.StringIO(cli(raceway, "sweep", sweep, "--list"))))) - 1
+    todo = pending_runs(raceway, sweep, out, new_table)
     futures = client.map(run_one, [raceway] * len(todo), [sweep] * len(todo), todo, pure=False)
     n = 0
-    with open(results, "a", newline="") as f:
-        w = csv.writer(f, lineterminator="\n")
+    with tempfile.TemporaryDirectory(prefix="raceway-dask-merge-") as tmp:
         for fut in as_completed(futures):
-            h, row = fut.result()
-            if header is None:
-                header = h
-                w.writerow(h)
-            elif h != header:
-                raise RuntimeError(f"{results} was written by a different sweep")
-            w.writerow(row)
-            f.flush()
+            task = Path(tmp) / f"task-{n}.csv"
+            task.write_text(fut.result())
+            cli(raceway, "sweep", sweep, "--out", str(out), "--merge", str(task), "--quiet")
             n += 1
             if progress:
                 print(f"\r{n}/{len(todo)} runs", end="", file=sys.stderr, flush=True)
     if progress and todo:
         print(file=sys.stderr)
-    with open(results, newline="") as f:
-        rows = list(csv.reader(f))
-    rows[1:] = sorted(rows[1:], key=lambda r: int(r[0]))
-    with open(out / "results.sorted.csv", "w", newline="") as f:
-        csv.writer(f, lineterminator="\n").writerows(rows)
-    return len(todo), len(grid) - len(todo)
+    if n == 0:  # nothing new: the canonical copy from the table as it stands
+        cli(raceway, "sweep", sweep, "--out", str(out), "--merge", "--quiet")
+    return len(todo), total - len(todo)
 
 
 def main():
@@ -120,6 +102,9 @@ def main():
     ap.add_argument("--scheduler", help="dask scheduler address; default: a LocalCluster")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes")
     ap.add_argument("--raceway", default=None, help="raceway binary (default: target/release)")
+    ap.add_argument("--new-table", action="store_true",
+                    help="if DIR holds a table of another study or model version, keep it as "
+                         "results.N.csv and start a new one (default: refuse)")
     a = ap.parse_args()
     from distributed import Client, LocalCluster
 
@@ -129,7 +114,7 @@ def main():
         cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True)
         client = Client(cluster)
     try:
-        ran, skipped = run_study(client, a.sweep, a.out, a.raceway)
+        ran, skipped = run_study(client, a.sweep, a.out, a.raceway, new_table=a.new_table)
         print(f"dask sweep: {ran} runs now, {skipped} already in {a.out}/results.csv "
               f"({len(client.scheduler_info()['workers'])} workers)")
     finally:

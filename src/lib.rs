@@ -45,6 +45,15 @@ pub mod sweep;
 /// control, events and dense output.
 pub use raceway_solver as solver;
 
+/// The model version: the package version and a hash of the sources that compute a result
+/// (this library, the solver crate, the presets). A sweep's table records it per study and, in
+/// each row's key, per run.
+pub const MODEL_VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    "+src.",
+    env!("RACEWAY_SOURCE_HASH")
+);
+
 pub use config::{
     BearingFile, BearingSection, BlendLength, BlendName, ConfigError, ContactSection,
     DefectDefaults, DefectMode, HertzMethod, InnerRing, Material, Pedestal, StripRule, TractionLaw,

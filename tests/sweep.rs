@@ -1,7 +1,7 @@
 //! Parameter sweeps: grid expansion, determinism across thread counts, resume after a kill,
 //! failed runs recorded with their message, sweep-file errors.
 
-use raceway::sweep::{self, canonical_rows, ExecOptions, Summary, Sweep};
+use raceway::sweep::{self, canonical_rows, ExecOptions, OnChange, ResultsFile, Summary, Sweep};
 use std::path::{Path, PathBuf};
 
 fn scenes_dir() -> PathBuf {
@@ -33,7 +33,10 @@ harmonics = 2
 "#;
 
 fn run(sw: &Sweep, dir: &Path, jobs: usize) -> Summary {
-    let opts = ExecOptions { jobs, only: None };
+    let opts = ExecOptions {
+        jobs,
+        ..ExecOptions::default()
+    };
     sweep::execute(sw, dir, &opts).expect("sweep runs")
 }
 
@@ -282,13 +285,18 @@ fn a_results_file_of_another_sweep_is_refused() {
     std::fs::write(d.join("results.csv"), "run_index,run_id,x\n0,abc,1\n").unwrap();
     let sw = parse(SMALL).unwrap();
     let e = sweep::execute(&sw, &d, &ExecOptions::default()).unwrap_err();
-    assert!(e.to_string().contains("different sweep"), "{e}");
+    assert!(
+        e.to_string().contains("another study or model version")
+            && e.to_string().contains("older raceway"),
+        "{e}"
+    );
     let e = sweep::execute(
         &sw,
         &tmp("only"),
         &ExecOptions {
             jobs: 1,
             only: Some(vec![8]),
+            ..ExecOptions::default()
         },
     )
     .unwrap_err();
@@ -371,4 +379,107 @@ base = "../scenes/default.toml"
     };
     assert_eq!(blend(0), raceway::BlendLength::Metres(0.0));
     assert_eq!(blend(1), raceway::BlendLength::Metres(2.0e-4));
+}
+
+/// A row damaged in the middle of the table (a field changed on disk) fails its check: it is
+/// dropped and its run runs again, and the table equals an uninterrupted run's.
+#[test]
+fn a_damaged_row_fails_its_check_and_runs_again() {
+    let sw = parse(SMALL).unwrap();
+    let d = tmp("damaged");
+    run(&sw, &d, 2);
+    let path = d.join("results.csv");
+    let (_, reference) = canonical_rows(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    // change one digit of a metric of the third row
+    let row = &mut lines[3];
+    let at = row.rfind(|c: char| c.is_ascii_digit() && c != '9').unwrap();
+    row.replace_range(at..=at, "9");
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let resumed = run(&sw, &d, 1);
+    assert_eq!((resumed.skipped, resumed.ran), (7, 1));
+    assert_eq!(resumed.opened.dropped, 1);
+    let (_, after) = canonical_rows(&path).unwrap();
+    assert_eq!(after, reference);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Resuming into a folder after a fixed setting changed (here `output.duration`): refused,
+/// naming what changed; with OnChange::NewTable the old table is kept as results.1.csv and a
+/// new one is made (issue 21: before, the old rows were silently kept).
+#[test]
+fn a_changed_study_is_refused_with_what_changed_or_starts_a_new_table() {
+    let sw = parse(SMALL).unwrap();
+    let d = tmp("changed");
+    run(&sw, &d, 2);
+    let changed =
+        parse(&SMALL.replace("\"output.duration\" = 0.05", "\"output.duration\" = 0.06")).unwrap();
+    let e = sweep::execute(&changed, &d, &ExecOptions::default()).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("set.output.duration: 0.05 → 0.06") && msg.contains("--new-table"),
+        "{msg}"
+    );
+    // the model version is part of the record (a table of another build is refused the same way)
+    let study = std::fs::read_to_string(d.join("study.json")).unwrap();
+    assert!(study.contains(raceway::MODEL_VERSION), "{study}");
+    let fresh = sweep::execute(
+        &changed,
+        &d,
+        &ExecOptions {
+            on_change: OnChange::NewTable,
+            ..ExecOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!((fresh.skipped, fresh.ran), (0, 8));
+    assert_eq!(fresh.opened.kept_as, Some(d.join("results.1.csv")));
+    assert!(d.join("study.1.json").exists());
+    // the old table is intact beside the new one
+    let (_, old) = canonical_rows(&d.join("results.1.csv")).unwrap();
+    assert_eq!(old.len(), 8);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A distributed sweep's tasks (one run each, in their own folders) merged into one table by
+/// the same reader give the table of a single sweep; a task of another study is refused.
+#[test]
+fn merged_task_tables_equal_one_sweep_and_another_studys_rows_are_refused() {
+    let sw = parse(SMALL).unwrap();
+    let whole = tmp("merge-whole");
+    run(&sw, &whole, 2);
+    let (_, reference) = canonical_rows(&whole.join("results.csv")).unwrap();
+    let d = tmp("merge");
+    std::fs::create_dir_all(&d).unwrap();
+    let mut table = ResultsFile::open(&d, &sw, OnChange::Refuse).unwrap();
+    for i in 0..8 {
+        let task = tmp(&format!("merge-task{i}"));
+        sweep::execute(
+            &sw,
+            &task,
+            &ExecOptions {
+                jobs: 1,
+                only: Some(vec![i]),
+                ..ExecOptions::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(table.merge(&sw, &task.join("results.csv")).unwrap(), 1);
+        // merged twice: nothing new
+        assert_eq!(table.merge(&sw, &task.join("results.csv")).unwrap(), 0);
+        let _ = std::fs::remove_dir_all(&task);
+    }
+    drop(table);
+    let (_, merged) = canonical_rows(&d.join("results.csv")).unwrap();
+    assert_eq!(merged, reference);
+    let other = parse(&SMALL.replace("\"output.skip\" = 0.01", "\"output.skip\" = 0.02")).unwrap();
+    let od = tmp("merge-other");
+    std::fs::create_dir_all(&od).unwrap();
+    let mut t = ResultsFile::open(&od, &other, OnChange::Refuse).unwrap();
+    let e = t.merge(&other, &whole.join("results.csv")).unwrap_err();
+    assert!(e.to_string().contains("run_key differs"), "{e}");
+    let _ = std::fs::remove_dir_all(&od);
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(&whole);
 }

@@ -1,7 +1,7 @@
 //! `raceway sweep`: run a parameter grid on N threads, appending to `DIR/results.csv`.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use raceway::sweep::{self, ExecOptions, Progress, Sweep};
+use raceway::sweep::{self, ExecOptions, OnChange, Progress, ResultsFile, Run, Sweep};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 use std::time::Instant;
@@ -22,6 +22,18 @@ pub struct Args {
     /// Print the grid (run_index, run_id, parameters) as CSV and exit
     #[arg(long)]
     pub list: bool,
+    /// Print the runs of the grid that DIR/results.csv does not have yet (as --list) and exit
+    #[arg(long, requires = "out")]
+    pub pending: bool,
+    /// Append the rows of these results.csv files (tasks of a distributed sweep) to
+    /// DIR/results.csv, read by the same reader and checked against this sweep, rewrite
+    /// DIR/results.sorted.csv, and exit (no files: only the rewrite)
+    #[arg(long, num_args = 0.., value_name = "FILE", requires = "out")]
+    pub merge: Option<Vec<PathBuf>>,
+    /// If DIR holds a table of another study or model version, keep it as results.N.csv and
+    /// start a new table (default: refuse, saying what changed)
+    #[arg(long)]
+    pub new_table: bool,
     /// No progress bar and no summary
     #[arg(long)]
     pub quiet: bool,
@@ -30,21 +42,41 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), String> {
     let sw = Sweep::load(&args.sweep).map_err(|e| e.to_string())?;
     if args.list {
-        let keys: Vec<&str> = sw.axes.iter().map(|a| a.key.as_str()).collect();
-        println!("run_index,run_id,{}", keys.join(","));
-        for r in sw.runs() {
-            let vals: Vec<String> = r.params.iter().map(|(_, v)| v.canonical()).collect();
-            println!("{},{},{}", r.index, r.id, vals.join(","));
-        }
+        print_runs(&sw, |_| true);
         return Ok(());
     }
     let out = args
         .out
         .ok_or("--out DIR is required (where results.csv is written)")?;
+    let on_change = if args.new_table {
+        OnChange::NewTable
+    } else {
+        OnChange::Refuse
+    };
+    if args.pending || args.merge.is_some() {
+        std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+        let mut file = ResultsFile::open(&out, &sw, on_change).map_err(|e| e.to_string())?;
+        if let Some(files) = &args.merge {
+            let mut added = 0;
+            for f in files {
+                added += file.merge(&sw, f).map_err(|e| e.to_string())?;
+            }
+            let results = out.join("results.csv");
+            sweep::write_sorted(&results, &out.join("results.sorted.csv"))
+                .map_err(|e| e.to_string())?;
+            if !args.quiet {
+                eprintln!("merged {added} rows into {}", results.display());
+            }
+        } else {
+            print_runs(&sw, |r| !file.is_done(&sw, r));
+        }
+        return Ok(());
+    }
     let started = Instant::now();
     let opts = ExecOptions {
         jobs: args.jobs,
         only: args.runs,
+        on_change,
     };
     let bar = Bar {
         show: !args.quiet,
@@ -54,6 +86,16 @@ pub fn run(args: Args) -> Result<(), String> {
     let results = out.join("results.csv");
     sweep::write_sorted(&results, &out.join("results.sorted.csv")).map_err(|e| e.to_string())?;
     if !args.quiet {
+        if s.opened.dropped > 0 {
+            eprintln!(
+                "{}: dropped {} damaged rows (cut short or failing their check); they ran again",
+                results.display(),
+                s.opened.dropped
+            );
+        }
+        if let Some(kept) = &s.opened.kept_as {
+            eprintln!("the previous table is kept as {}", kept.display());
+        }
         eprintln!(
             "sweep '{}': {} runs selected, {} already in {}, {} run now ({} failed) in {:.2} s wall on {} threads",
             sw.name,
@@ -71,6 +113,16 @@ pub fn run(args: Args) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Prints the runs of the grid that `keep` selects as CSV: run_index, run_id, the parameters.
+fn print_runs(sw: &Sweep, keep: impl Fn(&Run) -> bool) {
+    let keys: Vec<&str> = sw.axes.iter().map(|a| a.key.as_str()).collect();
+    println!("run_index,run_id,{}", keys.join(","));
+    for r in sw.runs().iter().filter(|r| keep(r)) {
+        let vals: Vec<String> = r.params.iter().map(|(_, v)| v.canonical()).collect();
+        println!("{},{},{}", r.index, r.id, vals.join(","));
+    }
 }
 
 /// The sweep's progress bar with ETA on stderr (hidden when stderr is not a terminal), made when

@@ -23,7 +23,9 @@
 //! its parameters ([`spec::run_id`]). [`execute`] runs the grid on a rayon pool of N threads,
 //! one [`Simulation`](crate::simulation::Simulation) per run, and appends one row per finished
 //! run to `results.csv` ([`ResultsFile`]), so an interrupted sweep resumes where it stopped and a
-//! failed run is recorded with its message. Every random number (measurement noise) is seeded
+//! failed run is recorded with its message. A run counts as done only if its row's key (a hash
+//! of its resolved scene, what is kept and the model version) is its key now, and a folder
+//! holding another study's table is refused with what changed ([`OnChange`]). Every random number (measurement noise) is seeded
 //! from the run's parameters, so the rows do not depend on the number of threads; only their
 //! order in the file and the `wall_s` column do.
 
@@ -31,10 +33,11 @@ mod error;
 mod metrics;
 mod results;
 mod spec;
+mod study;
 
 pub use error::SweepError;
 pub use metrics::{evaluate, metric_columns};
-pub use results::{canonical_rows, write_sorted, ResultsFile};
+pub use results::{canonical_rows, write_sorted, OnChange, OpenReport, ResultsFile};
 pub use spec::{fnv1a64, known_keys, run_id, Axis, AxisValue, Keep, Run, Sweep};
 
 use std::path::Path;
@@ -48,6 +51,8 @@ pub struct ExecOptions {
     pub jobs: usize,
     /// Only these run indices (e.g. one task of a distributed sweep); `None` = all.
     pub only: Option<Vec<usize>>,
+    /// What to do when the folder holds a table of another study or model version.
+    pub on_change: OnChange,
 }
 
 /// Receives [`execute_with_progress`]'s reports, e.g. to draw a progress bar; every method
@@ -65,7 +70,7 @@ pub trait Progress: Sync {
 impl Progress for () {}
 
 /// What [`execute`] did.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Summary {
     /// Runs selected from the grid.
     pub selected: usize,
@@ -75,6 +80,8 @@ pub struct Summary {
     pub ran: usize,
     /// Runs executed now that failed (recorded with their message).
     pub failed: usize,
+    /// What opening results.csv found: damaged rows dropped (run again), an old table kept.
+    pub opened: OpenReport,
 }
 
 /// Runs the selected runs of `sweep` that `out_dir/results.csv` does not have yet, on
@@ -105,15 +112,16 @@ pub fn execute_with_progress(
             runs.iter().filter(|r| idx.contains(&r.index)).collect()
         }
     };
-    let file = ResultsFile::open(&out_dir.join("results.csv"), results::columns(sweep))?;
+    let file = ResultsFile::open(out_dir, sweep, opts.on_change)?;
     let todo: Vec<&Run> = selected
         .iter()
         .copied()
-        .filter(|r| !file.done().contains(&r.id))
+        .filter(|r| !file.is_done(sweep, r))
         .collect();
     let mut summary = Summary {
         selected: selected.len(),
         skipped: selected.len() - todo.len(),
+        opened: file.report().clone(),
         ..Summary::default()
     };
     progress.start(todo.len());
