@@ -408,7 +408,8 @@ line's force over the next step as two samples and the impedance (`tlm.c0.*`, `t
 `tlm.Zc` → the bearing's inputs of the same names); the bearing applies
 F = c0 + (c1 − c0)(t − t_k)/H − Zc v to its inner ring. Neither FMU's outputs depend on its
 inputs at the same instant, so it does not matter in which order a master sets and reads them:
-libcosim and fmpy give the same result to round-off.
+libcosim and fmpy give the same result to the integrator's tolerance (pointwise
+within 5e-5 of the bearing force's range, `tests/python/test_coupling.py`).
 
 Setting it up (as `examples/systems/build_ssp.py` does for the shipped SSP system
 `examples/systems/rotor_bearing/SystemStructure.ssd`):
