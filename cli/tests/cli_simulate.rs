@@ -119,3 +119,40 @@ fn a_bad_column_is_named_and_nothing_is_written() {
         assert!(!out.exists(), "{cols}: no file for a bad request");
     }
 }
+
+/// The CLI's run is the library's one advance over the whole duration, sample for sample: no
+/// step is cut at intermediate times (issue 21: chunked advances left a comb at the chunk
+/// rate in the spectrum).
+#[test]
+fn the_run_is_one_undisturbed_advance() {
+    let out = tmp("one-advance.csv");
+    simulate("lumped", &out, &["--columns", "pedestal.a.z"]);
+    let (_, rows) = table(&out);
+    let mut s = raceway::Scene::load(Path::new(&scene())).unwrap();
+    s.fidelity = raceway::Fidelity::Lumped;
+    s.output.duration = 0.02;
+    let mut sim = raceway::Simulation::new(&s).unwrap();
+    let k = sim
+        .output_table()
+        .iter()
+        .position(|o| o.name == "pedestal.a.z")
+        .unwrap();
+    let mut lib = Vec::new();
+    sim.advance_sampled(0.02, 1.0 / s.output.sample_rate, &mut |t, o| {
+        lib.push((t, o[k]))
+    })
+    .unwrap();
+    // The CSV's first row is t = 0 (written before the advance).
+    assert_eq!(rows.len(), lib.len() + 1);
+    // Compared as the CSV writes them: time to 1 ns, values to 10 significant digits.
+    for (row, (t, a)) in rows[1..].iter().zip(&lib) {
+        assert_eq!(row[0], format!("{t:.9}"));
+        let mut v = Vec::new();
+        raceway::signal::push_sci10(&mut v, *a);
+        assert_eq!(
+            row[1],
+            String::from_utf8(v).unwrap(),
+            "pedestal.a.z at t = {t}"
+        );
+    }
+}
