@@ -320,7 +320,7 @@ def probe_interleaved(ctx, n=200):
     return {"equal": [rows[i] == solo[i] for i in range(2)], "differ": solo[0] != solo[1]}
 
 
-def probe_threads(ctx, n=200, nthreads=4):
+def probe_threads(ctx, n=200, nthreads=8):
     serial = [_solo(ctx, i, n, f"serial{i}") for i in range(nthreads)]
     results = [None] * nthreads
     errors = []

@@ -220,8 +220,10 @@ def test_unknown_log_category(probe):
 
 
 def test_memory_instantiate_free_cycles(probe):
+    """1000 instantiate/initialize/free cycles (after 100 to warm the allocator) grow the
+    process's resident memory by less than 1 MB."""
     r = probe("memory")
-    assert r["growth_kib"] < 4096, r
+    assert r["growth_kib"] < 1024, r
 
 
 @pytest.mark.parametrize("coupling", [0, 1], ids=["force", "motion"])
