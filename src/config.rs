@@ -304,26 +304,26 @@ impl Default for DefectDefaults {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LubricationSection {
-    /// Kinematic viscosity at 40 °C [mm²/s].
+    /// Kinematic viscosity at 40 °C \[mm²/s\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub viscosity_40: Option<f64>,
-    /// Kinematic viscosity at 100 °C [mm²/s].
+    /// Kinematic viscosity at 100 °C \[mm²/s\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub viscosity_100: Option<f64>,
-    /// Operating temperature of the oil in the contacts [°C].
+    /// Operating temperature of the oil in the contacts \[°C\].
     #[serde(default = "default_oil_temperature")]
     pub temperature: f64,
-    /// Density of the oil at the operating temperature [kg/m³].
+    /// Density of the oil at the operating temperature \[kg/m³\].
     #[serde(default = "default_oil_density")]
     pub density: f64,
-    /// Dynamic viscosity at the operating temperature [Pa s] (instead of the two kinematic
+    /// Dynamic viscosity at the operating temperature \[Pa s\] (instead of the two kinematic
     /// viscosities, the temperature and the density).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic_viscosity: Option<f64>,
-    /// Pressure–viscosity coefficient α [1/Pa].
+    /// Pressure–viscosity coefficient α \[1/Pa\].
     #[serde(default = "default_pressure_viscosity")]
     pub pressure_viscosity: f64,
-    /// Composite rms roughness σ = √(σ_ball² + σ_race²) [m]: the least film thickness the
+    /// Composite rms roughness σ = √(σ_ball² + σ_race²) \[m\]: the least film thickness the
     /// film's stiffness and damping use (below it the contact is in mixed lubrication).
     #[serde(default = "default_roughness")]
     pub roughness: f64,

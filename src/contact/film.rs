@@ -16,7 +16,7 @@
 //!
 //! `h` in the laws is `max(h_c, σ)`, σ the composite roughness: below it the contact is in
 //! mixed lubrication, where none of the formulas hold. Everything here is scalar arithmetic
-//! (no allocation); [`FilmContact::law`] costs one `exp` and two `ln`.
+//! (no allocation); [`FilmContact::law`] costs one `ln` and one `exp`.
 
 use crate::config::{ConfigError, LubricationSection};
 use crate::contact::HertzContact;
@@ -177,12 +177,15 @@ impl FilmContact {
 
     /// The film thickness the laws use, `max(h_c, σ)` \[m\], and the film damping
     /// `c_f = 6π η0 R_x²/max(h_c, σ)` [N s/m], at Hertz load `q` and entraining speed `u`:
-    /// one `exp` and two `ln`.
+    /// one `ln` and one `exp`, as `u^0.67 Q^−0.067 = exp(0.067 ln(u^10/Q))` (u ≥ 1e-9 m/s and
+    /// Q ≥ 1e-6 N keep u^10/Q within 1e-84 … 1e36 for any speed below 1 km/s).
     #[inline(always)]
     pub fn law(&self, q: f64, u: f64) -> (f64, f64) {
         let (q, u) = (q.max(Q_FLOOR), u.abs().max(U_FLOOR));
-        let h = (self.hc_coef * (0.67 * u.ln() - HC_W_EXP * q.ln()).exp())
-            .max(self.lubricant.roughness);
+        let u2 = u * u;
+        let u4 = u2 * u2;
+        let u10 = u4 * u4 * u2;
+        let h = (self.hc_coef * (HC_W_EXP * (u10 / q).ln()).exp()).max(self.lubricant.roughness);
         (h, self.c_coef / h)
     }
 

@@ -3,7 +3,8 @@
 //! Bodies: the inner ring with half the balls (x, y, z), the pedestal with the outer ring and the
 //! other half of the balls (y, z), and an optional high-frequency resonator on the pedestal in z.
 //! Balls are massless and move kinematically at the loaded cage speed from L1; each ball couples
-//! the rings through the series Hertz constant of its two contacts and the contact damping.
+//! the rings through the series Hertz constant of its two contacts and the contact damping (or,
+//! with a `[lubrication]` section, the two lubricant films in series, docs/model.md#film).
 //! A spall removes the finite-ball drop g(y_b) from the ball's approach and changes the Hertz
 //! constant of its race (docs/model.md#spall).
 //!
