@@ -980,3 +980,53 @@ pub fn ring_translation_jacobian(
     }
     Some((dfdx, dfdv))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ball of radius R at azimuth θ on the pitch radius r (contact angle 0), orbiting at ω_c
+    /// and spinning about e_x so that it rolls without slip on a race whose contact point is
+    /// `side` R from its centre (+1 outer, −1 inner) and which turns at `spin`: the entraining
+    /// speed is the race's surface speed relative to the orbiting contact point.
+    fn rolling(side: f64, spin: f64) -> f64 {
+        let (r, rb, wc, theta) = (0.035, 0.00635, 440.0, 0.7_f64);
+        let (s, c) = theta.sin_cos();
+        let (er, et) = ([0.0, -s, c], [0.0, -c, -s]);
+        // Radius of the contact point, and the race's surface speed relative to the contact
+        // point along e_θ: (Ω − ω_c) rc.
+        let rc = r + side * rb;
+        let rel = (spin - wc) * rc;
+        // Pure rolling: the ball's surface at the contact moves with the race's, so
+        // ω_s e_x × (side R e_r) = (Ω rc − r ω_c) e_θ.
+        let ws = (spin * rc - r * wc) / (side * rb);
+        let ball = BallKin {
+            p: scale(er, r),
+            v: scale(et, r * wc),
+            omega: [ws, 0.0, 0.0],
+        };
+        let ring = RingPose {
+            p: [0.0; 3],
+            v: [0.0; 3],
+            beta: [0.0; 3],
+            beta_rate: [0.0; 3],
+            spin,
+        };
+        let n = scale(er, side);
+        let u = entraining_speed(&ball, &ring, ball.p, rb, n, et);
+        assert!(
+            (u - rel.abs()).abs() < 1e-12 * rel.abs(),
+            "u = {u}, race surface relative to the contact {rel}"
+        );
+        u
+    }
+
+    #[test]
+    fn entraining_speed_of_pure_rolling_is_the_race_speed_relative_to_the_contact() {
+        // Outer race fixed: u = ω_c (r + R); inner race at Ω: u = (Ω − ω_c)(r − R).
+        let uo = rolling(1.0, 0.0);
+        assert!((uo - 440.0 * (0.035 + 0.00635)).abs() < 1e-9);
+        let ui = rolling(-1.0, 1036.0);
+        assert!((ui - (1036.0 - 440.0) * (0.035 - 0.00635)).abs() < 1e-9);
+    }
+}
