@@ -235,3 +235,21 @@ fn without_the_section_the_model_is_the_papers() {
     assert_eq!(a.len(), c.len());
     assert!(a.iter().zip(&c).any(|(x, y)| x != y));
 }
+
+#[test]
+fn presets_with_a_film_round_trip_through_the_fmus_bearing_text() {
+    // fmu-build packs the bearing as `to_toml_string`; the FMU reads it back.
+    for (name, _) in raceway::PRESETS {
+        let b = BearingFile::load(name).unwrap();
+        let back = BearingFile::from_toml_str(&b.to_toml_string(), name).unwrap();
+        assert_eq!(b, back, "{name}");
+        let has = b.lubrication.is_some();
+        assert_eq!(has, *name != "niu2014-table1", "{name}");
+        if has {
+            let g = Bearing::new(&b).unwrap();
+            let eta = g.film(Race::Inner).unwrap().lubricant.viscosity;
+            // ISO VG 68 at 50–60 °C: about 0.02–0.035 Pa s.
+            assert!((0.015..0.04).contains(&eta), "{name}: η0 = {eta}");
+        }
+    }
+}
