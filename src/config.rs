@@ -1,8 +1,9 @@
 //! Bearing description files (TOML, docs/scenes.md#bearing-files) and the presets shipped with raceway.
 //!
 //! A file has the sections `[bearing]`, `[material]`, `[contact]`, `[traction]`,
-//! `[inner_ring]`, `[pedestal]` and `[defect]`. Only `[bearing]` is required; the other
-//! sections default to the paper's Table-1 values. Unknown keys are refused, and every value is
+//! `[inner_ring]`, `[pedestal]`, `[defect]` and `[lubrication]`. Only `[bearing]` is required;
+//! the other sections default to the paper's Table-1 values, and a missing `[lubrication]`
+//! means no lubricant film (the paper's model). Unknown keys are refused, and every value is
 //! checked by [`BearingFile::validate`], whose error names the field and the rule it broke.
 
 use serde::{Deserialize, Serialize};
@@ -296,6 +297,139 @@ impl Default for DefectDefaults {
     }
 }
 
+/// `[lubrication]`: the lubricant at the ball–race contacts (docs/model.md#film). Absent: no
+/// film (the paper's model: constant contact damping `contact.c_br`). The oil is given either
+/// by its kinematic viscosities at 40 °C and 100 °C (an ISO VG data sheet) with the operating
+/// temperature and density, converted by the ASTM D341 (Walther) relation, or directly by its
+/// dynamic viscosity at the operating temperature.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricationSection {
+    /// Kinematic viscosity at 40 °C \[mm²/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscosity_40: Option<f64>,
+    /// Kinematic viscosity at 100 °C \[mm²/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscosity_100: Option<f64>,
+    /// Operating temperature of the oil in the contacts \[°C\].
+    #[serde(default = "default_oil_temperature")]
+    pub temperature: f64,
+    /// Density of the oil at the operating temperature \[kg/m³\].
+    #[serde(default = "default_oil_density")]
+    pub density: f64,
+    /// Dynamic viscosity at the operating temperature \[Pa s\] (instead of the two kinematic
+    /// viscosities, the temperature and the density).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_viscosity: Option<f64>,
+    /// Pressure–viscosity coefficient α \[1/Pa\].
+    #[serde(default = "default_pressure_viscosity")]
+    pub pressure_viscosity: f64,
+    /// Composite rms roughness σ = √(σ_ball² + σ_race²) \[m\]: the least film thickness the
+    /// film's stiffness and damping use (below it the contact is in mixed lubrication).
+    #[serde(default = "default_roughness")]
+    pub roughness: f64,
+}
+
+fn default_oil_temperature() -> f64 {
+    40.0
+}
+
+fn default_oil_density() -> f64 {
+    870.0
+}
+
+fn default_pressure_viscosity() -> f64 {
+    2.0e-8
+}
+
+fn default_roughness() -> f64 {
+    0.1e-6
+}
+
+impl LubricationSection {
+    /// Checks every value; the error names the field (`lubrication.<key>`) and the rule.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        // Small and large numbers in exponent form (1e-8, not 0.00000001).
+        let num = |v: f64| {
+            if v != 0.0 && !(1e-3..1e5).contains(&v.abs()) {
+                format!("{v:e}")
+            } else {
+                format!("{v}")
+            }
+        };
+        let range = |field: &str, v: f64, lo: f64, hi: f64, unit: &str| {
+            check_finite(field, v)?;
+            if (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(ConfigError::new(
+                    field,
+                    format!(
+                        "{} {unit} must lie in [{}, {}] {unit}",
+                        num(v),
+                        num(lo),
+                        num(hi)
+                    ),
+                ))
+            }
+        };
+        match (
+            self.dynamic_viscosity,
+            self.viscosity_40,
+            self.viscosity_100,
+        ) {
+            (Some(eta), None, None) => {
+                range("lubrication.dynamic_viscosity", eta, 1e-4, 100.0, "Pa s")?;
+            }
+            (Some(_), _, _) => {
+                return Err(ConfigError::new(
+                    "lubrication.dynamic_viscosity",
+                    "give either dynamic_viscosity or viscosity_40 and viscosity_100, not both",
+                ))
+            }
+            (None, Some(n40), Some(n100)) => {
+                range("lubrication.viscosity_40", n40, 2.0, 1e5, "mm²/s")?;
+                range("lubrication.viscosity_100", n100, 2.0, 1e5, "mm²/s")?;
+                if n100 >= n40 {
+                    return Err(ConfigError::new(
+                        "lubrication.viscosity_100",
+                        format!(
+                            "{n100} mm²/s must be below viscosity_40 ({n40} mm²/s): oil thins as it warms"
+                        ),
+                    ));
+                }
+                range(
+                    "lubrication.temperature",
+                    self.temperature,
+                    -40.0,
+                    200.0,
+                    "°C",
+                )?;
+                range("lubrication.density", self.density, 500.0, 2000.0, "kg/m³")?;
+            }
+            (None, None, _) => return Err(ConfigError::new(
+                "lubrication.viscosity_40",
+                "missing: give viscosity_40 and viscosity_100 (mm²/s), or dynamic_viscosity (Pa s)",
+            )),
+            (None, Some(_), None) => {
+                return Err(ConfigError::new(
+                    "lubrication.viscosity_100",
+                    "missing: the Walther relation needs viscosity_40 and viscosity_100 (mm²/s)",
+                ))
+            }
+        }
+        range(
+            "lubrication.pressure_viscosity",
+            self.pressure_viscosity,
+            1e-9,
+            1e-7,
+            "1/Pa",
+        )?;
+        range("lubrication.roughness", self.roughness, 1e-10, 1e-5, "m")?;
+        Ok(())
+    }
+}
+
 /// A whole bearing description file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -323,6 +457,9 @@ pub struct BearingFile {
     /// `[defect]`: how spalls are modelled on this bearing.
     #[serde(default)]
     pub defect: DefectDefaults,
+    /// `[lubrication]`: the lubricant film at the ball–race contacts (None: no film).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lubrication: Option<LubricationSection>,
 }
 
 /// The presets shipped in `presets/`: (name, TOML text).
@@ -542,6 +679,9 @@ impl BearingFile {
         check_positive("defect.edge_radius", d.edge_radius)?;
         if let BlendLength::Metres(l) = d.blend_length {
             check_non_negative("defect.blend_length", l)?;
+        }
+        if let Some(l) = &self.lubrication {
+            l.validate()?;
         }
         Ok(())
     }

@@ -5,7 +5,7 @@
 //! inner, outer and series contacts.
 
 use crate::config::{BearingFile, ConfigError, HertzMethod};
-use crate::contact::{HertzContact, HertzSolution};
+use crate::contact::{FilmContact, HertzContact, HertzSolution, Lubricant};
 use std::f64::consts::PI;
 
 /// Which raceway.
@@ -75,6 +75,9 @@ pub struct Bearing {
     /// Hertz constant of the outer contact used by the models [N/m^1.5] (the file's override
     /// if given).
     pub k_outer: f64,
+    /// The lubricant film of the (inner, outer) contacts; None without a `[lubrication]`
+    /// section (docs/model.md#film).
+    pub film: Option<(FilmContact, FilmContact)>,
 }
 
 impl Bearing {
@@ -106,7 +109,18 @@ impl Bearing {
         let hertz_inner = hertz(Race::Inner, b.f_inner)?;
         let hertz_outer = hertz(Race::Outer, b.f_outer)?;
         let ball_mass = m.density * PI * d.powi(3) / 6.0;
+        let film = match &file.lubrication {
+            Some(l) => {
+                let lub = Lubricant::new(l)?;
+                Some((
+                    FilmContact::new(&hertz_inner, lub),
+                    FilmContact::new(&hertz_outer, lub),
+                ))
+            }
+            None => None,
+        };
         Ok(Self {
+            film,
             file: file.clone(),
             z: b.z as usize,
             d,
@@ -155,6 +169,14 @@ impl Bearing {
             Race::Inner => self.k_inner,
             Race::Outer => self.k_outer,
         }
+    }
+
+    /// The lubricant film of a race's contacts (None without a `[lubrication]` section).
+    pub fn film(&self, race: Race) -> Option<&FilmContact> {
+        self.film.as_ref().map(|(i, o)| match race {
+            Race::Inner => i,
+            Race::Outer => o,
+        })
     }
 
     /// Hertz solution of a race (at α0).

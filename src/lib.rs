@@ -15,7 +15,7 @@
 //!   cage ratios) and [`load_distribution`] (L1 Jones–Harris load distribution and stiffness);
 //! - the dynamic models: [`models`] (the [`models::Model`] trait, the level registry, one type per
 //!   level, and the state layouts for white-box tests in [`models::internals`]);
-//! - the contact laws: [`contact`] (Hertz, lubricant traction, the spall);
+//! - the contact laws: [`contact`] (Hertz, lubricant traction, the lubricant film, the spall);
 //! - analysis of the outputs: [`signal`] (spectra, Welch PSD, envelope analysis) and [`sweep`]
 //!   (parameter sweeps run in parallel);
 //! - the integration engine: [`solver`] (the `raceway-solver` crate; knows nothing about
@@ -56,8 +56,8 @@ pub const MODEL_VERSION: &str = concat!(
 
 pub use config::{
     BearingFile, BearingSection, BlendLength, BlendName, ConfigError, ContactSection,
-    DefectDefaults, DefectMode, HertzMethod, InnerRing, Material, Pedestal, StripRule, TractionLaw,
-    TractionSection, DEFAULT_PRESET, MAX_STRIPS, PRESETS,
+    DefectDefaults, DefectMode, HertzMethod, InnerRing, LubricationSection, Material, Pedestal,
+    StripRule, TractionLaw, TractionSection, DEFAULT_PRESET, MAX_STRIPS, PRESETS,
 };
 pub use defect::DefectSpec;
 pub use geometry::{race_curvatures, Bearing, Race};

@@ -3,7 +3,8 @@
 //! Bodies: the inner ring with half the balls (x, y, z), the pedestal with the outer ring and the
 //! other half of the balls (y, z), and an optional high-frequency resonator on the pedestal in z.
 //! Balls are massless and move kinematically at the loaded cage speed from L1; each ball couples
-//! the rings through the series Hertz constant of its two contacts and the contact damping.
+//! the rings through the series Hertz constant of its two contacts and the contact damping (or,
+//! with a `[lubrication]` section, the two lubricant films in series, docs/model.md#film).
 //! A spall removes the finite-ball drop g(y_b) from the ball's approach and changes the Hertz
 //! constant of its race (docs/model.md#spall).
 //!
@@ -14,6 +15,7 @@
 //! with the half of the spall each ball is in frozen in between.
 
 use super::Model;
+use crate::contact::FilmContact;
 use crate::defect::Defect;
 use crate::geometry::{Bearing, Race};
 use crate::load_distribution;
@@ -60,6 +62,49 @@ struct Approach {
     theta_rate: f64,
 }
 
+/// The lubricant films of a ball's two contacts in series (docs/model.md#film).
+#[derive(Debug, Clone, Copy)]
+struct LumpedFilm {
+    inner: FilmContact,
+    outer: FilmContact,
+    /// Weights of the film dampers in series through the Hertz springs:
+    /// c = c_i λ_o² + c_o λ_i², λ_k = K_k^{2/3}/(K_i^{2/3} + K_o^{2/3}).
+    lam_inner: f64,
+    lam_outer: f64,
+    /// D/dm and dm/2 [m] for the entraining speeds.
+    d_over_dm: f64,
+    pitch_radius: f64,
+}
+
+impl LumpedFilm {
+    /// Force k·φ·δ|δ|^½ + c δ̇ of a ball whose series Hertz constant is `k`, at approach `delta`
+    /// and rate `delta_rate`, contact angle cosine `ca`, orbital rate `theta_rate` and shaft
+    /// speed `shaft`: both films at the Hertz load Q = k δ^{3/2}, each at its race's pure-rolling
+    /// entraining speed, their compliances added to the series Hertz one and their dampers
+    /// combined through the Hertz springs.
+    #[inline(always)]
+    fn force(
+        &self,
+        k: f64,
+        delta: f64,
+        delta_rate: f64,
+        ca: f64,
+        theta_rate: f64,
+        shaft: f64,
+    ) -> f64 {
+        let gamma = self.d_over_dm * ca;
+        let u_outer = theta_rate * self.pitch_radius * (1.0 + gamma);
+        let u_inner = (shaft - theta_rate) * self.pitch_radius * (1.0 - gamma);
+        let dp = delta.max(0.0);
+        let q = k * dp * dp.sqrt();
+        let (h_i, c_i) = self.inner.law(q, u_inner);
+        let (h_o, c_o) = self.outer.law(q, u_outer);
+        let c = c_i * self.lam_outer * self.lam_outer + c_o * self.lam_inner * self.lam_inner;
+        FilmContact::series_factor(delta, h_i + h_o) * k * delta * delta.abs().sqrt()
+            + c * delta_rate
+    }
+}
+
 /// Which part of the spall a ball is in; frozen inside an integration step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Zone {
@@ -82,6 +127,8 @@ pub struct LumpedModel {
     cos_a0: f64,
     k_series: f64,
     c_b: f64,
+    /// The lubricant films (None: the constant damping `c_b`).
+    film: Option<LumpedFilm>,
     m1: f64,
     /// A force law on the ring added to `inputs`' load (force coupling).
     ring_load: Option<RingLoad>,
@@ -163,6 +210,20 @@ impl LumpedModel {
             cos_a0: bearing.alpha0.cos(),
             k_series: bearing.k_series(),
             c_b: file.contact.c_br,
+            film: bearing.film.map(|(inner, outer)| {
+                let (ci, co) = (
+                    bearing.k_inner.powf(2.0 / 3.0),
+                    bearing.k_outer.powf(2.0 / 3.0),
+                );
+                LumpedFilm {
+                    inner,
+                    outer,
+                    lam_inner: ci / (ci + co),
+                    lam_outer: co / (ci + co),
+                    d_over_dm: bearing.d / bearing.dm,
+                    pitch_radius: 0.5 * bearing.dm,
+                }
+            }),
             m1: file.inner_ring.mass + half_balls,
             ring_load: None,
             m2: file.pedestal.mass + half_balls,
@@ -489,6 +550,16 @@ impl LumpedModel {
                             q_raw = self.unclamped_force(k, delta, delta_rate);
                         }
                     }
+                }
+                if let Some(f) = &self.film {
+                    q_raw = f.force(
+                        k,
+                        delta,
+                        delta_rate,
+                        ar[i] * inv_len[i],
+                        theta_rate[i],
+                        self.inputs.shaft_speed,
+                    );
                 }
                 each(
                     j,
@@ -1002,6 +1073,10 @@ impl Model for LumpedModel {
     ///
     /// with K the spall's modified series constant (and δ less the drop) for a ball in it.
     fn reaction_jacobian(&mut self, t: f64, y: &[f64]) -> Option<super::ReactionJacobian> {
+        if self.film.is_some() {
+            // The film's load- and speed-dependent law: central differences of the reaction.
+            return None;
+        }
         let mut jac = super::ReactionJacobian::default();
         let c_b = self.c_b;
         self.approaches(t, y, |j, c| {

@@ -3,7 +3,7 @@
 //! traction (docs/model.md#strips, #slip, #traction, #forces). Everything is scalar arithmetic on fixed-size arrays (no allocation).
 
 use crate::config::{StripRule, MAX_STRIPS};
-use crate::contact::TractionCurve;
+use crate::contact::{FilmContact, TractionCurve};
 use crate::defect::Defect;
 
 /// A 3-vector in inertial components.
@@ -97,6 +97,9 @@ pub struct RaceConst {
     pub a_star: f64,
     /// Deformed-surface radius R_s = 2fD/(2f + 1) \[m\] (docs/model.md#c7).
     pub rs: f64,
+    /// The lubricant film (docs/model.md#film): with it the Hertz force is scaled by the film in
+    /// series and the film damping replaces the constant contact damping; None: the paper's law.
+    pub film: Option<FilmContact>,
 }
 
 /// Strip layout (docs/model.md#c7): centres s_k = ξ_k/a and Hertzian weights w_k (Σ w_k = 1).
@@ -519,7 +522,16 @@ pub fn evaluate_normal_at(
     let sd = delta.max(0.0).sqrt();
     // |δ|^½: the same √δ where δ > 0 (one square root), so δ|δ|^½ equals δ·√δ bit for bit.
     let sa = if delta > 0.0 { sd } else { delta.abs().sqrt() };
-    let q_raw = k * delta * sa + damping * ddelta;
+    let q_raw = match race.film {
+        None => k * delta * sa + damping * ddelta,
+        Some(film) => {
+            // docs/model.md#film: the film's thickness at the Hertz load and the entraining
+            // speed, its stiffness in series with Hertz, its damping on the approach rate.
+            let u = entraining_speed(ball, ring, rbr, ball_radius, n, c2);
+            let (h, c_f) = film.law(k * delta.max(0.0) * sd, u);
+            FilmContact::series_factor(delta, h) * k * delta * sa + c_f * ddelta
+        }
+    };
     let q = match law {
         Law::Clamped => q_raw.max(0.0),
         Law::Closed => q_raw,
@@ -544,6 +556,29 @@ pub fn evaluate_normal_at(
     let a = (a_star * k_cbrt * sd).min(0.9 * ball_radius.min(rs));
     let sf = slip_field(ball, ring, rbr, q, a, rs, ball_radius, n, c1, c2);
     Some((sf, [n, c1, c2]))
+}
+
+/// Entraining (mean rolling) speed u = ½ |(u_ball + u_race)·c2| of a contact with normal n and
+/// rolling direction c2 \[m/s\]: the surface velocities of ball and race at the contact point
+/// `R n` from the ball centre, each relative to the contact point, which turns with the ball's
+/// orbit about the shaft axis (docs/model.md#film). Pure rolling gives both the same speed.
+#[inline(always)]
+pub fn entraining_speed(
+    ball: &BallKin,
+    ring: &RingPose,
+    rbr: V3,
+    ball_radius: f64,
+    n: V3,
+    c2: V3,
+) -> f64 {
+    let p = ball.p;
+    let orbit = (p[1] * ball.v[2] - p[2] * ball.v[1]) / (p[1] * p[1] + p[2] * p[2]);
+    let rc = scale(n, ball_radius);
+    // Contact-point velocity: the ball centre's plus the orbit's turn of the offset R n.
+    let v_cp = add(ball.v, cross([orbit, 0.0, 0.0], rc));
+    let u_ball = sub(add(ball.v, cross(ball.omega, rc)), v_cp);
+    let u_race = sub(add(ring.v, cross(ring.omega(), add(rbr, rc))), v_cp);
+    0.5 * dot(add(u_ball, u_race), c2).abs()
 }
 
 /// Slip of a loaded contact along its major axis, in contact-frame components (docs/model.md#strips, #slip): the
@@ -845,7 +880,7 @@ pub type M3 = [[f64; 3]; 3];
 /// Linearization of the normal force Q n that the contact puts on the ring, with respect to the
 /// ring's centre position and velocity (ball, tilt and tilt rate held), for an intact contact
 /// (`None` when the spall alters it: the caller differentiates that one numerically).
-/// Traction is not included. With rr = T(r_b − r_r), n_r the ring-frame normal, N = ∂n_r/∂rr =
+/// Traction is not included; a lubricated contact (docs/model.md#film) is `None` too. With rr = T(r_b − r_r), n_r the ring-frame normal, N = ∂n_r/∂rr =
 /// (Π − n_r n_rᵀ)/l + (n₃/ρ) e_φ e_φᵀ (Π the ball's axial–radial plane, e_φ the azimuthal
 /// direction: the normal turns with the groove) and w = v_b − v_gc:
 ///
@@ -862,7 +897,7 @@ pub fn ring_translation_jacobian(
     defect: Option<DefectView<'_>>,
 ) -> Option<(M3, M3)> {
     let c = evaluate(ball, ring, race, ball_radius, damping, None, defect);
-    if c.in_defect {
+    if c.in_defect || race.film.is_some() {
         return None;
     }
     let zero = [[0.0; 3]; 3];
@@ -944,4 +979,54 @@ pub fn ring_translation_jacobian(
         }
     }
     Some((dfdx, dfdv))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ball of radius R at azimuth θ on the pitch radius r (contact angle 0), orbiting at ω_c
+    /// and spinning about e_x so that it rolls without slip on a race whose contact point is
+    /// `side` R from its centre (+1 outer, −1 inner) and which turns at `spin`: the entraining
+    /// speed is the race's surface speed relative to the orbiting contact point.
+    fn rolling(side: f64, spin: f64) -> f64 {
+        let (r, rb, wc, theta) = (0.035, 0.00635, 440.0, 0.7_f64);
+        let (s, c) = theta.sin_cos();
+        let (er, et) = ([0.0, -s, c], [0.0, -c, -s]);
+        // Radius of the contact point, and the race's surface speed relative to the contact
+        // point along e_θ: (Ω − ω_c) rc.
+        let rc = r + side * rb;
+        let rel = (spin - wc) * rc;
+        // Pure rolling: the ball's surface at the contact moves with the race's, so
+        // ω_s e_x × (side R e_r) = (Ω rc − r ω_c) e_θ.
+        let ws = (spin * rc - r * wc) / (side * rb);
+        let ball = BallKin {
+            p: scale(er, r),
+            v: scale(et, r * wc),
+            omega: [ws, 0.0, 0.0],
+        };
+        let ring = RingPose {
+            p: [0.0; 3],
+            v: [0.0; 3],
+            beta: [0.0; 3],
+            beta_rate: [0.0; 3],
+            spin,
+        };
+        let n = scale(er, side);
+        let u = entraining_speed(&ball, &ring, ball.p, rb, n, et);
+        assert!(
+            (u - rel.abs()).abs() < 1e-12 * rel.abs(),
+            "u = {u}, race surface relative to the contact {rel}"
+        );
+        u
+    }
+
+    #[test]
+    fn entraining_speed_of_pure_rolling_is_the_race_speed_relative_to_the_contact() {
+        // Outer race fixed: u = ω_c (r + R); inner race at Ω: u = (Ω − ω_c)(r − R).
+        let uo = rolling(1.0, 0.0);
+        assert!((uo - 440.0 * (0.035 + 0.00635)).abs() < 1e-9);
+        let ui = rolling(-1.0, 1036.0);
+        assert!((ui - (1036.0 - 440.0) * (0.035 - 0.00635)).abs() < 1e-9);
+    }
 }

@@ -48,6 +48,7 @@ pub fn race_const(b: &Bearing, race: Race) -> RaceConst {
         k_cbrt: b.k(race).cbrt(),
         a_star: b.hertz(race).semi_axis_factors().0,
         rs: 2.0 * f * b.d / (2.0 * f + 1.0),
+        film: b.film(race).copied(),
     }
 }
 
