@@ -563,7 +563,7 @@ impl BearingFile {
             return Err(ConfigError::new(
                 "bearing.ball_diameter",
                 format!(
-                    "D = {} m must be smaller than the pitch diameter dm = {} m (D ≥ dm is impossible)",
+                    "D = {} m must be smaller than the pitch diameter dm = {} m (bearing.pitch_diameter; D ≥ dm is impossible)",
                     b.ball_diameter, b.pitch_diameter
                 ),
             ));
@@ -574,7 +574,7 @@ impl BearingFile {
             return Err(ConfigError::new(
                 "bearing.z",
                 format!(
-                    "{} balls of D = {} m overlap on a pitch circle of {} m (need D < dm·sin(π/z) = {:.4e} m)",
+                    "{} balls of D = {} m (bearing.ball_diameter) overlap on a pitch circle of {} m (bearing.pitch_diameter; need D < dm·sin(π/z) = {:.4e} m)",
                     b.z, b.ball_diameter, b.pitch_diameter, pitch_gap
                 ),
             ));

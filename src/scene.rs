@@ -587,6 +587,11 @@ impl Scene {
             }
             BearingRef::Named(name) => {
                 let is_preset = crate::config::PRESETS.iter().any(|(n, _)| *n == name);
+                // An unreadable file is the scene's `bearing` key's error.
+                let named = |e: ConfigError| match e.field.is_empty() {
+                    true => ConfigError::new("bearing", format!("{origin}: {}", e.message)),
+                    false => e,
+                };
                 if is_preset {
                     BearingFile::load(&name)?
                 } else {
@@ -594,7 +599,7 @@ impl Scene {
                         Some(d) => d.join(&name),
                         None => name.into(),
                     };
-                    BearingFile::load(&p.to_string_lossy())?
+                    BearingFile::load(&p.to_string_lossy()).map_err(named)?
                 }
             }
         };

@@ -261,6 +261,31 @@ pub struct Sweep {
     pub keep: Keep,
 }
 
+/// The dotted key at the line a TOML parse error names (`line N`) in `text`: the last table
+/// header above it and the key on that line.
+fn scene_key_at(text: &str, error: &str) -> Option<String> {
+    let after = error.split("line ").nth(1)?;
+    let n: usize = after
+        .split(|c: char| !c.is_ascii_digit())
+        .next()?
+        .parse()
+        .ok()?;
+    let lines: Vec<&str> = text.lines().collect();
+    let line = lines.get(n.checked_sub(1)?)?;
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"'))?;
+    let table = lines[..n - 1]
+        .iter()
+        .rev()
+        .find(|l| l.trim_start().starts_with('['))
+        .map(|l| l.trim().trim_matches(|c| c == '[' || c == ']').to_string());
+    Some(match table {
+        Some(t) => format!("{t}.{key}"),
+        None => key.to_string(),
+    })
+}
+
 /// FNV-1a, 64 bit: a tiny, fully specified hash (stable across Rust versions and machines).
 pub fn fnv1a64(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -417,8 +442,15 @@ impl Sweep {
             }
             (None, Some(t)) => {
                 let text = toml::to_string(t).map_err(|e| SweepError::new(e.to_string()))?;
-                Scene::from_toml_str(&text, &format!("{origin} [scene]"), Some(dir))
-                    .map_err(|e| SweepError::new(format!("[scene]: {e}")))?
+                Scene::from_toml_str(&text, &format!("{origin} [scene]"), Some(dir)).map_err(
+                    |e| {
+                        // A parse error points into the re-serialized table: name the key.
+                        let at = scene_key_at(&text, &e.to_string())
+                            .map(|k| format!(" (at scene.{k})"))
+                            .unwrap_or_default();
+                        SweepError::new(format!("[scene]{at}: {e}"))
+                    },
+                )?
             }
         };
         let mut set = Vec::new();
