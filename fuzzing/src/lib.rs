@@ -240,7 +240,7 @@ impl Session {
             b.below(12)
         };
         let t0 = Instant::now();
-        // SAFETY (all calls below): `self.c` is a live instance; every array passed holds the
+        // SAFETY: (all calls below) `self.c` is a live instance; every array passed holds the
         // length passed with it, or is NULL where the fuzz case asks for a NULL array.
         unsafe {
             match pick {
