@@ -439,12 +439,7 @@ impl Simulation {
             )
         };
         if let Some(rs) = self.model.ring_states() {
-            let n = self.model.dim();
-            self.y_scratch[..n].copy_from_slice(self.integrator.y());
-            for k in 0..3 {
-                self.y_scratch[rs.pos[k]] = j.x[k];
-                self.y_scratch[rs.vel[k]] = j.v[k];
-            }
+            let n = self.state_with_journal(rs, &j);
             // The contacts the prescribed ring would press, before it is taken.
             let z = self.bearing.z;
             self.model
@@ -1234,14 +1229,22 @@ impl Simulation {
         let Some(rs) = self.model.ring_states() else {
             return;
         };
-        let n = self.model.dim();
         let t = self.integrator.t();
+        let j = self.journal;
+        let n = self.state_with_journal(rs, &j);
+        self.integrator.set_state(t, &self.y_scratch[..n]);
+    }
+
+    /// The current state with the ring's position and velocity states replaced by the
+    /// journal's, in `y_scratch`; returns its length.
+    fn state_with_journal(&mut self, rs: crate::models::RingStates, j: &Journal) -> usize {
+        let n = self.model.dim();
         self.y_scratch[..n].copy_from_slice(self.integrator.y());
         for k in 0..3 {
-            self.y_scratch[rs.pos[k]] = self.journal.x[k];
-            self.y_scratch[rs.vel[k]] = self.journal.v[k];
+            self.y_scratch[rs.pos[k]] = j.x[k];
+            self.y_scratch[rs.vel[k]] = j.v[k];
         }
-        self.integrator.set_state(t, &self.y_scratch[..n]);
+        n
     }
 
     /// Number of continuous states of the level (the importer's vector may be longer: see

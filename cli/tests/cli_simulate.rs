@@ -120,6 +120,14 @@ fn a_bad_column_is_named_and_nothing_is_written() {
     }
 }
 
+/// The column of `pedestal.a.z` in the simulation's outputs.
+fn pedestal_a_z(sim: &raceway::Simulation) -> usize {
+    sim.output_table()
+        .iter()
+        .position(|o| o.name == "pedestal.a.z")
+        .expect("an output")
+}
+
 /// The CLI's run is the library's one advance over the whole duration, sample for sample, at
 /// the default (lumped) and the full level: no step is cut at intermediate times (issue 21:
 /// chunked advances left a comb at the chunk rate in the spectrum).
@@ -136,11 +144,7 @@ fn the_run_is_one_undisturbed_advance() {
         s.fidelity = fidelity;
         s.output.duration = 0.02;
         let mut sim = raceway::Simulation::new(&s).unwrap();
-        let k = sim
-            .output_table()
-            .iter()
-            .position(|o| o.name == "pedestal.a.z")
-            .unwrap();
+        let k = pedestal_a_z(&sim);
         let mut lib = Vec::new();
         sim.advance_sampled(0.02, 1.0 / s.output.sample_rate, &mut |t, o| {
             lib.push((t, o[k]))
@@ -177,11 +181,7 @@ fn chunked_advances_raise_the_spectrum_and_one_advance_has_no_chunk_lines() {
     let dt = 1.0 / s.output.sample_rate;
     let spectrum = |n: usize| {
         let mut sim = raceway::Simulation::new(&s).unwrap();
-        let k = sim
-            .output_table()
-            .iter()
-            .position(|o| o.name == "pedestal.a.z")
-            .unwrap();
+        let k = pedestal_a_z(&sim);
         let mut x = Vec::new();
         for c in 1..=n {
             let end = duration * c as f64 / n as f64;
