@@ -313,13 +313,14 @@ impl ReducedModel {
     }
 
     /// Total mechanical energy \[J\]: ball translation and spin ½Jω_s², inner-ring translation,
-    /// pedestal, Hertz potential of the intact contacts, pedestal springs, minus the work of the
+    /// pedestal, Hertz potential of the intact contacts and of the ball-to-ball contacts,
+    /// pedestal springs, minus the work of the
     /// constant loads. Conserved without traction, damping and spall (the orbital part θ̇ e_x
     /// of the ball's angular velocity is kinematic here and carries no energy of its own).
     pub fn energy(&self, y: &[f64]) -> f64 {
         let c = &self.core;
         let inner = c.inner_pose(y);
-        let mut e = c.hertz_potential(y);
+        let mut e = c.hertz_potential(y) + c.ball_ball_potential(y);
         for j in 0..c.z {
             let (kin, _, _, _, _) = c.ball_kin(y, j);
             let ws = y[c.lay.ball(j) + BWS];
@@ -420,6 +421,11 @@ impl Model for ReducedModel {
                 },
             );
         }
+        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
+        let touch = c
+            .ball_ball
+            .as_mut()
+            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
@@ -454,7 +460,10 @@ impl Model for ReducedModel {
                     add(cross(ti.r_cp, ti.f), cross(to.r_cp, to.f)),
                 )
             };
-            let f = add(fi, fo);
+            let mut f = add(fi, fo);
+            if let (true, Some(bb)) = (touch, &c.ball_ball) {
+                f = add(f, bb.force[j]);
+            }
             let es = [cb, -sb * er[1], -sb * er[2]];
             c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
             dydt[b + BWS] = dot(moment, es) / jb;

@@ -5,6 +5,7 @@
 //! keeps only its equations of motion and what is its own (the full model's ring tilt and
 //! traction options, the reduced model's fixed spin axis).
 
+use super::ball_ball::BallBall;
 use super::ball_contact::{
     self, dot, BallKin, ContactOut, DefectView, GroovePos, Law, RaceConst, RingPose, V3,
 };
@@ -129,6 +130,8 @@ pub struct BallCore {
     pub(crate) held_axial: Option<f64>,
     /// RHS scratch: every ball's frame and contacts, the strip traction in one batch.
     pub(crate) pass: ContactPass,
+    /// Contacts between neighbouring balls (docs/model.md#ball-ball): the cage-less models'.
+    pub(crate) ball_ball: Option<BallBall>,
 }
 
 impl BallCore {
@@ -213,6 +216,12 @@ impl BallCore {
             prescribed: false,
             held_axial,
             pass: ContactPass::new(z),
+            ball_ball: Some(BallBall::new(
+                z,
+                bearing.d,
+                bearing.e_prime,
+                file.contact.c_br,
+            )),
         }
     }
 
@@ -560,6 +569,39 @@ impl BallCore {
     /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+
+    /// The ball-to-ball contacts (None when a cage keeps the balls apart); their last
+    /// evaluation is the last right-hand side's.
+    pub fn ball_ball(&self) -> Option<&BallBall> {
+        self.ball_ball.as_ref()
+    }
+
+    /// Elastic potential of the ball-to-ball contacts at state y \[J\] (0 with a cage).
+    pub fn ball_ball_potential(&self, y: &[f64]) -> f64 {
+        let Some(bb) = &self.ball_ball else {
+            return 0.0;
+        };
+        (0..self.z)
+            .map(|j| {
+                let next = (j + 1) % self.z;
+                let p = bb.pair(&self.ball_kin(y, j).0, &self.ball_kin(y, next).0);
+                bb.potential(p.delta)
+            })
+            .sum()
+    }
+
+    /// Smallest centre distance between neighbouring balls at state y, minus D \[m\]
+    /// (negative: the balls overlap elastically).
+    pub fn min_ball_gap(&self, y: &[f64]) -> f64 {
+        (0..self.z)
+            .map(|j| {
+                let a = self.ball_kin(y, j).0.p;
+                let b = self.ball_kin(y, (j + 1) % self.z).0.p;
+                let r = ball_contact::sub(b, a);
+                dot(r, r).sqrt() - 2.0 * self.ball_radius
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\] (energy scale).

@@ -324,8 +324,8 @@ impl FullModel {
     }
 
     /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and
-    /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts + pedestal and tilt springs
-    /// − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
+    /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts and of the
+    /// ball-to-ball contacts + pedestal and tilt springs − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
     /// the prescribed spin does no work.
     pub fn energy(&self, y: &[f64]) -> f64 {
         let c = &self.core;
@@ -343,6 +343,7 @@ impl FullModel {
                 }
             }
         }
+        e += c.ball_ball_potential(y);
         let r = c.lay.ring();
         let p = c.lay.pedestal();
         e += 0.5 * c.m_ir * dot(inner.v, inner.v)
@@ -447,6 +448,11 @@ impl Model for FullModel {
                 },
             );
         }
+        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
+        let touch = c
+            .ball_ball
+            .as_mut()
+            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
@@ -456,7 +462,10 @@ impl Model for FullModel {
             // before a located loss of contact: report it as 0.
             c.q_inner[j] = ci.q.max(0.0);
             c.q_outer[j] = co.q.max(0.0);
-            let f = contact::add(ci.f, co.f);
+            let mut f = contact::add(ci.f, co.f);
+            if let (true, Some(bb)) = (touch, &c.ball_ball) {
+                f = contact::add(f, bb.force[j]);
+            }
             let mo = contact::add(ci.m, co.m);
             c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
             dydt[b + BOM] = mo[0] / jb;
