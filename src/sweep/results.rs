@@ -167,6 +167,21 @@ fn kept_name(path: &Path, n: usize) -> PathBuf {
     path.with_file_name(format!("{stem}.{n}.{ext}"))
 }
 
+/// Moves a table and its study record aside, to the first free `results.N.csv` and
+/// `study.N.json`; returns the table's new path.
+fn keep_aside(path: &Path, study_path: &Path) -> Result<PathBuf, SweepError> {
+    let n = (1..)
+        .find(|n| !kept_name(path, *n).exists())
+        .expect("a free name");
+    let kept = kept_name(path, n);
+    std::fs::rename(path, &kept).map_err(|e| io_err(path)(&e))?;
+    if study_path.exists() {
+        std::fs::rename(study_path, kept_name(study_path, n))
+            .map_err(|e| io_err(study_path)(&e))?;
+    }
+    Ok(kept)
+}
+
 impl ResultsFile {
     /// Opens (or creates) `dir/results.csv` for `sweep`, with `dir/study.json`. A table of
     /// another study or model version (its study record or columns differ) is refused with
@@ -222,17 +237,7 @@ impl ResultsFile {
                         )))
                     }
                     OnChange::NewTable => {
-                        let n = (1..)
-                            .find(|n| !kept_name(&path, *n).exists())
-                            .expect("a free name");
-                        let kept = kept_name(&path, n);
-                        std::fs::rename(&path, &kept).map_err(|e| io_err(&path)(&e))?;
-                        if study_path.exists() {
-                            let ks = kept_name(&study_path, n);
-                            std::fs::rename(&study_path, &ks)
-                                .map_err(|e| io_err(&study_path)(&e))?;
-                        }
-                        report.kept_as = Some(kept);
+                        report.kept_as = Some(keep_aside(&path, &study_path)?);
                     }
                 }
             }
