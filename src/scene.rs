@@ -335,11 +335,11 @@ pub struct FullSettings {
     #[serde(default = "yes")]
     pub lock_tilt: bool,
     /// Free tilt only: the shaft's diametral moment of inertia about the bearing that the ring
-    /// carries in addition to its own \[kg m²\] (default [`SHAFT_TILT_INERTIA`]).
+    /// carries in addition to its own \[kg m²\] (default `SHAFT_TILT_INERTIA`, 0.21 kg m²).
     #[serde(default = "shaft_tilt_inertia")]
     pub shaft_tilt_inertia: f64,
     /// Free tilt only: the shaft's tilt stiffness about the bearing (the other bearing, the
-    /// shaft's bending) \[N m/rad\] (default [`TILT_STIFFNESS`]).
+    /// shaft's bending) \[N m/rad\] (default `TILT_STIFFNESS`, 3.2e7 N m/rad).
     #[serde(default = "tilt_stiffness")]
     pub tilt_stiffness: f64,
 }
