@@ -12,7 +12,7 @@ use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRE
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 // The models' interface types, at the paths they had when they lived here.
-pub use crate::models::{out, output_table, OutputInfo, SimError};
+pub use crate::models::{out, output_table, output_table_for, OutputInfo, SimError};
 use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use raceway_solver::{
@@ -140,7 +140,9 @@ pub const EVENT_HAIR: f64 = 1e-9;
 /// level, declares (a level with fewer pads). The full level has the most of both: 9 states per
 /// ball, 16 more for the rings, pedestal and angles; 5 event functions per ball with a spall.
 pub fn model_exchange_capacity(z: usize) -> (usize, usize) {
-    let full = crate::models::internals::layout::Layout::full(z).dim();
+    let full = crate::models::internals::layout::Layout::full(z)
+        .with_cage(true)
+        .dim();
     (full.max(14), (5 * z).max(z))
 }
 
@@ -344,7 +346,7 @@ impl Simulation {
         model.update_mode(0.0, &y0);
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
-        let n_out = output_table(bearing.z).len();
+        let n_out = output_table_for(bearing.z, model.has_cage()).len();
         let n_events = model.n_events();
         let mut sim = Self {
             scene: scene.clone(),
@@ -1046,9 +1048,9 @@ impl Simulation {
         SimError::Solver { t, message }
     }
 
-    /// The output table of this simulation.
+    /// The output table of this simulation (with the cage block when its model has a cage).
     pub fn output_table(&self) -> Vec<OutputInfo> {
-        output_table(self.bearing.z)
+        output_table_for(self.bearing.z, self.model.has_cage())
     }
 
     /// Fills `out` (length `output_table().len()`) with the outputs at the current time.
