@@ -79,7 +79,13 @@ pub struct WorkStats {
 /// A sample callback that also sees the model (time, outputs, model).
 pub type ModelSampler<'a> = dyn FnMut(f64, &[f64], &dyn Model) + 'a;
 
-type Sampler<'a> = (f64, &'a mut ModelSampler<'a>);
+/// A sample callback that also sees the model's state there (time, state, outputs).
+pub type StateSampler<'a> = dyn FnMut(f64, &[f64], &[f64]) + 'a;
+
+/// What the samples of an advance are handed to: (time, state, outputs, model).
+type SampleSink<'a> = dyn FnMut(f64, &[f64], &[f64], &dyn Model) + 'a;
+
+type Sampler<'a> = (f64, &'a mut SampleSink<'a>);
 
 /// One simulation run.
 pub struct Simulation {
@@ -817,7 +823,7 @@ impl Simulation {
         dt: f64,
         sample: &mut dyn FnMut(f64, &[f64]),
     ) -> Result<(), SimError> {
-        self.advance_impl(t_end, Some((dt, &mut |t, o, _| sample(t, o))))
+        self.advance_impl(t_end, Some((dt, &mut |t, _, o, _| sample(t, o))))
     }
 
     /// [`Simulation::advance_sampled`] whose callback also sees the model in the sample's
@@ -829,7 +835,19 @@ impl Simulation {
         dt: f64,
         sample: &mut ModelSampler<'_>,
     ) -> Result<(), SimError> {
-        self.advance_impl(t_end, Some((dt, sample)))
+        self.advance_impl(t_end, Some((dt, &mut |t, _, o, m| sample(t, o, m))))
+    }
+
+    /// [`Simulation::advance_sampled`] whose callback also gets the model's state at the
+    /// sample, interpolated from the dense output like the outputs (no extra steps): for
+    /// studies that measure what no output gives (e.g. the distances between the balls).
+    pub fn advance_sampled_with_state(
+        &mut self,
+        t_end: f64,
+        dt: f64,
+        sample: &mut StateSampler<'_>,
+    ) -> Result<(), SimError> {
+        self.advance_impl(t_end, Some((dt, &mut |t, y, o, _| sample(t, y, o))))
     }
 
     /// Checks the target, takes the checkpoint, advances, and on any failure puts the
@@ -1001,7 +1019,7 @@ impl Simulation {
                         let x = self.journal.at(ts - self.journal_t);
                         qs_motion_outputs(qs, &self.bearing, self.inputs.shaft_speed, x, o)?;
                     }
-                    cb(ts, o, self.model.as_ref());
+                    cb(ts, y, o, self.model.as_ref());
                 }
             }
             let event = match result {
