@@ -410,10 +410,21 @@ fn energy_is_conserved_with_a_frictionless_undamped_cage() {
 }
 
 /// Samples of a caged run (through `Simulation`, events and all): every 20 µs the smallest
-/// centre distance of neighbouring balls minus D (from the states), and the outputs.
+/// centre distance of neighbouring balls minus D (from the states), and the outputs; also the
+/// largest eccentricity of the cage about the outer ring's centre.
 fn caged_run(level: Fidelity, duration: f64) -> (f64, Vec<Vec<f64>>) {
+    caged_run_guided(level, duration, CageGuidance::Balls).0
+}
+
+fn caged_run_guided(
+    level: Fidelity,
+    duration: f64,
+    guidance: CageGuidance,
+) -> ((f64, Vec<Vec<f64>>), f64) {
     // The partial load zone of the Table-1 bearing: Fa 1000 N, Fr 4000 N, 9900 rpm.
-    let mut sc = Scene::healthy(table1(), OperatingPoint::from_rpm(9900.0, 1000.0, 4000.0));
+    let mut file = table1();
+    file.cage.guidance = guidance;
+    let mut sc = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 1000.0, 4000.0));
     sc.fidelity = level;
     let b = Bearing::new(&sc.bearing).unwrap();
     let mut sim = Simulation::new(&sc).unwrap();
@@ -439,16 +450,20 @@ fn caged_run(level: Fidelity, duration: f64) -> (f64, Vec<Vec<f64>>) {
     };
     let mut min_gap = gap(sim.state());
     let mut rows = Vec::new();
+    let mut eccentricity: f64 = 0.0;
     let dt = 20e-6;
     let steps = (duration / dt).round() as usize;
     let mut o = vec![0.0; sim.output_table().len()];
     for k in 1..=steps {
         sim.advance(dt * k as f64).unwrap();
-        min_gap = min_gap.min(gap(sim.state()));
+        let y = sim.state();
+        min_gap = min_gap.min(gap(y));
+        let (c, p) = (lay.cage_block(), lay.pedestal());
+        eccentricity = eccentricity.max((y[c + CY] - y[p]).hypot(y[c + CY + 1] - y[p + 1]));
         sim.outputs(&mut o);
         rows.push(o.clone());
     }
-    (min_gap, rows)
+    ((min_gap, rows), eccentricity)
 }
 
 #[test]
@@ -491,6 +506,35 @@ fn caged_balls_never_come_near_each_other_on_a_partial_load_zone() {
             "{level:?}: cage {cage_hz} Hz"
         );
     }
+}
+
+#[test]
+fn an_outer_land_guides_the_cage_and_the_balls_keep_apart() {
+    // The same partial load zone with the cage riding on the outer ring's land (radial
+    // clearance c_p/4 = 63.5 µm): the cage's eccentricity about the outer ring reaches the land
+    // and stays within its clearance plus the land contact's elastic overlap, the balls apart,
+    // the pockets loaded.
+    let ((min_gap, rows), ecc) = caged_run_guided(Fidelity::Reduced, 0.03, CageGuidance::OuterLand);
+    let params = CageParams::of(&Bearing::new(&table1()).unwrap());
+    eprintln!(
+        "outer land: smallest gap {:.4} mm, largest eccentricity {:.2} µm (land clearance {:.2} µm)",
+        min_gap * 1e3,
+        ecc * 1e6,
+        params.land_clearance * 1e6
+    );
+    assert!(min_gap > 70e-3 * (PI / 14.0).sin() - 12.7e-3 - 3.0 * 0.02 * 12.7e-3);
+    // The land is reached (the cage does not float in the middle) and holds it.
+    assert!(ecc > 0.5 * params.land_clearance, "eccentricity {ecc:e} m");
+    // (The land-guided pockets are cylinders that leave the cage free radially: only the land
+    // holds it, within its clearance plus the contact's overlap of a few µm under the pocket
+    // forces of the load zone.)
+    assert!(
+        ecc < params.land_clearance + 10e-6,
+        "eccentricity {ecc:e} m"
+    );
+    assert!(rows
+        .iter()
+        .any(|o| (0..14).any(|j| o[out::pocket_force(14, j)] != 0.0)));
 }
 
 /// The preset's text with its `[cage]` section replaced by `section` (TOML lines).
