@@ -3,11 +3,14 @@
 //! two simulations advanced in turns over the same stretches, so that their CPU times are
 //! measured side by side under the same load of the host.
 //!
-//! `cargo run --release -p raceway-studies --bin cage_longrun -- SCENE [DURATION] [SAMPLE]`
+//! `cargo run --release -p raceway-studies --bin cage_longrun -- SCENE [DURATION] [SAMPLE]
+//! [cage.KEY=VALUE …]`
 //!
 //! SCENE is `partial` (the Table-1 bearing at Fa 1000 N, Fr 4000 N, 9900 rpm, healthy: a
 //! partial load zone) or a scene file (run at the full level); DURATION defaults to 2 s, SAMPLE
-//! (the interval at which the states are read, from the dense output) to 20 µs. Prints a
+//! (the interval at which the states are read, from the dense output) to 20 µs; `cage.KEY=VALUE`
+//! (pocket_friction, pocket_damping, pocket_clearance) changes the bearing's `[cage]` for a
+//! sensitivity run. Prints a
 //! Markdown report: per run the
 //! smallest centre distance of each pair of neighbouring balls less D (from the states), the
 //! cage speed against the kinematic ones (pure rolling at α0, L1's outer-race control, the
@@ -173,6 +176,7 @@ fn main() {
     let which = args.next().unwrap_or_else(|| "partial".into());
     let duration: f64 = args.next().map_or(2.0, |v| v.parse().unwrap());
     let dt: f64 = args.next().map_or(20e-6, |v| v.parse().unwrap());
+    let overrides: Vec<String> = args.collect();
     let mut scene = if which == "partial" {
         let mut s = Scene::healthy(
             BearingFile::load("niu2014-table1").unwrap(),
@@ -184,6 +188,19 @@ fn main() {
         Scene::load(std::path::Path::new(&which)).unwrap()
     };
     scene.fidelity = Fidelity::Full;
+    // `cage.pocket_friction=0` and the like: the bearing's [cage] changed for a sensitivity run.
+    for kv in &overrides {
+        let (key, value) = kv.split_once('=').expect("KEY=VALUE");
+        let v: f64 = value.parse().unwrap();
+        let c = &mut scene.bearing.cage;
+        match key {
+            "cage.pocket_friction" => c.pocket_friction = Some(v),
+            "cage.pocket_damping" => c.pocket_damping = Some(v),
+            "cage.pocket_clearance" => c.pocket_clearance = Some(v),
+            other => panic!("{other}: not a key this study overrides"),
+        }
+        scene.name = format!("{}, {kv}", scene.name);
+    }
     let b = Bearing::new(&scene.bearing).unwrap();
     let inputs = scene.operating;
     let (mut caged, mut free) = (scene.clone(), scene.clone());
@@ -297,7 +314,7 @@ fn main() {
                 "—".into()
             };
             println!(
-                "| {t0:.2}–{t1:.2} | {:.4} | {:.3} … {:.3} | {:.2} | {whirl} | {pocket} | {:.4} | {:.6} | {:.6} … {:.6} |",
+                "| {t0:.3}–{t1:.3} | {:.4} | {:.3} … {:.3} | {:.2} | {whirl} | {pocket} | {:.4} | {:.6} | {:.6} … {:.6} |",
                 hz(w.cage / w.n as f64),
                 hz(w.cage_min),
                 hz(w.cage_max),
