@@ -9,7 +9,11 @@
 #  1. writes the CSV of every dynamic level (kinematic, lumped, reduced, full) on the outer- and
 #     inner-spall scenes of paper Sec. 3.5 (examples/scenes/sec3.5-*.toml; 0.1 s for the cheap
 #     levels, 0.03 s for the per-ball ones) with both builds and compares them byte for byte;
-#  2. times `raceway simulate` of the default scene (DOP853, rtol 1e-6, only pedestal.a.z
+#     each build reads the scene files of its own revision (a newer scene may name keys an
+#     older build does not know, e.g. `[full] cage = false`, which keeps the paper's cage-less
+#     bearing);
+#  2. times `raceway simulate` of the Sec. 3.5 outer scene (the default scene's bearing, loads
+#     and spall, without a cage; DOP853, rtol 1e-6, only pedestal.a.z
 #     written) at each level, the two builds interleaved `runs` times (default 5), and prints
 #     the minimum and median wall seconds per simulated second of each (the figure `simulate`
 #     prints, CSV writing included) and the ratio of the medians. The host is
@@ -41,9 +45,9 @@ status=0
 for scene in sec3.5-outer sec3.5-inner; do
   for level in kinematic lumped reduced full; do
     case "$level" in reduced | full) d=0.03 ;; *) d=0.1 ;; esac
-    args=(simulate "examples/scenes/$scene.toml" --fidelity "$level" --duration "$d" --quiet)
-    "$old" "${args[@]}" --out "$work/old.csv"
-    "$new" "${args[@]}" --out "$work/new.csv"
+    args=(--fidelity "$level" --duration "$d" --quiet)
+    "$old" simulate "$tree/examples/scenes/$scene.toml" "${args[@]}" --out "$work/old.csv"
+    "$new" simulate "examples/scenes/$scene.toml" "${args[@]}" --out "$work/new.csv"
     if cmp -s "$work/old.csv" "$work/new.csv"; then
       echo "$scene $level ($d s): byte-equal ($(wc -l <"$work/new.csv") lines)"
     else
@@ -54,8 +58,8 @@ for scene in sec3.5-outer sec3.5-inner; do
 done
 
 echo
-echo "== wall seconds per simulated second of raceway simulate, default scene, $runs interleaved runs each"
-wall() { "$1" simulate examples/scenes/default.toml --fidelity "$2" --duration "$3" \
+echo "== wall seconds per simulated second of raceway simulate, Sec. 3.5 outer scene, $runs interleaved runs each"
+wall() { "$1" simulate "$4/examples/scenes/sec3.5-outer.toml" --fidelity "$2" --duration "$3" \
   --columns pedestal.a.z --out "$work/t.csv" 2>&1 | sed -n 's/.* s wall (\([0-9.e+-]*\) s per simulated s).*/\1/p'; }
 stats() { sort -g | awk '{a[NR] = $1} END {printf "%.4g %.4g\n", a[1], a[int((NR + 1) / 2)]}'; }
 printf '%-10s %10s %14s %14s %14s %14s %18s\n' level simulated_s "$short min" "$short median" \
@@ -65,8 +69,8 @@ for level in kinematic lumped reduced full; do
   : >"$work/old.t"
   : >"$work/new.t"
   for _ in $(seq "$runs"); do
-    wall "$old" "$level" "$d" >>"$work/old.t"
-    wall "$new" "$level" "$d" >>"$work/new.t"
+    wall "$old" "$level" "$d" "$tree" >>"$work/old.t"
+    wall "$new" "$level" "$d" "$root" >>"$work/new.t"
   done
   read -r omin omed < <(stats <"$work/old.t")
   read -r nmin nmed < <(stats <"$work/new.t")

@@ -1,9 +1,10 @@
 //! Bearing description files (TOML, docs/scenes.md#bearing-files) and the presets shipped with raceway.
 //!
 //! A file has the sections `[bearing]`, `[material]`, `[contact]`, `[traction]`,
-//! `[inner_ring]`, `[pedestal]`, `[defect]` and `[lubrication]`. Only `[bearing]` is required;
-//! the other sections default to the paper's Table-1 values, and a missing `[lubrication]`
-//! means no lubricant film (the paper's model). Unknown keys are refused, and every value is
+//! `[inner_ring]`, `[pedestal]`, `[defect]`, `[lubrication]` and `[cage]`. Only `[bearing]` is
+//! required; the other sections default to the paper's Table-1 values, a missing `[lubrication]`
+//! means no lubricant film (the paper's model), and `[cage]` takes the values derived from the
+//! bearing's geometry (docs/model.md#cage-defaults). Unknown keys are refused, and every value is
 //! checked by [`BearingFile::validate`], whose error names the field and the rule it broke.
 
 use serde::{Deserialize, Serialize};
@@ -430,6 +431,83 @@ impl LubricationSection {
     }
 }
 
+
+/// How the cage is guided (`[cage] guidance`, docs/model.md#cage).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum CageGuidance {
+    /// By the balls: only the pocket contacts hold the cage (default).
+    #[default]
+    Balls,
+    /// By a land of the inner ring: the cage's bore rides on it beyond the land clearance.
+    InnerLand,
+    /// By a land of the outer ring: the cage's outside rides in it beyond the land clearance.
+    OuterLand,
+}
+
+impl CageGuidance {
+    /// The name in bearing files.
+    pub fn name(self) -> &'static str {
+        match self {
+            CageGuidance::Balls => "balls",
+            CageGuidance::InnerLand => "inner_land",
+            CageGuidance::OuterLand => "outer_land",
+        }
+    }
+}
+
+/// `[cage]`: the cage of the ball-level models (docs/model.md#cage). Every key is optional; a
+/// key left out takes the value derived from the bearing's geometry
+/// (docs/model.md#cage-defaults), and so does the whole section when it is absent. Whether a
+/// simulation has a cage at all is the scene's choice (`[full] cage`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct CageSection {
+    /// Mass of the cage \[kg\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// Polar moment of inertia of the cage about the bearing axis \[kg m²\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<f64>,
+    /// Young's modulus of the cage material \[Pa\] (enters the derived pocket stiffness).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio of the cage material (enters the derived pocket stiffness).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
+    /// Diametral pocket clearance: pocket diameter minus the ball diameter \[m\]; a ball
+    /// moves ± half of it along the orbit before it touches a pocket face.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_clearance: Option<f64>,
+    /// Hertz constant of the ball–pocket contact, P = K δ^{3/2} [N/m^1.5].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_stiffness: Option<f64>,
+    /// Damping of the ball–pocket contact on its approach rate [N s/m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_damping: Option<f64>,
+    /// Friction coefficient on the pocket face (dimensionless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pocket_friction: Option<f64>,
+    /// How the cage is guided.
+    #[serde(default)]
+    pub guidance: CageGuidance,
+    /// Land guidance: radial clearance between the cage and the guiding land \[m\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub land_clearance: Option<f64>,
+    /// Land guidance: radius of the guiding surface \[m\] (the land's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub land_radius: Option<f64>,
+    /// Land guidance: Hertz-type constant of the cage–land contact, N = K δ^{3/2} [N/m^1.5].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub land_stiffness: Option<f64>,
+    /// Land guidance: damping of the cage–land contact [N s/m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub land_damping: Option<f64>,
+    /// Land guidance: friction coefficient between cage and land (dimensionless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub land_friction: Option<f64>,
+}
+
 /// A whole bearing description file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -460,6 +538,16 @@ pub struct BearingFile {
     /// `[lubrication]`: the lubricant film at the ball–race contacts (None: no film).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lubrication: Option<LubricationSection>,
+    /// `[cage]`: the cage of the ball-level models (derived from the geometry where absent).
+    #[serde(default, skip_serializing_if = "CageSection::is_empty")]
+    pub cage: CageSection,
+}
+
+impl CageSection {
+    /// True when no key is given (the section is absent or empty).
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
 }
 
 /// The presets shipped in `presets/`: (name, TOML text).
@@ -682,6 +770,106 @@ impl BearingFile {
         }
         if let Some(l) = &self.lubrication {
             l.validate()?;
+        }
+        self.validate_cage()
+    }
+
+    /// The `[cage]` checks of [`BearingFile::validate`].
+    fn validate_cage(&self) -> Result<(), ConfigError> {
+        let c = &self.cage;
+        let b = &self.bearing;
+        let opt = |field: &str, v: Option<f64>, check: fn(&str, f64) -> Result<(), ConfigError>| {
+            v.map_or(Ok(()), |v| check(field, v))
+        };
+        opt("cage.mass", c.mass, check_positive)?;
+        opt("cage.inertia", c.inertia, check_positive)?;
+        opt("cage.youngs_modulus", c.youngs_modulus, check_positive)?;
+        if let Some(nu) = c.poisson {
+            check_finite("cage.poisson", nu)?;
+            if !(nu > -1.0 && nu < 0.5) {
+                return Err(ConfigError::new(
+                    "cage.poisson",
+                    format!("{nu} must lie in (−1, 0.5)"),
+                ));
+            }
+        }
+        opt("cage.pocket_clearance", c.pocket_clearance, check_positive)?;
+        if let Some(cp) = c.pocket_clearance {
+            // The pockets' webs: the pocket diameter D + c_p must leave a web on the pitch circle.
+            let room =
+                b.pitch_diameter * (std::f64::consts::PI / b.z as f64).sin() - b.ball_diameter;
+            if cp >= room {
+                return Err(ConfigError::new(
+                    "cage.pocket_clearance",
+                    format!(
+                        "{cp} m leaves no web between the pockets: the pockets (D + clearance) \
+                         must be narrower than the ball spacing dm·sin(π/z) = {:.4e} m",
+                        b.pitch_diameter * (std::f64::consts::PI / b.z as f64).sin()
+                    ),
+                ));
+            }
+        }
+        opt("cage.pocket_stiffness", c.pocket_stiffness, check_positive)?;
+        opt("cage.pocket_damping", c.pocket_damping, check_non_negative)?;
+        opt("cage.land_clearance", c.land_clearance, check_positive)?;
+        opt("cage.land_radius", c.land_radius, check_positive)?;
+        opt("cage.land_stiffness", c.land_stiffness, check_positive)?;
+        opt("cage.land_damping", c.land_damping, check_non_negative)?;
+        for (field, mu) in [
+            ("cage.pocket_friction", c.pocket_friction),
+            ("cage.land_friction", c.land_friction),
+        ] {
+            if let Some(mu) = mu {
+                check_non_negative(field, mu)?;
+                if mu > 1.0 {
+                    return Err(ConfigError::new(
+                        field,
+                        format!("{mu} exceeds 1: not a lubricated friction coefficient"),
+                    ));
+                }
+            }
+        }
+        let land_keys = [
+            ("cage.land_clearance", c.land_clearance),
+            ("cage.land_radius", c.land_radius),
+            ("cage.land_stiffness", c.land_stiffness),
+            ("cage.land_damping", c.land_damping),
+            ("cage.land_friction", c.land_friction),
+        ];
+        let r_pitch = 0.5 * b.pitch_diameter;
+        match c.guidance {
+            CageGuidance::Balls => {
+                if let Some((field, _)) = land_keys.iter().find(|(_, v)| v.is_some()) {
+                    return Err(ConfigError::new(
+                        *field,
+                        "applies to a land-guided cage only: set cage.guidance = \"inner_land\" \
+                         or \"outer_land\" (with guidance = \"balls\" only the pockets hold the \
+                         cage)",
+                    ));
+                }
+            }
+            CageGuidance::InnerLand => {
+                if let Some(r) = c.land_radius.filter(|&r| r >= r_pitch) {
+                    return Err(ConfigError::new(
+                        "cage.land_radius",
+                        format!(
+                            "{r} m: an inner-ring land lies inside the pitch circle (radius \
+                             {r_pitch} m)"
+                        ),
+                    ));
+                }
+            }
+            CageGuidance::OuterLand => {
+                if let Some(r) = c.land_radius.filter(|&r| r <= r_pitch) {
+                    return Err(ConfigError::new(
+                        "cage.land_radius",
+                        format!(
+                            "{r} m: an outer-ring land lies outside the pitch circle (radius \
+                             {r_pitch} m)"
+                        ),
+                    ));
+                }
+            }
         }
         Ok(())
     }

@@ -55,14 +55,17 @@ pub const MODEL_VERSION: &str = concat!(
 );
 
 pub use config::{
-    BearingFile, BearingSection, BlendLength, BlendName, ConfigError, ContactSection,
-    DefectDefaults, DefectMode, HertzMethod, InnerRing, LubricationSection, Material, Pedestal,
+    BearingFile, BearingSection, BlendLength, BlendName, CageGuidance, CageSection, ConfigError,
+    ContactSection, DefectDefaults, DefectMode, HertzMethod, InnerRing, LubricationSection,
+    Material, Pedestal,
     StripRule, TractionLaw, TractionSection, DEFAULT_PRESET, MAX_STRIPS, PRESETS,
 };
 pub use defect::DefectSpec;
 pub use geometry::{race_curvatures, Bearing, Race};
 pub use limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
-pub use models::{out, output_table, OutputInfo, SimError};
+pub use models::{
+    out, output_table, output_table_for, output_table_with_cage, OutputInfo, SimError,
+};
 pub use operating::{rpm_to_rad_s, OperatingPoint, RingLoad};
 pub use scene::{
     AxialMount, BearingRef, CageSpeed, CouplingMode, Fidelity, FullSettings, LumpedOptions,

@@ -31,7 +31,8 @@
 //! Optional tables: `[pulse]` (impact test, docs/model.md#c14), `[lumped]` (resonator, slip jitter, seed, and
 //! `cage_speed = "traction" | "outer_race_control"` for the kinematic, quasi-static and lumped
 //! levels),
-//! `[full]` (traction on/off, inner-ring tilt held) and `[coupling]` (`mode = "force"`, the
+//! `[full]` (traction on/off, inner-ring tilt held, the cage on/off at the reduced and full
+//! levels) and `[coupling]` (`mode = "force"`, the
 //! default: loads in, the inner ring integrated inside; or `"motion"`: the journal's
 //! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]), and
 //! `[mounting]` (`axial = "load"`, the default: Fa acts on the inner ring; or `"located"`: the
@@ -342,6 +343,12 @@ pub struct FullSettings {
     /// shaft's bending) \[N m/rad\] (default 3.2e7, docs/model.md#d1).
     #[serde(default = "tilt_stiffness")]
     pub tilt_stiffness: f64,
+    /// A cage at the reduced and full levels (default; docs/model.md#cage, its constants from
+    /// the bearing file's `[cage]`). Off is the paper's cage-less bearing (docs/model.md#c11):
+    /// the balls keep their spacing by their own dynamics and touch each other when they drift
+    /// together (docs/model.md#ball-ball); the scenes that reproduce the paper say so.
+    #[serde(default = "yes")]
+    pub cage: bool,
 }
 
 /// Default shaft tilt inertia \[kg m²\]: a Ø40 mm, 400 mm steel shaft (3.9 kg) pivoting about
@@ -370,6 +377,7 @@ impl Default for FullSettings {
             lock_tilt: true,
             shaft_tilt_inertia: SHAFT_TILT_INERTIA,
             tilt_stiffness: TILT_STIFFNESS,
+            cage: true,
         }
     }
 }

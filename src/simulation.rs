@@ -12,7 +12,7 @@ use crate::limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRE
 use crate::models::motion::QsMotion;
 use crate::models::{Model, ReactionJacobian};
 // The models' interface types, at the paths they had when they lived here.
-pub use crate::models::{out, output_table, OutputInfo, SimError};
+pub use crate::models::{out, output_table, output_table_for, OutputInfo, SimError};
 use crate::operating::{OperatingPoint, RingLoad};
 use crate::scene::{CouplingMode, MethodName, Scene};
 use raceway_solver::{
@@ -79,7 +79,13 @@ pub struct WorkStats {
 /// A sample callback that also sees the model (time, outputs, model).
 pub type ModelSampler<'a> = dyn FnMut(f64, &[f64], &dyn Model) + 'a;
 
-type Sampler<'a> = (f64, &'a mut ModelSampler<'a>);
+/// A sample callback that also sees the model's state there (time, state, outputs).
+pub type StateSampler<'a> = dyn FnMut(f64, &[f64], &[f64]) + 'a;
+
+/// What the samples of an advance are handed to: (time, state, outputs, model).
+type SampleSink<'a> = dyn FnMut(f64, &[f64], &[f64], &dyn Model) + 'a;
+
+type Sampler<'a> = (f64, &'a mut SampleSink<'a>);
 
 /// One simulation run.
 pub struct Simulation {
@@ -140,7 +146,9 @@ pub const EVENT_HAIR: f64 = 1e-9;
 /// level, declares (a level with fewer pads). The full level has the most of both: 9 states per
 /// ball, 16 more for the rings, pedestal and angles; 5 event functions per ball with a spall.
 pub fn model_exchange_capacity(z: usize) -> (usize, usize) {
-    let full = crate::models::internals::layout::Layout::full(z).dim();
+    let full = crate::models::internals::layout::Layout::full(z)
+        .with_cage(true)
+        .dim();
     (full.max(14), (5 * z).max(z))
 }
 
@@ -344,7 +352,7 @@ impl Simulation {
         model.update_mode(0.0, &y0);
         let integrator = Integrator::new(Self::options(scene, model.as_ref()), 0.0, &y0)
             .map_err(|e| SimError::Config(ConfigError::new("solver", e.to_string())))?;
-        let n_out = output_table(bearing.z).len();
+        let n_out = output_table_for(bearing.z, model.has_cage()).len();
         let n_events = model.n_events();
         let mut sim = Self {
             scene: scene.clone(),
@@ -810,7 +818,7 @@ impl Simulation {
         dt: f64,
         sample: &mut dyn FnMut(f64, &[f64]),
     ) -> Result<(), SimError> {
-        self.advance_impl(t_end, Some((dt, &mut |t, o, _| sample(t, o))))
+        self.advance_impl(t_end, Some((dt, &mut |t, _, o, _| sample(t, o))))
     }
 
     /// [`Simulation::advance_sampled`] whose callback also sees the model in the sample's
@@ -822,7 +830,19 @@ impl Simulation {
         dt: f64,
         sample: &mut ModelSampler<'_>,
     ) -> Result<(), SimError> {
-        self.advance_impl(t_end, Some((dt, sample)))
+        self.advance_impl(t_end, Some((dt, &mut |t, _, o, m| sample(t, o, m))))
+    }
+
+    /// [`Simulation::advance_sampled`] whose callback also gets the model's state at the
+    /// sample, interpolated from the dense output like the outputs (no extra steps): for
+    /// studies that measure what no output gives (e.g. the distances between the balls).
+    pub fn advance_sampled_with_state(
+        &mut self,
+        t_end: f64,
+        dt: f64,
+        sample: &mut StateSampler<'_>,
+    ) -> Result<(), SimError> {
+        self.advance_impl(t_end, Some((dt, &mut |t, y, o, _| sample(t, y, o))))
     }
 
     /// Checks the target, takes the checkpoint, advances, and on any failure puts the
@@ -994,7 +1014,7 @@ impl Simulation {
                         let x = self.journal.at(ts - self.journal_t);
                         qs_motion_outputs(qs, &self.bearing, self.inputs.shaft_speed, x, o)?;
                     }
-                    cb(ts, o, self.model.as_ref());
+                    cb(ts, y, o, self.model.as_ref());
                 }
             }
             let event = match result {
@@ -1041,9 +1061,9 @@ impl Simulation {
         SimError::Solver { t, message }
     }
 
-    /// The output table of this simulation.
+    /// The output table of this simulation (with the cage block when its model has a cage).
     pub fn output_table(&self) -> Vec<OutputInfo> {
-        output_table(self.bearing.z)
+        output_table_for(self.bearing.z, self.model.has_cage())
     }
 
     /// Fills `out` (length `output_table().len()`) with the outputs at the current time.

@@ -65,7 +65,8 @@ fn sphere_sphere_hertz_constant_and_pair_law_are_the_closed_form() {
     assert_eq!(pulling.q, 0.0);
 }
 
-/// Scene: Table-1 bearing at rest under Fa 4000 N, no damping anywhere, no cage.
+/// Scene: Table-1 bearing at rest under Fa 4000 N, no damping anywhere, no cage (the
+/// ball-to-ball contact is the cage-less models').
 fn scene() -> (Scene, Bearing) {
     let mut file = BearingFile::load("niu2014-table1").unwrap();
     file.contact.c_br = 0.0;
@@ -73,6 +74,7 @@ fn scene() -> (Scene, Bearing) {
     file.pedestal.c_z = 0.0;
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(0.0, 4000.0, 0.0));
     s.fidelity = Fidelity::Full;
+    s.full.cage = false;
     let b = Bearing::new(&s.bearing).unwrap();
     (s, b)
 }

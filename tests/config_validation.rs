@@ -224,8 +224,8 @@ fn invalid_files_with_commented_headers_or_missing_keys_name_the_field() {
     let cases: Vec<(&str, String, &str)> = vec![
         (
             "unknown section",
-            format!("{}\n[cage]\nmass = 0.1\n", preset()),
-            "cage",
+            format!("{}\n[seals]\nmass = 0.1\n", preset()),
+            "seals",
         ),
         (
             "missing required key",

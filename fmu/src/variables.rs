@@ -5,17 +5,18 @@
 //! move (a new variable takes a new one).
 //!
 //! Value references: inputs 1–4, journal inputs 5–10, transmission-line inputs 11–15, ring
-//! velocity outputs 16–18, parameters 100–127, solver counters 900–902, written out in
-//! [`ROWS`]; the real outputs are 1000 + i, i being the position in [`raceway::output_table`]
-//! (their number depends on the bearing's ball count).
+//! velocity outputs 16–18, parameters 100–128, solver counters 900–902, written out in
+//! [`ROWS`]; the real outputs are 1000 + i, i being the position in
+//! [`raceway::output_table_with_cage`] (their number depends on the bearing's ball count; the
+//! cage block comes last, so the others keep their references).
 //! Start values of inputs and parameters are the default scene's on the FMU's bearing.
 
 use fmi2::table::Row;
 use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
 use raceway::models::LEVELS;
 use raceway::{
-    output_table, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode, DefectSpec,
-    Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
+    output_table_with_cage, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode,
+    DefectSpec, Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
 };
 use Causality::{Input as In, Output as Out, Parameter};
 use VarType::{Integer, Real};
@@ -741,6 +742,23 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
+    param(
+        128,
+        "cage",
+        Integer,
+        None,
+        (Some(0.0), Some(1.0)),
+        "The cage of the reduced and full levels: 1 a rigid cage with its pockets, guided by the balls or a ring land, its constants from the bearing's [cage] (default; cage.speed is then the cage's own rate and cage.y, cage.z, cage.pocket.P[j] its whirl and pocket forces); 0 the paper's cage-less balls, which touch each other where they drift together (the cage outputs stay 0). The other levels have no cage body either way",
+        |c| f64::from(u8::from(c.scene.full.cage)),
+        |c, v| {
+            c.scene.full.cage = match v as i32 {
+                0 => false,
+                1 => true,
+                code => return Err(format!("cage = {code}: valid codes are 0 (none), 1 (a cage)")),
+            };
+            Ok(())
+        },
+    ),
     stat(900, "solver.steps", "Accepted integrator steps since the start", |s| s.steps),
     stat(901, "solver.rejected", "Rejected integrator steps since the start", |s| s.rejected),
     stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
@@ -964,7 +982,7 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
         .map(entry)
         .collect();
     let z = bearing.bearing.z as usize;
-    for (i, o) in output_table(z).into_iter().enumerate() {
+    for (i, o) in output_table_with_cage(z).into_iter().enumerate() {
         let var = Variable {
             vr: 1000 + i as u32,
             name: o.name.clone(),
@@ -1053,8 +1071,11 @@ mod tests {
         assert_eq!(names.len(), t.len(), "unique names");
         let z = b.bearing.z as usize;
         let (nx, _) = raceway::model_exchange_capacity(z);
-        assert_eq!(t.len(), ROWS.len() + output_table(z).len() + 2 * nx);
-        assert_eq!(params().count(), 28);
+        assert_eq!(
+            t.len(),
+            ROWS.len() + output_table_with_cage(z).len() + 2 * nx
+        );
+        assert_eq!(params().count(), 29);
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);

@@ -233,6 +233,13 @@ pub trait Model: Send {
     /// The cage speed the model uses [rad/s] (for fault-frequency bookkeeping).
     fn cage_speed(&self) -> f64;
 
+    /// True when the model has a cage as a body (the reduced and full levels with one,
+    /// docs/model.md#cage): its outputs then include the cage block
+    /// ([`super::out::output_table_with_cage`]).
+    fn has_cage(&self) -> bool {
+        false
+    }
+
     /// A note on the start when it is not the one the level normally takes (the full and
     /// reduced levels' balls at the caged rate where some ball has no steady rotation of its
     /// own); the simulation passes it on with its warnings.

@@ -1,6 +1,8 @@
 //! The output vector every level fills ([`super::Model::outputs`]): the index of each fixed
 //! output, then the per-ball block (inner and outer contact forces, orbital speeds, separation
-//! flags), and the name, unit and meaning of each ([`output_table`]).
+//! flags), then, for a model with a cage, the cage block (the cage centre's displacement and
+//! every ball's pocket force), and the name, unit and meaning of each ([`output_table`],
+//! [`output_table_with_cage`]).
 
 /// `pedestal.a.y`: pedestal acceleration along y [m/s²].
 pub const PEDESTAL_A_Y: usize = 0;
@@ -28,7 +30,8 @@ pub const BEARING_F_Y: usize = 10;
 pub const BEARING_F_Z: usize = 11;
 /// `torque.friction`: bearing friction (drive) torque [N m].
 pub const FRICTION_TORQUE: usize = 12;
-/// `cage.speed`: cage (mean ball orbital) speed \[rad/s\].
+/// `cage.speed`: cage speed \[rad/s\]: the cage's own angular rate at a level with a cage,
+/// else the mean orbital speed of the balls.
 pub const CAGE_SPEED: usize = 13;
 /// First of the z inner contact forces, then z outer ones; then the z ball orbital speeds
 /// ([`orbit_speed`]) and the z separation flags ([`separated`]).
@@ -43,6 +46,38 @@ pub const BEARING_OUTPUTS: usize = CONTACT_START;
 #[inline]
 pub fn has_ball_block(o: &[f64], z: usize) -> bool {
     o.len() >= separated(z, z)
+}
+
+/// Index of `cage.y`, the cage centre's displacement along y, in a bearing with `z` balls;
+/// `cage.z` follows, then the z pocket forces ([`pocket_force`]).
+#[inline]
+pub fn cage_y(z: usize) -> usize {
+    separated(z, z)
+}
+
+/// Index of `cage.z`, the cage centre's displacement along z.
+#[inline]
+pub fn cage_z(z: usize) -> usize {
+    cage_y(z) + 1
+}
+
+/// Index of ball j's pocket force (j from 0) in a bearing with `z` balls.
+#[inline]
+pub fn pocket_force(z: usize, j: usize) -> usize {
+    cage_y(z) + 2 + j
+}
+
+/// One past the cage block of a bearing with `z` balls.
+#[inline]
+pub fn cage_end(z: usize) -> usize {
+    pocket_force(z, z)
+}
+
+/// True when `o` has room for the cage block (models with a cage fill it then, the other
+/// ball-level models zero it).
+#[inline]
+pub fn has_cage_block(o: &[f64], z: usize) -> bool {
+    o.len() >= cage_end(z)
 }
 
 /// Index of ball j's orbital speed θ̇ (j from 0) in a bearing with `z` balls.
@@ -126,7 +161,12 @@ pub fn output_table(z: usize) -> Vec<OutputInfo> {
             "N.m",
             "Bearing friction (drive) torque; 0 at levels without traction (kinematic, lumped)",
         ),
-        ("cage.speed", "rad/s", "Cage (mean ball orbital) speed"),
+        (
+            "cage.speed",
+            "rad/s",
+            "Cage speed: the cage's angular rate at the reduced and full levels with a cage, \
+             else the mean orbital speed of the balls",
+        ),
     ]
     .into_iter()
     .map(|(n, u, d)| OutputInfo {
@@ -164,4 +204,41 @@ pub fn output_table(z: usize) -> Vec<OutputInfo> {
         });
     }
     v
+}
+
+/// The outputs of a bearing with `z` balls and a cage: [`output_table`] and the cage block
+/// (the cage centre's displacement, every ball's pocket force).
+pub fn output_table_with_cage(z: usize) -> Vec<OutputInfo> {
+    let mut v = output_table(z);
+    for (axis, k) in [("y", cage_y(z)), ("z", cage_z(z))] {
+        debug_assert_eq!(v.len(), k);
+        v.push(OutputInfo {
+            name: format!("cage.{axis}"),
+            unit: "m",
+            description: format!(
+                "Cage centre displacement along {axis} (its whirl); 0 without a cage"
+            ),
+        });
+    }
+    for j in 1..=z {
+        v.push(OutputInfo {
+            name: format!("cage.pocket.P[{j}]"),
+            unit: "N",
+            description: format!(
+                "Normal force between ball {j} and its pocket: > 0 when the ball presses the \
+                 pocket's leading face (the ball drives the cage), < 0 the trailing face (the \
+                 cage drives the ball); 0 without a cage"
+            ),
+        });
+    }
+    v
+}
+
+/// The output table of a model with (`cage`) or without a cage.
+pub fn output_table_for(z: usize, cage: bool) -> Vec<OutputInfo> {
+    if cage {
+        output_table_with_cage(z)
+    } else {
+        output_table(z)
+    }
 }

@@ -44,8 +44,8 @@ use super::balls::ball_contact::{
     add, cross, dot, scale, sub, BallKin, ContactOut, RingPose, Strips, V3,
 };
 use super::balls::layout::{
-    ball_state_name, pedestal_state_name, ring_state_name, Layout, BOM, BR, BTH, BVR, BVX, BW, BX,
-    PVY, PVZ, PY, PZ, REDUCED_PER_BALL, RV, RX,
+    ball_state_name, cage_state_name, pedestal_state_name, ring_state_name, Layout, BOM, BR, BTH,
+    BVR, BVX, BW, BX, CAGE_STATES, PVY, PVZ, PY, PZ, REDUCED_PER_BALL, RV, RX,
 };
 use super::balls::{forward_to_ball_core, BallCore, BallSpin};
 use super::full::{steady::SteadyReport, FullModel, FullOptions};
@@ -192,7 +192,7 @@ impl ReducedModel {
         let mut core = BallCore::with_defect(
             bearing,
             inputs,
-            Layout::reduced(z),
+            Layout::reduced(z).with_cage(scene.full.cage),
             BallSpin::Fixed { cos: 1.0, sin: 0.0 },
             false,
             full.defect().cloned(),
@@ -275,6 +275,10 @@ impl ReducedModel {
         }
         y[lay.psi()] = yf[fl.psi()];
         y[lay.phi()] = yf[fl.phi()];
+        if lay.cage {
+            let (cf, c) = (fl.cage_block(), lay.cage_block());
+            y[c..c + CAGE_STATES].copy_from_slice(&yf[cf..cf + CAGE_STATES]);
+        }
     }
 
     /// What the model shares with the full one: layout, poses, contacts, modes.
@@ -313,14 +317,14 @@ impl ReducedModel {
     }
 
     /// Total mechanical energy \[J\]: ball translation and spin ½Jω_s², inner-ring translation,
-    /// pedestal, Hertz potential of the intact contacts and of the ball-to-ball contacts,
-    /// pedestal springs, minus the work of the
+    /// pedestal, the cage, Hertz potential of the intact contacts, of the ball-to-ball contacts
+    /// and of the cage's pocket and land contacts, pedestal springs, minus the work of the
     /// constant loads. Conserved without traction, damping and spall (the orbital part θ̇ e_x
     /// of the ball's angular velocity is kinematic here and carries no energy of its own).
     pub fn energy(&self, y: &[f64]) -> f64 {
         let c = &self.core;
         let inner = c.inner_pose(y);
-        let mut e = c.hertz_potential(y) + c.ball_ball_potential(y);
+        let mut e = c.hertz_potential(y) + c.ball_ball_potential(y) + c.cage_energy(y);
         for j in 0..c.z {
             let (kin, _, _, _, _) = c.ball_kin(y, j);
             let ws = y[c.lay.ball(j) + BWS];
@@ -359,6 +363,9 @@ impl Model for ReducedModel {
             _ if i < lay.psi() => pedestal_state_name(i - pedestal),
             _ if i == lay.psi() => "reference cage angle ψ".into(),
             _ if i == lay.phi() => "shaft angle φ".into(),
+            _ if lay.cage && i >= lay.cage_block() && i < lay.dim() => {
+                cage_state_name(i - lay.cage_block())
+            }
             _ => format!("state component {i}"),
         }
     }
@@ -389,6 +396,7 @@ impl Model for ReducedModel {
         out[p + PVZ] = 1e-2;
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
+        self.core.cage_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -426,6 +434,8 @@ impl Model for ReducedModel {
             .ball_ball
             .as_mut()
             .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
+        // Or the cage's pockets and land (docs/model.md#cage).
+        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
@@ -461,8 +471,18 @@ impl Model for ReducedModel {
                 )
             };
             let mut f = add(fi, fo);
+            let mut moment = moment;
             if let (true, Some(bb)) = (touch, &c.ball_ball) {
                 f = add(f, bb.force[j]);
+            }
+            if let Some(pc) = c
+                .cage
+                .as_ref()
+                .map(|cg| &cg.pockets[j])
+                .filter(|p| p.p > 0.0)
+            {
+                f = add(f, pc.f);
+                moment = add(moment, pc.m);
             }
             let es = [cb, -sb * er[1], -sb * er[2]];
             c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
@@ -472,6 +492,11 @@ impl Model for ReducedModel {
             f_outer = sub(f_outer, fo);
         }
         c.pass = pass;
+        if let Some(r) = cage {
+            f_ring = add(f_ring, r.on_inner);
+            m_ring_x += r.inner_moment[0];
+            f_outer = add(f_outer, r.on_outer);
+        }
         c.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
         self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);

@@ -42,6 +42,8 @@ enum KeyKind {
     /// `defect.blend_length`: a length in metres, or `"b"` (the contact ellipse's semi-minor
     /// axis), as in the bearing file.
     Blend,
+    /// An on/off switch (`full.cage`): true or false (TOML booleans, or 1 and 0).
+    Switch,
 }
 
 /// The keys an axis may sweep, with what they accept.
@@ -56,6 +58,7 @@ const KEYS: &[(&str, KeyKind)] = &[
     ("operating.fr", KeyKind::Number),
     ("operating.fy", KeyKind::Number),
     ("fidelity", KeyKind::Fidelity),
+    ("full.cage", KeyKind::Switch),
     ("lumped.seed", KeyKind::Seed),
     ("lumped.slip_jitter", KeyKind::Number),
     ("noise.rms", KeyKind::Number),
@@ -99,6 +102,20 @@ fn parse_ring(key: &str, v: &AxisValue) -> Result<Option<Race>, String> {
     }
 }
 
+/// An on/off value: `true`/`false` (a TOML boolean arrives as that word) or 1/0.
+fn parse_switch(key: &str, v: &AxisValue) -> Result<bool, String> {
+    match v {
+        AxisValue::Text(s) if s == "true" => Ok(true),
+        AxisValue::Text(s) if s == "false" => Ok(false),
+        AxisValue::Num(c) if *c == 1.0 => Ok(true),
+        AxisValue::Num(c) if *c == 0.0 => Ok(false),
+        other => Err(format!(
+            "{key} = {}: expected true or false (or 1, 0)",
+            other.canonical()
+        )),
+    }
+}
+
 fn parse_fidelity(key: &str, v: &AxisValue) -> Result<Fidelity, String> {
     let f = match v {
         AxisValue::Text(s) => Fidelity::from_name(s),
@@ -127,6 +144,7 @@ fn normalize(key: &str, v: &AxisValue) -> Result<AxisValue, SweepError> {
             parse_ring(key, v).map(|r| AxisValue::Text(r.map_or("none", |r| r.name()).to_string()))
         }
         KeyKind::Fidelity => parse_fidelity(key, v).map(|f| AxisValue::Text(f.name().into())),
+        KeyKind::Switch => parse_switch(key, v).map(|b| AxisValue::Text(b.to_string())),
         KeyKind::Seed => match v {
             AxisValue::Num(_) => Ok(v.clone()),
             AxisValue::Text(s) if s == "run" => Ok(v.clone()),
@@ -301,6 +319,7 @@ fn value_of(key: &str, v: &toml::Value) -> Result<AxisValue, SweepError> {
         toml::Value::Float(f) => Ok(AxisValue::Num(*f)),
         toml::Value::Integer(i) => Ok(AxisValue::Num(*i as f64)),
         toml::Value::String(s) => Ok(AxisValue::Text(s.clone())),
+        toml::Value::Boolean(b) => Ok(AxisValue::Text(b.to_string())),
         other => Err(SweepError::new(format!(
             "{key}: {other} is neither a number nor a word"
         ))),
@@ -599,6 +618,7 @@ impl Sweep {
                 "operating.fr" => scene.operating.fz = -num()?,
                 "operating.fy" => scene.operating.fy = num()?,
                 "fidelity" => scene.fidelity = parse_fidelity(key, v)?,
+                "full.cage" => scene.full.cage = parse_switch(key, v)?,
                 "lumped.seed" if *v == AxisValue::Text("run".into()) => {
                     // Derived from the run's parameters: distinct per run, independent of threads.
                     scene.lumped.seed = fnv1a64(format!("seed:{}", run.id).as_bytes()) >> 11;

@@ -73,7 +73,7 @@ def test_model_description_details(fmu):
     # the calculated outputs, and (Model Exchange) the states and their derivatives
     assert len(md.initialUnknowns) == len(outputs) + 2 * md.numberOfContinuousStates
     assert md.modelExchange.modelIdentifier == "BallBearing"
-    assert md.numberOfContinuousStates == 142 and md.numberOfEventIndicators == 70
+    assert md.numberOfContinuousStates == 148 and md.numberOfEventIndicators == 70
     z = sum(1 for x in outputs if x.name.startswith("contact.inner.Q["))
     assert z == 14
     assert [c.name for c in md.logCategories][:2] == ["logEvents", "logSolver"]

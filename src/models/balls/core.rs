@@ -9,8 +9,10 @@ use super::ball_ball::BallBall;
 use super::ball_contact::{
     self, dot, BallKin, ContactOut, DefectView, GroovePos, Law, RaceConst, RingPose, V3,
 };
+use super::cage::{Cage, CagePose, CageResult};
 use super::layout::{
-    Layout, BOM, BR, BTH, BVR, BVX, BW, BX, PVY, PVZ, PY, PZ, RBY, RBZ, RV, RWY, RWZ, RX,
+    Layout, BOM, BR, BTH, BVR, BVX, BW, BX, CA, CV, CW, CY, PVY, PVZ, PY, PZ, RBY, RBZ, RV, RWY,
+    RWZ, RX,
 };
 use super::pass::{BallFrame, ContactPass, Loaded, Normal};
 use super::switches::{contact_event, Switches};
@@ -132,13 +134,16 @@ pub struct BallCore {
     pub(crate) pass: ContactPass,
     /// Contacts between neighbouring balls (docs/model.md#ball-ball): the cage-less models'.
     pub(crate) ball_ball: Option<BallBall>,
+    /// The cage (docs/model.md#cage), when the layout has its states.
+    pub(crate) cage: Option<Cage>,
 }
 
 impl BallCore {
     /// The core for `bearing` at `inputs` with state layout `lay`, the spall of `defect` (its
     /// blend length from [`reference_ball_load`]), ball 0 placed clear of it
     /// ([`choose_theta_start`]), the cage ratio of outer-race control at α0 until the model
-    /// sets its own, and the initial state zero.
+    /// sets its own, and the initial state zero. A layout with the cage block gets the cage of
+    /// the bearing file ([`Cage`]); one without gets the ball-to-ball contacts instead.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         bearing: &Bearing,
@@ -216,12 +221,9 @@ impl BallCore {
             prescribed: false,
             held_axial,
             pass: ContactPass::new(z),
-            ball_ball: Some(BallBall::new(
-                z,
-                bearing.d,
-                bearing.e_prime,
-                file.contact.c_br,
-            )),
+            ball_ball: (!lay.cage)
+                .then(|| BallBall::new(z, bearing.d, bearing.e_prime, file.contact.c_br)),
+            cage: lay.cage.then(|| Cage::new(bearing)),
         }
     }
 
@@ -540,7 +542,10 @@ impl BallCore {
         o[out::BEARING_F_Y] = self.ring_force[1];
         o[out::BEARING_F_Z] = self.ring_force[2];
         o[out::FRICTION_TORQUE] = friction_torque;
-        o[out::CAGE_SPEED] = self.mean_orbital_speed(y);
+        o[out::CAGE_SPEED] = match &self.cage {
+            Some(_) => y[self.lay.cage_block() + CW],
+            None => self.mean_orbital_speed(y),
+        };
         if !out::has_ball_block(o, self.z) {
             return;
         }
@@ -550,6 +555,25 @@ impl BallCore {
             o[out::orbit_speed(self.z, j)] = y[self.lay.ball(j) + BW];
         }
         out::set_separation_flags(o, self.z);
+        if !out::has_cage_block(o, self.z) {
+            return;
+        }
+        let block = &mut o[out::cage_y(self.z)..out::cage_end(self.z)];
+        match &self.cage {
+            Some(cage) => {
+                let c = self.lay.cage_block();
+                block[0] = y[c + CY];
+                block[1] = y[c + CY + 1];
+                for (v, p) in block[2..].iter_mut().zip(&cage.pockets) {
+                    *v = if p.p > 0.0 {
+                        p.p * p.offset.signum()
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            None => block.iter_mut().for_each(|v| *v = 0.0),
+        }
     }
 
     /// The reference cage speed [rad/s].
@@ -569,6 +593,107 @@ impl BallCore {
     /// Mean orbital speed of the balls, Σθ̇/z [rad/s].
     pub fn mean_orbital_speed(&self, y: &[f64]) -> f64 {
         (0..self.z).map(|j| y[self.lay.ball(j) + BW]).sum::<f64>() / self.z as f64
+    }
+
+    /// The cage (None without one); its last evaluation is the last right-hand side's.
+    pub fn cage(&self) -> Option<&Cage> {
+        self.cage.as_ref()
+    }
+
+    /// The cage's pose at state y (meaningful when the layout has the cage block).
+    #[inline(always)]
+    pub fn cage_pose(&self, y: &[f64]) -> CagePose {
+        let c = self.lay.cage_block();
+        CagePose {
+            angle: y[self.lay.psi()] + y[c + CA] + self.theta_start,
+            c: [0.0, y[c + CY], y[c + CY + 1]],
+            w: y[c + CW],
+            v: [0.0, y[c + CV], y[c + CV + 1]],
+        }
+    }
+
+    /// The cage's pocket and land contacts with the balls' frames and the rings at state y,
+    /// its equations of motion written into `dydt` (the reference cage angle turning at
+    /// `psi_rate`), and the land's reaction on the rings; None without a cage (a layout with
+    /// the cage block but no cage body gets zero rates there). The pocket forces and moments on
+    /// the balls are in [`Cage::pockets`].
+    #[inline]
+    pub fn cage_rhs(
+        &mut self,
+        y: &[f64],
+        frames: &[super::pass::BallFrame],
+        inner: &RingPose,
+        outer: &RingPose,
+        psi_rate: f64,
+        dydt: &mut [f64],
+    ) -> Option<CageResult> {
+        let c = self.lay.cage_block();
+        if self.cage.is_none() {
+            // The cage's states without its body (while the start solves the balls' steady
+            // rotation): they stay where they are.
+            if self.lay.cage {
+                dydt[c..c + super::layout::CAGE_STATES]
+                    .iter_mut()
+                    .for_each(|d| *d = 0.0);
+            }
+            return None;
+        }
+        let pose = self.cage_pose(y);
+        let cage = self.cage.as_mut()?;
+        let r = cage.evaluate(&pose, frames, inner, outer);
+        dydt[c + CA] = pose.w - psi_rate;
+        dydt[c + CY] = pose.v[1];
+        dydt[c + CY + 1] = pose.v[2];
+        dydt[c + CW] = r.w_dot;
+        dydt[c + CV] = r.a[1];
+        dydt[c + CV + 1] = r.a[2];
+        Some(r)
+    }
+
+    /// Nominal values of the cage block (docs/model.md#tolerances): the angle deviation
+    /// 1e-3 rad, the centre 1e-5 m, the rate 100 rad/s, the centre's velocity 1e-2 m/s.
+    pub fn cage_nominal(&self, out: &mut [f64]) {
+        if self.lay.cage {
+            let c = self.lay.cage_block();
+            out[c..c + super::layout::CAGE_STATES]
+                .copy_from_slice(&[1e-3, 1e-5, 1e-5, 100.0, 1e-2, 1e-2]);
+        }
+    }
+
+    /// The cage's kinetic energy and the elastic potential of its pocket and land contacts
+    /// at state y \[J\] (0 without a cage).
+    pub fn cage_energy(&self, y: &[f64]) -> f64 {
+        let Some(cage) = &self.cage else {
+            return 0.0;
+        };
+        let pose = self.cage_pose(y);
+        let k = &cage.params;
+        let e = |stiff: f64, d: f64| {
+            if d > 0.0 {
+                0.4 * stiff * d * d * d.sqrt()
+            } else {
+                0.0
+            }
+        };
+        let mut sum = 0.5 * k.mass * dot(pose.v, pose.v) + 0.5 * k.inertia * pose.w * pose.w;
+        for j in 0..self.z {
+            let kin = self.ball_kin(y, j).0;
+            let phi = pose.angle + TAU * j as f64 / self.z as f64;
+            sum += e(
+                k.pocket_stiffness,
+                cage.pocket(&pose, phi, kin.p, kin.v, kin.omega).delta,
+            );
+        }
+        let land = match k.guidance {
+            crate::config::CageGuidance::Balls => return sum,
+            crate::config::CageGuidance::InnerLand => {
+                cage.land_contact(&pose, &self.inner_pose(y), -1.0)
+            }
+            crate::config::CageGuidance::OuterLand => {
+                cage.land_contact(&pose, &self.outer_pose(y), 1.0)
+            }
+        };
+        sum + e(k.land_stiffness, land.delta)
     }
 
     /// The ball-to-ball contacts (None when a cage keeps the balls apart); their last
@@ -761,6 +886,10 @@ macro_rules! forward_to_ball_core {
 
         fn cage_speed(&self) -> f64 {
             self.core.cage_speed()
+        }
+
+        fn has_cage(&self) -> bool {
+            self.core.cage.is_some()
         }
 
         fn ring_states(&self) -> Option<$crate::models::RingStates> {

@@ -6,7 +6,9 @@
 //! Per ball j (9 states from `9 j`): x, r − dm/2, θ − (ψ + θ_start + 2πj/z), ẋ, ṙ, θ̇, ω_x, ω_y, ω_z.
 //! Then the inner ring (10): x, y, z, ẋ, ẏ, ż, β_y, β_z, β̇_y, β̇_z; the pedestal (4):
 //! y_p, z_p, ẏ_p, ż_p; and two angles: the reference cage angle ψ and the shaft angle φ
-//! (integrated from the inputs so that a speed change keeps them continuous).
+//! (integrated from the inputs so that a speed change keeps them continuous). A model with a
+//! cage (docs/model.md#cage) has 6 more at the end: the cage angle's deviation χ from ψ, the
+//! cage centre's y and z, the cage's angular rate ω_c and the centre's ẏ, ż.
 
 /// States per ball.
 pub const PER_BALL: usize = 9;
@@ -50,6 +52,18 @@ pub const PVY: usize = 2;
 /// Offset of the pedestal's velocity ż_p \[m/s\].
 pub const PVZ: usize = 3;
 
+// Offsets inside the cage block.
+/// Offset of the cage angle's deviation χ from the reference cage angle ψ \[rad\].
+pub const CA: usize = 0;
+/// Offset of the cage centre's y (then z) \[m\].
+pub const CY: usize = 1;
+/// Offset of the cage's angular rate ω_c \[rad/s\].
+pub const CW: usize = 3;
+/// Offset of the cage centre's ẏ (then ż) \[m/s\].
+pub const CV: usize = 4;
+/// States of the cage block.
+pub const CAGE_STATES: usize = 6;
+
 /// States of the reduced model's ball block: the full model's x, r, θ, ẋ, ṙ, θ̇ and one spin
 /// rate ω_s at `BOM`.
 pub const REDUCED_PER_BALL: usize = 7;
@@ -69,6 +83,8 @@ pub struct Layout {
     pub per_ball: usize,
     /// States of the inner-ring block.
     pub ring_len: usize,
+    /// The model has a cage (the cage block at the end).
+    pub cage: bool,
 }
 
 impl Layout {
@@ -78,6 +94,7 @@ impl Layout {
             z,
             per_ball: PER_BALL,
             ring_len: RING_STATES,
+            cage: false,
         }
     }
     /// The reduced model's layout: per ball j (7 states from `7 j`) x, r, θ, ẋ, ṙ, θ̇, ω_s;
@@ -88,7 +105,12 @@ impl Layout {
             z,
             per_ball: REDUCED_PER_BALL,
             ring_len: REDUCED_RING_STATES,
+            cage: false,
         }
+    }
+    /// This layout with (or without) the cage block.
+    pub fn with_cage(self, cage: bool) -> Self {
+        Self { cage, ..self }
     }
     /// First state of ball j.
     #[inline(always)]
@@ -115,10 +137,15 @@ impl Layout {
     pub fn phi(&self) -> usize {
         self.pedestal() + 5
     }
+    /// First state of the cage block (meaningful when [`Layout::cage`]).
+    #[inline(always)]
+    pub fn cage_block(&self) -> usize {
+        self.pedestal() + 6
+    }
     /// Number of states.
     #[inline(always)]
     pub fn dim(&self) -> usize {
-        self.pedestal() + 6
+        self.pedestal() + 6 + if self.cage { CAGE_STATES } else { 0 }
     }
 }
 
@@ -161,5 +188,18 @@ pub fn pedestal_state_name(offset: usize) -> String {
         PVY => "pedestal velocity along y".into(),
         PVZ => "pedestal velocity along z".into(),
         k => format!("pedestal state {k}"),
+    }
+}
+
+/// Name of the state at `offset` in the cage block.
+pub fn cage_state_name(offset: usize) -> String {
+    match offset {
+        CA => "cage angle χ (from the reference cage angle ψ)".into(),
+        1 => "cage centre displacement along y".into(),
+        2 => "cage centre displacement along z".into(),
+        CW => "cage angular rate ω_c".into(),
+        4 => "cage centre velocity along y".into(),
+        5 => "cage centre velocity along z".into(),
+        k => format!("cage state {k}"),
     }
 }

@@ -95,5 +95,24 @@ pub fn initial_state(
         y[b + BOM + 1] = -wr * sb * er[1];
         y[b + BOM + 2] = -wr * sb * er[2];
     }
+    if lay.cage {
+        // The cage (docs/model.md#cage-start): every pocket centred on its ball's place in the
+        // reference cage (χ = 0), the centre on the balls' centroid, turning at the common
+        // rate, at rest otherwise.
+        let c = lay.cage_block();
+        let z = m.z as f64;
+        let (mut cy, mut cz) = (0.0, 0.0);
+        for j in 0..m.z {
+            let b = lay.ball(j);
+            let theta = m.theta_start + TAU * j as f64 / z + y[b + BTH];
+            let r = m.pitch_radius + y[b + BR];
+            cy -= r * theta.sin() / z;
+            cz += r * theta.cos() / z;
+        }
+        y[c + CA] = 0.0;
+        y[c + CY] = cy;
+        y[c + CY + 1] = cz;
+        y[c + CW] = omega_c;
+    }
     Ok(l1_orbit)
 }

@@ -103,21 +103,29 @@ impl FullModel {
             scene.defect.as_ref(),
             scene.pulse.clone(),
             None,
-            (true, held),
+            (true, held, scene.full.cage),
         )
     }
 
     /// The healthy bearing without a pulse at L1's start (balls in outer-race control, no
     /// steady-rotation solve), from a given L1 solution at `inputs` (or from a new one), with
-    /// the pedestal at rest (the bearing on its own, whatever its support): the base of
-    /// [`steady::steady_rotation`] for the kinematic levels' cage speed.
+    /// the pedestal at rest (the bearing on its own, whatever its support), without a cage
+    /// body: the base of [`steady::steady_rotation`] for the kinematic levels' cage speed.
     pub fn healthy(
         bearing: &Bearing,
         inputs: &OperatingPoint,
         options: FullOptions,
         l1: Option<&QuasiStatic>,
     ) -> Result<Self, SimError> {
-        Self::build(bearing, inputs, options, None, None, l1, (false, None))
+        Self::build(
+            bearing,
+            inputs,
+            options,
+            None,
+            None,
+            l1,
+            (false, None, false),
+        )
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -128,7 +136,7 @@ impl FullModel {
         defect: Option<&DefectSpec>,
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
-        (settle, held_axial): (bool, Option<f64>),
+        (settle, held_axial, cage): (bool, Option<f64>, bool),
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let z = bearing.z;
@@ -147,7 +155,7 @@ impl FullModel {
         let core = BallCore::new(
             bearing,
             inputs,
-            Layout::full(z),
+            Layout::full(z).with_cage(cage),
             BallSpin::Free,
             true,
             defect,
@@ -167,7 +175,26 @@ impl FullModel {
             centred: !settle,
         };
         m.l1_orbit = init::initial_state(&mut m.core, m.centred, bearing, l1)?;
-        if settle && m.traction.is_some() && inputs.shaft_speed > 0.0 {
+        if settle && m.traction.is_some() && inputs.shaft_speed > 0.0 && cage {
+            // With a cage the balls start in their caged steady rotation (one orbital rate, the
+            // traction's orbital torques balanced over the balls, docs/model.md#cage-start),
+            // solved without the cage's body; the cage turns with them.
+            let mut y = m.core.y0.clone();
+            m.update_mode(0.0, &y);
+            let body = m.core.cage.take();
+            let r = steady::steady_rotation(&mut m, &mut y, steady::Orbit::Caged, None);
+            m.core.cage = body;
+            let r = r.map_err(|e| {
+                SimError::Input(format!(
+                    "the balls' caged steady rotation (the full model's start) at {}: {e}",
+                    super::operating_point(inputs)
+                ))
+            })?;
+            y[m.core.lay.cage_block() + CW] = r.cage_speed;
+            m.core.y0 = y;
+            m.core.cage_ratio = r.cage_speed / inputs.shaft_speed;
+            m.settle = Some(r);
+        } else if settle && m.traction.is_some() && inputs.shaft_speed > 0.0 {
             // Start the balls in their steady rotation under the traction (the state they
             // settle to in ≈ 20 ms from L1's outer-race control): a quiet start. Each ball at
             // its own orbital rate, as this cage-less model runs; where some ball has no steady
@@ -324,8 +351,9 @@ impl FullModel {
     }
 
     /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and
-    /// tilt, pedestal) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts and of the
-    /// ball-to-ball contacts + pedestal and tilt springs − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
+    /// tilt, pedestal, cage) + Hertz potential (2/5)Kδ^{5/2} of the intact contacts, of the
+    /// ball-to-ball contacts and of the cage's pocket and land contacts + pedestal and tilt
+    /// springs − work of the constant loads. Conserved without traction, damping and spall (docs/model.md#verification);
     /// the prescribed spin does no work.
     pub fn energy(&self, y: &[f64]) -> f64 {
         let c = &self.core;
@@ -343,7 +371,7 @@ impl FullModel {
                 }
             }
         }
-        e += c.ball_ball_potential(y);
+        e += c.ball_ball_potential(y) + c.cage_energy(y);
         let r = c.lay.ring();
         let p = c.lay.pedestal();
         e += 0.5 * c.m_ir * dot(inner.v, inner.v)
@@ -385,6 +413,9 @@ impl Model for FullModel {
             _ if i < lay.psi() => pedestal_state_name(i - pedestal),
             _ if i == lay.psi() => "reference cage angle ψ".into(),
             _ if i == lay.phi() => "shaft angle φ".into(),
+            _ if lay.cage && i >= lay.cage_block() && i < lay.dim() => {
+                cage_state_name(i - lay.cage_block())
+            }
             _ => format!("state component {i}"),
         }
     }
@@ -421,6 +452,7 @@ impl Model for FullModel {
         out[p + PVZ] = 1e-2;
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
+        self.core.cage_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -448,11 +480,13 @@ impl Model for FullModel {
                 },
             );
         }
-        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
+        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball), or
+        // the cage's pockets and land (docs/model.md#cage).
         let touch = c
             .ball_ball
             .as_mut()
             .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
+        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
@@ -463,10 +497,19 @@ impl Model for FullModel {
             c.q_inner[j] = ci.q.max(0.0);
             c.q_outer[j] = co.q.max(0.0);
             let mut f = contact::add(ci.f, co.f);
+            let mut mo = contact::add(ci.m, co.m);
             if let (true, Some(bb)) = (touch, &c.ball_ball) {
                 f = contact::add(f, bb.force[j]);
             }
-            let mo = contact::add(ci.m, co.m);
+            if let Some(pc) = c
+                .cage
+                .as_ref()
+                .map(|cg| &cg.pockets[j])
+                .filter(|p| p.p > 0.0)
+            {
+                f = contact::add(f, pc.f);
+                mo = contact::add(mo, pc.m);
+            }
             c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
             dydt[b + BOM] = mo[0] / jb;
             dydt[b + BOM + 1] = mo[1] / jb;
@@ -481,6 +524,11 @@ impl Model for FullModel {
             f_outer = sub(f_outer, co.f);
         }
         c.pass = pass;
+        if let Some(r) = cage {
+            f_ring = contact::add(f_ring, r.on_inner);
+            m_ring = contact::add(m_ring, r.inner_moment);
+            f_outer = contact::add(f_outer, r.on_outer);
+        }
         c.ring_force = f_ring;
         self.ring_moment = m_ring;
         let c = &self.core;
@@ -506,7 +554,14 @@ impl Model for FullModel {
     /// With traction on, `None`: the simulation then differentiates the full reaction (traction
     /// included) by central differences.
     fn reaction_jacobian(&mut self, _t: f64, y: &[f64]) -> Option<ReactionJacobian> {
-        if self.traction.is_some() {
+        // Traction, or a cage riding on the inner ring's land: the simulation differentiates
+        // the whole reaction by central differences instead.
+        let inner_land = self
+            .core
+            .cage
+            .as_ref()
+            .is_some_and(|cg| cg.params.guidance == crate::config::CageGuidance::InnerLand);
+        if self.traction.is_some() || inner_land {
             return None;
         }
         let inner = self.core.inner_pose(y);
