@@ -431,7 +431,6 @@ impl LubricationSection {
     }
 }
 
-
 /// How the cage is guided (`[cage] guidance`, docs/model.md#cage).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]

@@ -57,8 +57,8 @@ pub const MODEL_VERSION: &str = concat!(
 pub use config::{
     BearingFile, BearingSection, BlendLength, BlendName, CageGuidance, CageSection, ConfigError,
     ContactSection, DefectDefaults, DefectMode, HertzMethod, InnerRing, LubricationSection,
-    Material, Pedestal,
-    StripRule, TractionLaw, TractionSection, DEFAULT_PRESET, MAX_STRIPS, PRESETS,
+    Material, Pedestal, StripRule, TractionLaw, TractionSection, DEFAULT_PRESET, MAX_STRIPS,
+    PRESETS,
 };
 pub use defect::DefectSpec;
 pub use geometry::{race_curvatures, Bearing, Race};
