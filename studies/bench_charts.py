@@ -289,6 +289,13 @@ def main():
           f"{', '.join(unsup)}.\n")
     else:
         w("\n")
+    w("\nThe cost of the physics options at the full level, each measured side by side with the run "
+      "without it in one process (not by this bench): the cage, 1.61× on the partial load zone "
+      "(Fa 1000 N, Fr 4000 N) and 2.26× on the default scene over 2 s "
+      "([research/cage.md](research/cage.md), `scripts/cage_longrun.sh 2`); the lubricant film, "
+      "1.72× on the default scene over 0.5 s ([research/film.md](research/film.md), "
+      "`python studies/film_study.py --duration 0.5`). The bench below predates the cage, the "
+      "film and decisions D1–D2 as defaults.\n")
 
     # Throughput.
     if thr:
