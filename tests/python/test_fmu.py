@@ -389,9 +389,10 @@ def test_reduced_level_runs_with_per_ball_outputs(probe, dynamics):
     for row in r["rows"]:
         cage, orbit, sep = row[0], row[1:1 + z], row[1 + z:1 + 2 * z]
         q_in, q_out = row[1 + 2 * z:1 + 3 * z], row[1 + 3 * z:]
-        # The cage speed is the mean ball orbital speed (L0 69.5 Hz .. L1 70.4 Hz, each ball
-        # fluctuating through the load zone and the spall); the flag marks a ball with no contact.
-        assert math.isclose(sum(orbit) / z, cage, rel_tol=1e-12), row
+        # The cage speed is the cage's own rate (the cage is on by default at this level); the
+        # balls ride in its pockets, so their mean orbital rate follows it within the pocket
+        # clearance's play (0.06 % measured); the flag marks a ball with no contact.
+        assert math.isclose(sum(orbit) / z, cage, rel_tol=5e-3), row
         assert 69.0 < cage / (2 * math.pi) < 71.0, cage
         assert all(60.0 < w / (2 * math.pi) < 80.0 for w in orbit), orbit
         assert sep == [1.0 if a == 0.0 and b == 0.0 else 0.0 for a, b in zip(q_in, q_out)]
