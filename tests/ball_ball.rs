@@ -10,21 +10,10 @@
 
 use raceway::models::internals::layout::{Layout, BR, BTH, BVR, BVX, BW, BX};
 use raceway::models::internals::{ball_ball_stiffness, BallBall};
-use raceway::models::{FullModel, FullOptions, Model, ReducedModel, ReducedOptions};
-use raceway::solver::{Integrator, Method, Options, StepView, System};
+use raceway::models::{FullModel, FullOptions, Model, ModelSystem, ReducedModel, ReducedOptions};
+use raceway::solver::{Integrator, Method, Options, StepView};
 use raceway::{Bearing, BearingFile, Fidelity, OperatingPoint, Scene};
 use std::f64::consts::TAU;
-
-struct Sys<'a>(&'a mut dyn Model);
-
-impl System for Sys<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        self.0.rhs(t, y, dydt)
-    }
-}
 
 /// Closed-form Hertz constant of two equal spheres of diameter d:
 /// Q = (4/3) E* √R* δ^{3/2}, E* = E / (2 (1 − ν²)), R* = d/4.
@@ -155,7 +144,7 @@ fn collide<M: Model>(
         };
         integ
             .advance(
-                &mut Sys(model),
+                &mut ModelSystem(model),
                 duration * k as f64 / spans as f64,
                 Some(&mut obs),
             )

@@ -7,24 +7,13 @@
 
 use raceway::models::internals::cage::{self, Cage, CageParams, CagePose};
 use raceway::models::internals::layout::{Layout, BR, BTH, BVR, BVX, BW, BX, CA, CV, CW, CY};
-use raceway::models::{FullModel, FullOptions, Model};
-use raceway::solver::{Integrator, Method, Options, StepView, System};
+use raceway::models::{FullModel, FullOptions, Model, ModelSystem};
+use raceway::solver::{Integrator, Method, Options, StepView};
 use raceway::{
     out, Bearing, BearingFile, CageGuidance, CageSection, Fidelity, OperatingPoint, Scene,
     Simulation,
 };
 use std::f64::consts::{PI, TAU};
-
-struct Sys<'a>(&'a mut dyn Model);
-
-impl System for Sys<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        self.0.rhs(t, y, dydt)
-    }
-}
 
 fn table1() -> BearingFile {
     BearingFile::load("niu2014-table1").unwrap()
@@ -366,7 +355,7 @@ fn caged_energy(guidance: CageGuidance, kick: [f64; 3], duration: f64) -> (f64, 
         };
         integ
             .advance(
-                &mut Sys(&mut m),
+                &mut ModelSystem(&mut m),
                 duration * k as f64 / spans as f64,
                 Some(&mut obs),
             )
