@@ -333,7 +333,8 @@ impl ResultsFile {
                     r[0]
                 )));
             }
-            if !self.is_done(sweep, run) {
+            // (r[2] is the run's key now, checked above)
+            if self.done.get(&run.id) != Some(&r[2]) {
                 self.append(&r)?;
                 added += 1;
             }
