@@ -76,11 +76,22 @@ class Recorder:
                 "speed": a[:, 4], "phase": np.unwrap(a[:, 5])}
 
 
+def contact_cut_rotor(rotor, rpm):
+    """The rotor's start values for the cut at the contact (it owns the journal): the given
+    ones (default the shipped system's), its speed at `rpm` unless they set one, and the disk
+    riding only laterally, so that the axial inertia is the journal's, as with the line."""
+    rp = dict(ROTOR if rotor is None else rotor)
+    rp.setdefault("speed.initial", rpm * math.pi / 30)
+    rp.setdefault("speed.final", rpm * math.pi / 30)
+    rp["disk.axial"] = 0
+    return rp
+
+
 def run(scheme, H, stop, rotor=None, rpm=None):
     """One run of `scheme` at step H in our master; None if it failed or ran away."""
-    rp = dict(ROTOR if rotor is None else rotor)
     rpm = RPM0 if rpm is None else rpm
     if scheme == "tlm":
+        rp = dict(ROTOR if rotor is None else rotor)
         r, b = cs.tlm_pair(rp, rpm, H)
         rec = Recorder(True)
         try:
@@ -89,9 +100,7 @@ def run(scheme, H, stop, rotor=None, rpm=None):
             r.free()
             b.free()
     else:
-        rp.setdefault("speed.initial", rpm * math.pi / 30)
-        rp.setdefault("speed.final", rpm * math.pi / 30)
-        rp["disk.axial"] = 0  # the axial inertia is the journal's, as with the line
+        rp = contact_cut_rotor(rotor, rpm)
         r, b, _ = cs.coupled_pair(rp, cs.bearing_start(10.0, rpm))
         rec = Recorder(False)
         try:
@@ -111,11 +120,8 @@ def run_monolithic(stop, rotor=None, rpm=None, output=1e-5):
     """The monolithic reference: rotor and bearing as one ODE, CVODE (rtol 1e-8) over both
     Model Exchange FMUs (examples/systems/monolithic.py), the contact cut's connections made
     inside every evaluation; the bearing takes the shaft speed every 0.1 ms."""
-    rp = dict(ROTOR if rotor is None else rotor)
     rpm = RPM0 if rpm is None else rpm
-    rp.setdefault("speed.initial", rpm * math.pi / 30)
-    rp.setdefault("speed.final", rpm * math.pi / 30)
-    rp["disk.axial"] = 0  # the axial inertia is the journal's, as with the line
+    rp = contact_cut_rotor(rotor, rpm)
     rec = Recorder(False)
     try:
         monolithic.run(rp, cs.bearing_start(10.0, rpm), stop, output_interval=output,
