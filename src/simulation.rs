@@ -88,6 +88,7 @@ type SampleSink<'a> = dyn FnMut(f64, &[f64], &[f64], &dyn Model) + 'a;
 type Sampler<'a> = (f64, &'a mut SampleSink<'a>);
 
 /// One simulation run.
+#[derive(Clone)]
 pub struct Simulation {
     scene: Scene,
     bearing: Bearing,
@@ -155,6 +156,7 @@ pub fn model_exchange_capacity(z: usize) -> (usize, usize) {
 /// The plausibility limits ([`crate::limits`]) a simulation applies: a load beyond the static
 /// load rating or a contact beyond its pressure is a warning (given once each); a contact
 /// beyond [`MAX_CONTACT_PRESSURE`] is an error naming what caused it.
+#[derive(Clone)]
 struct Limits {
     rating: StaticRating,
     warned_rating: bool,
@@ -247,7 +249,7 @@ impl Limits {
 }
 
 /// The simulation at the start of an advance: what an advance can change.
-#[derive(Default)]
+#[derive(Default, Clone)]
 struct Start {
     integrator: Checkpoint,
     model: Vec<f64>,

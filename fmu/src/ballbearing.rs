@@ -106,6 +106,8 @@ pub struct BallBearing {
     tolerance: Option<f64>,
     initialized: bool,
     live: Option<Live>,
+    /// The last simulation built, as built, and its scene ([`BallBearing::new_simulation`]).
+    fresh: Option<(Scene, Simulation)>,
     /// The outputs at the simulation's current time when `outputs_valid` (computed on demand,
     /// and by every successful step). A failed step leaves them (and the simulation) at its
     /// start, the last successful communication point.
@@ -173,6 +175,7 @@ impl BallBearing {
             tolerance: None,
             initialized: false,
             live: None,
+            fresh: None,
             outputs: vec![0.0; n_out],
             outputs_valid: false,
             step_outputs: vec![0.0; n_out],
@@ -268,10 +271,25 @@ impl BallBearing {
         with_line_offset(self.inputs, offset)
     }
 
-    fn build(&self) -> Result<Live, String> {
+    /// `Simulation::new(scene)`, copied from the one kept when it was last made for the same
+    /// scene: restoring a state (fmi2SetFMUstate, often once per step for a master that
+    /// retries steps) then costs a copy instead of building the model again (the lumped
+    /// level's build solves the quasi-static operating point and the cage speed).
+    fn new_simulation(&mut self, scene: &Scene) -> Result<Simulation, String> {
+        if let Some((kept, sim)) = &self.fresh {
+            if kept == scene {
+                return Ok(sim.clone());
+            }
+        }
+        let sim = Simulation::new(scene).map_err(sim_err)?;
+        self.fresh = Some((scene.clone(), sim.clone()));
+        Ok(sim)
+    }
+
+    fn build(&mut self) -> Result<Live, String> {
         let scene = self.scene_to_build()?;
         let line_offset = self.start_line_offset();
-        let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+        let mut sim = self.new_simulation(&scene)?;
         sim.set_inputs(self.model_inputs(line_offset))
             .map_err(sim_err)?;
         if scene.coupling == CouplingMode::Motion && self.journal_set {
@@ -1003,7 +1021,7 @@ impl FmuModel for BallBearing {
             scene.defect = cfg.defect.spec();
             scene.operating = operating;
             scene.solver.rtol = rtol;
-            let mut sim = Simulation::new(&scene).map_err(sim_err)?;
+            let mut sim = self.new_simulation(&scene)?;
             sim.restore_state(sim_bytes).map_err(sim_err)?;
             Some(Live {
                 sim,

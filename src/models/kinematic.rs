@@ -64,6 +64,7 @@ struct Mode {
 }
 
 /// The kinematic model.
+#[derive(Clone)]
 pub struct KinematicModel {
     bearing: Bearing,
     table: L1Table,

@@ -116,6 +116,7 @@ enum Zone {
 }
 
 /// The lumped model.
+#[derive(Clone)]
 pub struct LumpedModel {
     bearing: Bearing,
     z: usize,

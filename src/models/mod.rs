@@ -48,7 +48,7 @@ pub use full::{FullModel, FullOptions};
 pub use kinematic::KinematicModel;
 pub use levels::{build, level, level_names, Constructor, Level, LEVELS};
 pub use lumped::LumpedModel;
-pub use model::{ExchangeLimit, Model, ReactionJacobian, RingStates, SimError};
+pub use model::{CloneModel, ExchangeLimit, Model, ReactionJacobian, RingStates, SimError};
 pub use out::{output_table, output_table_for, output_table_with_cage, OutputInfo};
 pub use quasi_static::QuasiStaticModel;
 pub use reduced::{ReducedModel, ReducedOptions};

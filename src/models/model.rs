@@ -105,6 +105,26 @@ impl ReactionJacobian {
     }
 }
 
+/// A boxed copy of a model, so that a [`Simulation`](crate::simulation::Simulation) can be
+/// cloned (the FMU keeps a freshly built one to restore states from without building anew).
+/// Implemented for every [`Model`] that is [`Clone`].
+pub trait CloneModel {
+    /// A copy of this model in a new box.
+    fn clone_model(&self) -> Box<dyn Model>;
+}
+
+impl<T: Model + Clone + 'static> CloneModel for T {
+    fn clone_model(&self) -> Box<dyn Model> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn Model> {
+    fn clone(&self) -> Self {
+        self.clone_model()
+    }
+}
+
 /// One dynamic model of the ladder.
 ///
 /// Motion coupling (the journal's motion prescribed, issue 6). A level with a dynamic
@@ -116,7 +136,7 @@ impl ReactionJacobian {
 /// ring. [`Model::reaction_jacobian`] is optional (the simulation falls back to central
 /// differences of the model's own outputs). Levels without ring states (L0, L1) get the
 /// quasi-static displacement-controlled reaction (`models/motion.rs`) through the simulation.
-pub trait Model: Send {
+pub trait Model: Send + CloneModel {
     /// Number of first-order states.
     fn dim(&self) -> usize;
 

@@ -41,6 +41,7 @@ pub struct QsReaction {
 }
 
 /// The displacement-controlled quasi-static reaction with its last solution cached.
+#[derive(Clone)]
 pub struct QsMotion {
     bearing: Bearing,
     k_p: [f64; 2],

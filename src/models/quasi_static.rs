@@ -265,6 +265,7 @@ fn floor(x: f64) -> f64 {
 }
 
 /// The quasi-static level.
+#[derive(Clone)]
 pub struct QuasiStaticModel {
     bearing: Bearing,
     table: L1Table,

@@ -91,6 +91,7 @@ impl Default for ReducedOptions {
 }
 
 /// The L3 model.
+#[derive(Clone)]
 pub struct ReducedModel {
     /// What it shares with the full model (see [`BallCore`]).
     core: BallCore,

@@ -82,6 +82,7 @@ pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
 }
 
 /// What the ball-level models share (see the module documentation).
+#[derive(Clone)]
 pub struct BallCore {
     pub(crate) lay: Layout,
     pub(crate) z: usize,

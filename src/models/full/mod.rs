@@ -56,6 +56,7 @@ impl Default for FullOptions {
 }
 
 /// The L4 model.
+#[derive(Clone)]
 pub struct FullModel {
     /// What it shares with the reduced model (see [`BallCore`]).
     core: BallCore,
