@@ -115,6 +115,25 @@ fn finding(what: String) -> Result<(), String> {
     Err(what)
 }
 
+thread_local! {
+    /// The default bearing's GUID, Real value references and Real output value references:
+    /// made once (the GUID hashes the whole model description).
+    static SESSION_TABLE: (CString, Vec<u32>, Vec<u32>) = {
+        let b = raceway::BearingFile::default_preset();
+        let table = ballbearing_fmu::variables::table(&b);
+        let real = |e: &&ballbearing_fmu::variables::Entry| e.var.ty == fmi2::VarType::Real;
+        let reals = table.iter().filter(real).map(|e| e.var.vr).collect();
+        let outputs = table
+            .iter()
+            .filter(real)
+            .filter(|e| e.var.causality == fmi2::Causality::Output)
+            .map(|e| e.var.vr)
+            .collect();
+        let guid = CString::new(ballbearing_fmu::guid(&b)).expect("no NUL");
+        (guid, reals, outputs)
+    };
+}
+
 /// One instance of the BallBearing with the call state a compliant master tracks.
 struct Session {
     log: LogCapture,
@@ -129,22 +148,8 @@ struct Session {
 
 impl Session {
     fn new() -> Result<Self, String> {
-        let b = raceway::BearingFile::default_preset();
-        let table = ballbearing_fmu::variables::table(&b);
-        let reals: Vec<u32> = table
-            .iter()
-            .filter(|e| e.var.ty == fmi2::VarType::Real)
-            .map(|e| e.var.vr)
-            .collect();
-        let outputs: Vec<u32> = table
-            .iter()
-            .filter(|e| {
-                e.var.ty == fmi2::VarType::Real && e.var.causality == fmi2::Causality::Output
-            })
-            .map(|e| e.var.vr)
-            .collect();
+        let (guid, reals, outputs) = SESSION_TABLE.with(Clone::clone);
         let log = LogCapture::new();
-        let guid = CString::new(ballbearing_fmu::guid(&b)).expect("no NUL");
         // SAFETY: the strings and callbacks outlive the call.
         let c = unsafe {
             sh::instantiate::<M>(
