@@ -553,6 +553,17 @@ impl FmuModel for BallBearing {
     /// the last successful communication point, never a failed attempt.
     fn do_step(&mut self, t: f64, t_end: f64, log: &Logger) -> StepResult {
         let start = self.start_time;
+        // The simulation is where the communication point says (it advanced to exactly this
+        // time at the last step): not so only after a state whose parts disagree was set.
+        if let Some(live) = &self.live {
+            let (here, want) = (live.sim.time(), t - start);
+            if !((here - want).abs() <= 1e-9 * want.abs().max(1.0)) {
+                return StepResult::Error(format!(
+                    "the FMU state is inconsistent: the simulation is at {here} s from the \
+                     start time {start} s, the communication point {t} s is {want} s from it"
+                ));
+            }
+        }
         let law = match &self.live {
             Some(live) if self.cfg.tlm => {
                 match self.line_law(t - start, t_end - start, live.line_offset) {

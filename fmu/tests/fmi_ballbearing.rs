@@ -1632,3 +1632,74 @@ fn a_real_parameter_set_acts() {
     assert!(light < 0.0 && heavy < 0.0, "{light} {heavy}");
     assert!(heavy.abs() < 0.5 * light.abs(), "{light} {heavy}");
 }
+
+/// A state whose parts disagree (its model part's start time edited, the checksum made right
+/// again: a fuzz finding, where the next 10 µs step ran to the step budget, ~6 s) makes the
+/// next fmi2DoStep fail at once with the reason; the state as saved steps on.
+#[test]
+fn a_state_whose_model_time_disagrees_with_the_shell_is_refused_at_the_step() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    let start = 0.375;
+    // SAFETY: c is a live instance; the state handles and byte buffers are valid for the calls.
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, start, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::exit_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, start, 1e-4, 1),
+            Fmi2Status::Ok
+        );
+        let mut st: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(sh::get_fmu_state::<BallBearing>(c, &mut st), Fmi2Status::Ok);
+        let mut n = 0usize;
+        sh::serialized_fmu_state_size::<BallBearing>(c, st, &mut n);
+        let mut blob: Vec<Fmi2Byte> = vec![0; n];
+        sh::serialize_fmu_state::<BallBearing>(c, st, blob.as_mut_ptr(), n);
+        sh::free_fmu_state::<BallBearing>(c, &mut st);
+        let bytes: Vec<u8> = blob.iter().map(|&x| x as u8).collect();
+        let restore_and_step = |bytes: &[u8]| {
+            let mut s: Fmi2FmuState = std::ptr::null_mut();
+            let p = bytes.as_ptr().cast::<Fmi2Byte>();
+            assert_eq!(
+                sh::deserialize_fmu_state::<BallBearing>(c, p, bytes.len(), &mut s),
+                Fmi2Status::Ok,
+                "{}",
+                h.last()
+            );
+            assert_eq!(sh::set_fmu_state::<BallBearing>(c, s), Fmi2Status::Ok);
+            sh::free_fmu_state::<BallBearing>(c, &mut s);
+            sh::do_step::<BallBearing>(c, start + 1e-4, 1e-4, 1)
+        };
+        assert_eq!(restore_and_step(&bytes), Fmi2Status::Ok, "{}", h.last());
+        // The model's start time is the last copy of it in the blob (the shell's comes first).
+        let key = start.to_le_bytes();
+        let at = bytes
+            .windows(8)
+            .rposition(|w| w == key)
+            .expect("the start time is in the state");
+        let mut edited = bytes.clone();
+        edited[at..at + 8].copy_from_slice(&(-1e6f64).to_le_bytes());
+        let body = edited.len() - 8;
+        let sum = fmi2::codec::fnv1a64(&edited[..body]);
+        edited[body..].copy_from_slice(&sum.to_le_bytes());
+        assert_eq!(restore_and_step(&edited), Fmi2Status::Error);
+        assert!(
+            h.last().contains("the FMU state is inconsistent"),
+            "{}",
+            h.last()
+        );
+        assert_eq!(restore_and_step(&bytes), Fmi2Status::Ok, "{}", h.last());
+        sh::free_instance::<BallBearing>(c);
+    }
+}
