@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 
 mod bench;
 mod envelope;
+mod fmu;
 mod frequencies;
 mod simulate;
 mod spectrum;
@@ -50,6 +51,9 @@ enum Command {
     /// bearing and level, the failures); the exit status is non-zero when any point hangs,
     /// crashes or returns garbage.
     Envelope(envelope::Args),
+    /// Write the BallBearing FMU for any bearing (preset or TOML file), without a Rust
+    /// toolchain: the binaries come from a template FMU made by fmu-build of this version
+    Fmu(fmu::Args),
 }
 
 fn main() {
@@ -67,6 +71,7 @@ fn run() -> i32 {
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run_cli(a),
         Command::Envelope(a) => envelope::run(a),
+        Command::Fmu(a) => fmu::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -28,6 +28,20 @@ def fmu_path() -> Path:
 
 
 @pytest.fixture(scope="session")
+def raceway():
+    """The raceway CLI: $RACEWAY_BIN, else the release binary, built here."""
+    if os.environ.get("RACEWAY_BIN"):
+        return Path(os.environ["RACEWAY_BIN"])
+    subprocess.run(
+        ["cargo", "build", "--quiet", "--release", "--bin", "raceway"], cwd=REPO, check=True
+    )
+    target = Path(os.environ.get("CARGO_TARGET_DIR") or REPO / "target")
+    if not target.is_absolute():
+        target = REPO / target
+    return target / "release" / "raceway"
+
+
+@pytest.fixture(scope="session")
 def fmu():
     p = fmu_path()
     if not p.is_file():

@@ -3,13 +3,12 @@
 A 6-run study (3 spall widths x 2 noise levels, 0.05 s simulated each) is run once by
 `raceway sweep --jobs 2` and once through dask; the tables, sorted by run index and without the
 wall_s and check columns, must be equal; resuming after dropped rows or a last line cut short by
-a kill gives the same table, and another study into the same folder is refused. The raceway binary comes from $RACEWAY_BIN or is built with
-`cargo build --release --bin raceway` (into $CARGO_TARGET_DIR or target/).
+a kill gives the same table, and another study into the same folder is refused. The raceway binary is conftest.py's ($RACEWAY_BIN, or built with
+`cargo build --release --bin raceway` into $CARGO_TARGET_DIR or target/).
 """
 
 import csv
 import importlib.util
-import os
 import subprocess
 from pathlib import Path
 
@@ -38,16 +37,6 @@ def load_example():
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
-
-
-@pytest.fixture(scope="module")
-def raceway():
-    if os.environ.get("RACEWAY_BIN"):
-        return Path(os.environ["RACEWAY_BIN"])
-    subprocess.run(
-        ["cargo", "build", "--quiet", "--release", "--bin", "raceway"], cwd=REPO, check=True
-    )
-    return load_example().default_raceway()
 
 
 def canonical(path):
