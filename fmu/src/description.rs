@@ -4,6 +4,7 @@
 use crate::variables;
 use fmi2::xml;
 use raceway::BearingFile;
+use std::sync::Mutex;
 
 /// `modelIdentifier` of the FMU.
 pub const MODEL_IDENTIFIER: &str = "BallBearing";
@@ -55,7 +56,48 @@ pub fn model_description_xml(bearing: &BearingFile) -> String {
     description_and_guid(bearing).0
 }
 
-/// The GUID of the FMU built for `bearing` (a hash of its model description).
+/// The GUID of the FMU built for `bearing` (a hash of its model description). The GUIDs of the
+/// last few bearings are kept for the process: fmi2Instantiate checks the importer's GUID
+/// against it every time, and making it writes and hashes the whole description.
 pub fn guid(bearing: &BearingFile) -> String {
-    description_and_guid(bearing).1
+    static KNOWN: Mutex<Vec<(BearingFile, String)>> = Mutex::new(Vec::new());
+    let mut known = KNOWN
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some((_, g)) = known.iter().find(|(b, _)| b == bearing) {
+        return g.clone();
+    }
+    let g = description_and_guid(bearing).1;
+    if known.len() == 8 {
+        known.remove(0);
+    }
+    known.push((bearing.clone(), g.clone()));
+    g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kept GUIDs are each bearing's own, asked in any order and past the number kept.
+    #[test]
+    fn kept_guids_are_each_bearings_own() {
+        let presets: Vec<BearingFile> = raceway::PRESETS
+            .iter()
+            .map(|(n, _)| BearingFile::load(n).expect("preset"))
+            .collect();
+        let own: Vec<String> = presets.iter().map(|b| description_and_guid(b).1).collect();
+        assert!(own.windows(2).all(|w| w[0] != w[1]));
+        for round in 0..3 {
+            for (b, g) in presets.iter().zip(&own).rev() {
+                assert_eq!(guid(b), *g, "round {round}");
+            }
+        }
+        let mut other = presets[0].clone();
+        for k in 0..10 {
+            other.name = format!("variant {k}");
+            assert_eq!(guid(&other), description_and_guid(&other).1);
+        }
+        assert_eq!(guid(&presets[1]), own[1]);
+    }
 }
