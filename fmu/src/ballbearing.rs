@@ -557,7 +557,8 @@ impl FmuModel for BallBearing {
         // time at the last step): not so only after a state whose parts disagree was set.
         if let Some(live) = &self.live {
             let (here, want) = (live.sim.time(), t - start);
-            if !((here - want).abs() <= 1e-9 * want.abs().max(1.0)) {
+            let off = (here - want).abs();
+            if off.is_nan() || off > 1e-9 * want.abs().max(1.0) {
                 return StepResult::Error(format!(
                     "the FMU state is inconsistent: the simulation is at {here} s from the \
                      start time {start} s, the communication point {t} s is {want} s from it"
