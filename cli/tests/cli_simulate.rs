@@ -219,3 +219,38 @@ fn chunked_advances_raise_the_spectrum_and_one_advance_has_no_chunk_lines() {
     );
     assert!(one_lines < 1.2 * one_between, "no comb in the one advance");
 }
+
+/// A run that fails (here its step budget runs out) says up to which time its outputs are in
+/// the file, and the file holds exactly the whole rows up to that time.
+#[test]
+fn a_failed_run_keeps_whole_rows_up_to_the_time_it_names() {
+    let text = std::fs::read_to_string(scene()).unwrap();
+    let starved = tmp("starved.toml");
+    let text = text.replace("rtol = 1e-6", "rtol = 1e-6\nmax_steps = 5");
+    std::fs::write(&starved, text).unwrap();
+    let out = tmp("starved.csv");
+    let o = raceway(&[
+        "simulate",
+        starved.to_str().unwrap(),
+        "--duration",
+        "0.1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("step budget exhausted"), "{err}");
+    let named: f64 = err
+        .split("the outputs up to t = ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no time named: {err}"));
+    let (head, rows) = table(&out);
+    assert!(rows.len() > 100, "{} rows", rows.len());
+    assert!(rows.iter().all(|r| r.len() == head.len()));
+    let last: f64 = rows.last().unwrap()[0].parse().unwrap();
+    assert!((last - named).abs() < 1e-6, "{last} {named}");
+    assert!(std::fs::read_to_string(&out).unwrap().ends_with('\n'));
+}
