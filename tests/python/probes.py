@@ -131,6 +131,8 @@ def probe_enumeration(ctx):
     them back through fmi2GetInteger; a value that is no item is refused with a message; the
     Real functions refuse them."""
     s = ctx.new(logging=False)
+    s.setupExperiment(tolerance=1e-6, startTime=0.0)
+    s.enterInitializationMode()  # fixed parameters are set and read there too
     out = {}
     for v in ctx.md.modelVariables:
         if v.type != "Enumeration":
