@@ -98,7 +98,7 @@ class Fmu:
 
     def set_any(self, name, value):
         v = self.vars[name]
-        if v.type == "Integer":
+        if v.type in ("Integer", "Enumeration"):  # an Enumeration is set as an Integer
             self.slave.setInteger([v.valueReference], [int(value)])
         elif v.type == "Boolean":
             self.slave.setBoolean([v.valueReference], [bool(value)])

@@ -1,37 +1,85 @@
 """Run the default scene through the BallBearing FMU with fmpy and show the spall's signature.
 
 Usage: python examples/default_scene.py [--fmu target/fmu/BallBearing.fmu] [--stop 0.5]
-                                         [--out out/default_scene.png]
+                                         [--ball 1] [--out out/default_scene.png]
 
 The default scene is the paper's Table-1 bearing at 9900 rpm, Fa = 4000 N, Fr = 1000 N, with an
 outer-race spall 1.0 x 0.2 mm at the load-zone centre. The script prints the kinematic fault
-frequencies (pure rolling at the free contact angle), the BPFO implied by the cage speed the
-model uses, and the envelope-spectrum peak it finds near BPFO; it saves a figure with the time
-signal, its spectrum and its envelope spectrum.
+frequencies (pure rolling at the free contact angle of the FMU's own bearing,
+resources/bearing.toml), the BPFO implied by the cage speed the model uses, and the
+envelope-spectrum peak it finds near BPFO. It saves a figure with
+- one ball's outer- and inner-race contact forces above the pedestal acceleration, zoomed on a
+  spall passage by that ball (the force drop and the impact, and the burst they excite);
+- the acceleration spectrum and the envelope spectrum, with the shaft rate f_s, FTF, BPFO, BPFI
+  and 2xBSF and their harmonics marked (the frequencies the model implies, as `raceway
+  simulate` reports them: FTF from the model's cage speed, 2xBSF from pure rolling).
 """
 
 import argparse
 import math
 import pathlib
 import sys
+import zipfile
 
 import numpy as np
 from fmpy import read_model_description, simulate_fmu
 
-# Table-1 bearing (the FMU's default bearing): z, D, dm, free contact angle.
-Z, D, DM, ALPHA0 = 14, 12.7e-3, 70.0e-3, math.radians(30.0)
+
+def bearing_table(text):
+    """The [bearing] table of a bearing file (tomllib from Python 3.11; before, its plain
+    `key = number` lines)."""
+    try:
+        import tomllib
+    except ImportError:
+        section, table = None, {}
+        for line in text.splitlines():
+            line = line.split("#")[0].strip()
+            if line.startswith("["):
+                section = line.strip("[] ")
+            elif section == "bearing" and "=" in line:
+                key, value = line.split("=", 1)
+                table[key.strip()] = float(value)
+        return table
+    return tomllib.loads(text)["bearing"]
 
 
-def kinematic_frequencies(shaft_hz, alpha=ALPHA0):
-    gamma = D * math.cos(alpha) / DM
+def bearing_of(fmu):
+    """The FMU's bearing (resources/bearing.toml): ball count z, ball diameter D [m], pitch
+    diameter dm [m], free contact angle alpha0 [rad]."""
+    with zipfile.ZipFile(fmu) as z:
+        b = bearing_table(z.read("resources/bearing.toml").decode())
+    return {"z": int(b["z"]), "D": b["ball_diameter"], "dm": b["pitch_diameter"],
+            "alpha0": math.radians(b["contact_angle_free_deg"])}
+
+
+def kinematic_frequencies(shaft_hz, bearing, alpha=None):
+    """Pure-rolling fault frequencies at the contact angle `alpha` (default: the free contact
+    angle), the formulas of `raceway frequencies` (src/fault_frequencies.rs)."""
+    z, d, dm = bearing["z"], bearing["D"], bearing["dm"]
+    gamma = d * math.cos(bearing["alpha0"] if alpha is None else alpha) / dm
     ftf = shaft_hz / 2 * (1 - gamma)
-    return {
-        "FTF": ftf,
-        "BPFO": Z * ftf,
-        "BPFI": Z * (shaft_hz - ftf),
-        "BSF": DM / (2 * D) * shaft_hz * (1 - gamma**2),
-        "2*BSF": DM / D * shaft_hz * (1 - gamma**2),
-    }
+    bsf = dm / (2 * d) * shaft_hz * (1 - gamma**2)
+    return {"FTF": ftf, "BPFO": z * ftf, "BPFI": z * (shaft_hz - ftf), "BSF": bsf, "2*BSF": 2 * bsf}
+
+
+def model_frequencies(shaft_hz, cage_hz, bearing):
+    """The frequencies the model implies, as `raceway simulate` reports them: FTF is the model's
+    cage speed, BPFO = z FTF, BPFI = z (f_s - FTF); 2xBSF from pure rolling."""
+    z = bearing["z"]
+    return {"f_s": shaft_hz, "FTF": cage_hz, "BPFO": z * cage_hz, "BPFI": z * (shaft_hz - cage_hz),
+            "2×BSF": kinematic_frequencies(shaft_hz, bearing)["2*BSF"]}
+
+
+# Marker style per family: colour, line style.
+FAMILIES = {
+    "f_s": ("0.35", (0, (1, 1))),
+    "FTF": ("tab:purple", "-."),
+    "BPFO": ("tab:red", "--"),
+    "BPFI": ("tab:blue", "--"),
+    "2×BSF": ("tab:green", ":"),
+}
+# The family of each spalled ring (the FMU's defect.ring: 1 outer, 2 inner): labelled first.
+FAULT_FAMILY = {1: "BPFO", 2: "BPFI"}
 
 
 def envelope_spectrum(x, fs, band=(2000.0, 12000.0)):
@@ -60,77 +108,192 @@ def amplitude_spectrum(x, fs):
     return np.fft.rfftfreq(len(x), 1 / fs), amp
 
 
+def peak_near(f, amp, f0, rel=0.1):
+    """The largest peak within f0 (1 ± rel), by parabolic interpolation of the log amplitude."""
+    near = (f > (1 - rel) * f0) & (f < (1 + rel) * f0)
+    i = np.argmax(np.where(near, amp, 0))
+    d = 0.0
+    if 0 < i < len(amp) - 1:
+        l, c, r = np.log(amp[i - 1 : i + 2] + 1e-300)
+        d = 0.5 * (l - r) / (l - 2 * c + r)
+    return f[i] + d * (f[1] - f[0])
+
+
+def simulate(fmu, stop, step, skip, ball=1):
+    """The default scene: time, pedestal.a.z, cage speed and ball `ball`'s contact forces
+    after the start-up transient `skip`."""
+    q_out, q_in = f"contact.outer.Q[{ball}]", f"contact.inner.Q[{ball}]"
+    res = simulate_fmu(fmu, stop_time=stop, output_interval=step, step_size=step,
+                       output=["pedestal.a.z", "cage.speed", q_out, q_in])
+    if not np.all(np.isfinite(res["pedestal.a.z"])):
+        sys.exit("the FMU returned non-finite accelerations")
+    keep = res["time"] >= skip
+    return {"t": res["time"][keep], "a": res["pedestal.a.z"][keep],
+            "cage": res["cage.speed"][keep], "q_out": res[q_out][keep], "q_in": res[q_in][keep],
+            "ball": ball}
+
+
+def spall_passage(run, period):
+    """A time window [t0, t1] around the ball's deepest contact-force drop (its passage over
+    the spall): half a ball-pass `period` before it, one and a half after (the drop, the
+    impact at the spall's exit edge, the ringing, the next ball's passage). Also returns the
+    drop's time."""
+    t = run["t"]
+    i = int(np.argmin(run["q_out"] + run["q_in"]))
+    t0 = max(t[0], t[i] - 0.5 * period)
+    return t0, min(t[-1], t0 + 2.0 * period), t[i]
+
+
+def harmonic_label(name, k):
+    """"BPFO", "2×BPFO", ...; the harmonics of 2×BSF are 4×BSF, 6×BSF."""
+    if k == 1:
+        return name
+    if "×" in name:
+        m, base = name.split("×", 1)
+        return f"{k * int(m)}×{base}"
+    return f"{k}×{name}"
+
+
+def mark_frequencies(ax, freqs, xmax, harmonics=3, first="BPFO"):
+    """Vertical lines at the harmonics 1..`harmonics` of each family inside (0, xmax], one
+    colour and line style per family (one legend entry each), and rotated text labels ("BPFO",
+    "2×BPFO", ...) where they do not crowd one already placed (fundamentals first, the spall's
+    family `first` before the others). Returns the markers: dicts family, k, f, line, label
+    (the text placed, or None)."""
+    from matplotlib.transforms import blended_transform_factory
+
+    markers = []
+    for name, f in freqs.items():
+        colour, style = FAMILIES[name]
+        for k in range(1, harmonics + 1):
+            if k * f > xmax:
+                break
+            line = ax.axvline(k * f, color=colour, ls=style, lw=1.1 if k == 1 else 0.8,
+                              alpha=0.9 if k == 1 else 0.6,
+                              label=f"{name} = {f:.1f} Hz (and harmonics)" if k == 1 else None)
+            markers.append({"family": name, "k": k, "f": k * f, "line": line, "label": None})
+    # Labels: fundamentals, then 2nd, 3rd harmonics; the spall's family first in each round.
+    order = sorted(markers, key=lambda m: (m["k"], m["family"] != first,
+                                           list(freqs).index(m["family"])))
+    gap = 0.012 * xmax  # about one rotated label's width
+    placed = []
+    tr = blended_transform_factory(ax.transData, ax.transAxes)
+    for m in order:
+        if any(abs(m["f"] - p) < gap for p in placed):
+            continue
+        text = harmonic_label(m["family"], m["k"])
+        ax.text(m["f"], 0.98, text, transform=tr, rotation=90, ha="center", va="top",
+                fontsize=7, color=FAMILIES[m["family"]][0],
+                bbox={"fc": "white", "ec": "none", "alpha": 0.7, "pad": 0.5})
+        m["label"] = text
+        placed.append(m["f"])
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+    return markers
+
+
+def make_figure(run, freqs, fs, band=(2000.0, 12000.0), defect_ring=1, peak=None):
+    """The figure: ball forces and pedestal acceleration through a spall passage (shared time
+    axis), the acceleration spectrum and the envelope spectrum with the fault frequencies
+    marked. Returns (figure, {"spectrum": markers, "envelope": markers})."""
+    import matplotlib.pyplot as plt
+
+    t, a, ball = run["t"], run["a"], run["ball"]
+    first = FAULT_FAMILY.get(defect_ring, "BPFO")
+    fig = plt.figure(figsize=(13, 13))
+    gs = fig.add_gridspec(4, 1, height_ratios=[1, 1, 1.3, 1.3], hspace=0.45,
+                          left=0.07, right=0.76, top=0.96, bottom=0.05)
+    ax_q = fig.add_subplot(gs[0])
+    ax_a = fig.add_subplot(gs[1], sharex=ax_q)
+    ax_sp = fig.add_subplot(gs[2])
+    ax_env = fig.add_subplot(gs[3])
+
+    # Ball passes over the spall: one per 1/BPFO (outer race) or 1/BPFI (inner race).
+    period = 1.0 / freqs[first]
+    t0, t1, t_drop = spall_passage(run, period)
+    w = (t >= t0) & (t <= t1)
+    ms = (t[w] - t_drop) * 1e3
+    q_out, q_in = run["q_out"][w], run["q_in"][w]
+    ax_q.plot(ms, q_out, color="tab:red", lw=1.2, label=f"outer race, contact.outer.Q[{ball}]")
+    ax_q.plot(ms, q_in, color="tab:blue", lw=1.0, ls="--", label=f"inner race, contact.inner.Q[{ball}]")
+    same = np.allclose(q_out, q_in, rtol=1e-9, atol=1e-9)
+    ax_q.set(ylabel="normal contact force [N]",
+             title=f"Ball {ball}'s contact forces through its spall passage at t = {t_drop * 1e3:.2f} ms"
+                   + (" (inner = outer: this level's balls carry no inertia)" if same else ""))
+    ax_q.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+    ax_q.tick_params(labelbottom=False)
+    ax_a.plot(ms, a[w], color="k", lw=0.8)
+    ax_a.set(xlabel=f"time from ball {ball}'s deepest force drop [ms]",
+             ylabel="pedestal.a.z [m/s²]", title="Pedestal acceleration")
+    passes = np.arange(-1, 3) * period * 1e3
+    passes = passes[(passes >= ms[0]) & (passes <= ms[-1])]
+    for ax in (ax_q, ax_a):
+        for k, p in enumerate(passes):
+            ax.axvline(p, color="0.5", lw=0.8, ls="--",
+                       label=f"ball passes over the spall (every 1/{first})" if k == 0 else None)
+        ax.grid(alpha=0.3)
+    ax_a.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+
+    # Both spectra up to a little beyond the 3rd harmonic of the highest fundamental.
+    xmax = 500.0 * math.ceil(3.3 * max(freqs.values()) / 500.0)
+    f_sp, sp = amplitude_spectrum(a, fs)
+    ax_sp.semilogy(f_sp, sp, color="k", lw=0.6)
+    sel = (f_sp > 0) & (f_sp <= xmax)
+    ax_sp.set(xlim=(0, xmax), ylim=(sp[sel].min() * 0.5, sp[sel].max() * 30),
+              xlabel="frequency [Hz]", ylabel="amplitude [m/s²]",
+              title="Spectrum of pedestal.a.z (Hann window)")
+    f_env, env = envelope_spectrum(a, fs, band)
+    ax_env.plot(f_env, env, color="k", lw=0.8)
+    sel = (f_env > 0) & (f_env <= xmax)
+    ax_env.set(xlim=(0, xmax), ylim=(0, env[sel].max() * 1.35), xlabel="frequency [Hz]",
+               ylabel="amplitude [m/s²]",
+               title=f"Envelope spectrum ({band[0] / 1e3:g}–{band[1] / 1e3:g} kHz band)"
+                     + (f": peak {peak:.1f} Hz" if peak is not None else ""))
+    markers = {"spectrum": mark_frequencies(ax_sp, freqs, xmax, first=first),
+               "envelope": mark_frequencies(ax_env, freqs, xmax, first=first)}
+    return fig, markers
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--fmu", default="target/fmu/BallBearing.fmu")
     ap.add_argument("--stop", type=float, default=0.5, help="simulated time [s]")
     ap.add_argument("--step", type=float, default=1.0 / 51200, help="communication step [s]")
     ap.add_argument("--skip", type=float, default=0.02, help="start-up transient to discard [s]")
+    ap.add_argument("--ball", type=int, default=1, help="the ball whose contact forces are shown")
     ap.add_argument("--out", default="out/default_scene.png")
     args = ap.parse_args()
 
     md = read_model_description(args.fmu)
     start = {v.name: v.start for v in md.modelVariables}
+    bearing = bearing_of(args.fmu)
     rpm = float(start["shaft.speed"]) * 60 / (2 * math.pi)
     shaft_hz = rpm / 60
-    kin = kinematic_frequencies(shaft_hz)
+    kin = kinematic_frequencies(shaft_hz, bearing)
     print(f"BallBearing FMU: {md.description}")
-    print(f"shaft speed {rpm:.0f} rpm ({shaft_hz:.2f} Hz); kinematic frequencies at {math.degrees(ALPHA0):.0f} deg:")
+    print(f"shaft speed {rpm:.0f} rpm ({shaft_hz:.2f} Hz); kinematic frequencies at "
+          f"{math.degrees(bearing['alpha0']):.0f} deg:")
     for k, v in kin.items():
         print(f"  {k:6s} {v:9.2f} Hz")
 
-    res = simulate_fmu(
-        args.fmu,
-        stop_time=args.stop,
-        output_interval=args.step,
-        step_size=args.step,
-        output=["pedestal.a.z", "cage.speed", "contact.outer.Q[1]"],
-    )
-    t = res["time"]
-    a = res["pedestal.a.z"]
-    if not np.all(np.isfinite(a)):
-        sys.exit("the FMU returned non-finite accelerations")
-    keep = t >= args.skip
-    t, a = t[keep], a[keep]
+    run = simulate(args.fmu, args.stop, args.step, args.skip, args.ball)
     fs = 1.0 / args.step
-    cage_hz = float(np.mean(res["cage.speed"][keep])) / (2 * math.pi)
-    bpfo_model = Z * cage_hz
-    print(f"cage speed used by the model {cage_hz:.3f} Hz -> BPFO {bpfo_model:.2f} Hz")
+    cage_hz = float(np.mean(run["cage"])) / (2 * math.pi)
+    freqs = model_frequencies(shaft_hz, cage_hz, bearing)
+    print(f"cage speed used by the model {cage_hz:.3f} Hz -> BPFO {freqs['BPFO']:.2f} Hz")
 
-    f_env, env = envelope_spectrum(a, fs)
-    near = (f_env > 0.9 * kin["BPFO"]) & (f_env < 1.1 * kin["BPFO"])
-    i = np.argmax(np.where(near, env, 0))
-    # Parabolic interpolation of the log-amplitude peak for sub-bin precision.
-    if 0 < i < len(env) - 1:
-        l, c, r = np.log(env[i - 1 : i + 2] + 1e-300)
-        d = 0.5 * (l - r) / (l - 2 * c + r)
-    else:
-        d = 0.0
-    peak = f_env[i] + d * (f_env[1] - f_env[0])
+    f_env, env = envelope_spectrum(run["a"], fs)
+    peak = peak_near(f_env, env, kin["BPFO"])
     print(f"envelope-spectrum peak near BPFO: {peak:.2f} Hz "
-          f"({100 * (peak / bpfo_model - 1):+.2f} % from the model's BPFO, "
+          f"({100 * (peak / freqs['BPFO'] - 1):+.2f} % from the model's BPFO, "
           f"{100 * (peak / kin['BPFO'] - 1):+.2f} % from the kinematic BPFO)")
 
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    f_sp, sp = amplitude_spectrum(a, fs)
-    fig, ax = plt.subplots(3, 1, figsize=(10, 10))
-    w = t < args.skip + 0.01
-    ax[0].plot(t[w] * 1e3, a[w], lw=0.7)
-    ax[0].set(xlabel="time [ms]", ylabel="pedestal.a.z [m/s²]", title="Pedestal acceleration (10 ms)")
-    ax[1].plot(f_sp, sp, lw=0.7)
-    ax[1].set(xlim=(0, 10000), xlabel="frequency [Hz]", ylabel="amplitude [m/s²]", title="Spectrum")
-    ax[2].plot(f_env, env, lw=0.8)
-    for k in range(1, 6):
-        ax[2].axvline(k * kin["BPFO"], color="r", ls=":", lw=0.8)
-        ax[2].axvline(k * bpfo_model, color="g", ls="--", lw=0.6)
-    ax[2].set(xlim=(0, 6000), xlabel="frequency [Hz]", ylabel="amplitude [m/s²]",
-              title=f"Envelope spectrum (2–12 kHz band): peak {peak:.1f} Hz; "
-                    f"model BPFO {bpfo_model:.1f} Hz (green), kinematic {kin['BPFO']:.1f} Hz (red)")
-    fig.tight_layout()
+    fig, _ = make_figure(run, freqs, fs, defect_ring=int(start["defect.ring"]), peak=peak)
+    _, _, t_drop = spall_passage(run, 1.0 / freqs["BPFO"])
+    print(f"ball {args.ball}'s deepest contact-force drop (a spall passage) at t = "
+          f"{t_drop * 1e3:.2f} ms: its forces and the acceleration around it in the figure")
     out = pathlib.Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=110)

@@ -246,13 +246,18 @@ impl<M: FmuModel> Instance<M> {
             return Err(self.error(fname, format!("unknown value reference {vr}")));
         };
         let v = &self.model.variables()[i];
-        if v.ty != ty {
+        if v.ty.access_type() != ty {
+            let what = match v.ty {
+                VarType::Enumeration => {
+                    "an Enumeration variable (read and written as an Integer)".to_string()
+                }
+                t => format!("a {} variable", t.name()),
+            };
             return Err(self.error(
                 fname,
                 format!(
-                    "value reference {vr} is '{}', a {} variable, not a {}",
+                    "value reference {vr} is '{}', {what}, not a {}",
                     v.name,
-                    v.ty.name(),
                     ty.name()
                 ),
             ));

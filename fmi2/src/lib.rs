@@ -62,4 +62,6 @@ pub use logging::{
     LOG_STATUS_FATAL, LOG_STATUS_WARNING,
 };
 pub use model::{EventUpdate, FmuModel, InstantiateArgs, Interface, StepEnd, StepResult};
-pub use variable::{Causality, Initial, Start, VarType, Variability, Variable};
+pub use variable::{
+    Causality, EnumerationItem, EnumerationType, Initial, Start, VarType, Variability, Variable,
+};

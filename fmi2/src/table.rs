@@ -21,6 +21,9 @@ pub struct Row<A> {
     pub initial: Option<Initial>,
     /// Unit (Real only).
     pub unit: Option<&'static str>,
+    /// The `SimpleType` an Enumeration names (its [`crate::EnumerationType`]'s name); `None`
+    /// for the other types (a Real's type follows from its unit).
+    pub declared_type: Option<&'static str>,
     /// Inclusive lower bound, enforced by the shell on every set.
     pub min: Option<f64>,
     /// Inclusive upper bound, enforced by the shell on every set.
@@ -44,7 +47,7 @@ impl<A> Row<A> {
             initial: self.initial,
             description: self.description.to_string(),
             unit: self.unit.map(str::to_string),
-            declared_type: None,
+            declared_type: self.declared_type.map(str::to_string),
             display_unit: None,
             start,
             min: self.min,

@@ -12,6 +12,12 @@ pub enum VarType {
     Boolean,
     /// `String`.
     String,
+    /// `Enumeration`: an Integer whose values are the items of an [`EnumerationType`], which
+    /// the variable names in [`Variable::declared_type`]. It is read and written through
+    /// `fmi2GetInteger` and `fmi2SetInteger` (Integer and Enumeration share the Integer value
+    /// references), its start value is a [`Start::Integer`], and the shell enforces its
+    /// `min`/`max` as for an Integer.
+    Enumeration,
 }
 
 impl VarType {
@@ -22,7 +28,54 @@ impl VarType {
             VarType::Integer => "Integer",
             VarType::Boolean => "Boolean",
             VarType::String => "String",
+            VarType::Enumeration => "Enumeration",
         }
+    }
+
+    /// The type of the `fmi2Get*`/`fmi2Set*` functions that access a variable of this type:
+    /// [`VarType::Integer`] for an Enumeration, the type itself otherwise.
+    pub fn access_type(self) -> VarType {
+        match self {
+            VarType::Enumeration => VarType::Integer,
+            t => t,
+        }
+    }
+}
+
+/// One item of an [`EnumerationType`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EnumerationItem {
+    /// The item's name (what an importer shows instead of the value).
+    pub name: String,
+    /// The item's value, as `fmi2GetInteger`/`fmi2SetInteger` pass it.
+    pub value: i32,
+    /// What the item means.
+    pub description: String,
+}
+
+/// An FMI 2.0 enumeration type (`<SimpleType name><Enumeration><Item …/></Enumeration>`), named
+/// by the [`Variable::declared_type`] of its variables of type [`VarType::Enumeration`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EnumerationType {
+    /// The `SimpleType` name.
+    pub name: String,
+    /// The `SimpleType` description (empty: omitted).
+    pub description: String,
+    /// The items, in the order the XML lists them (FMI 2.0: distinct names and values).
+    pub items: Vec<EnumerationItem>,
+}
+
+impl EnumerationType {
+    /// The smallest and largest item value; `None` without items.
+    pub fn range(&self) -> Option<(i32, i32)> {
+        let lo = self.items.iter().map(|i| i.value).min()?;
+        let hi = self.items.iter().map(|i| i.value).max()?;
+        Some((lo, hi))
+    }
+
+    /// The item of value `value`, if any.
+    pub fn item(&self, value: i32) -> Option<&EnumerationItem> {
+        self.items.iter().find(|i| i.value == value)
     }
 }
 
@@ -114,7 +167,7 @@ pub enum Start {
     None,
     /// A Real start value.
     Real(f64),
-    /// An Integer start value.
+    /// An Integer (or Enumeration) start value.
     Integer(i32),
     /// A Boolean start value.
     Boolean(bool),
@@ -141,13 +194,15 @@ pub struct Variable {
     pub description: String,
     /// Real only: unit name (must be defined in the model's unit definitions).
     pub unit: Option<String>,
-    /// Real only: the `SimpleType` name, if any.
+    /// The `SimpleType` name, if any: for a Real, a type the XML writer derives from the unit
+    /// (`quantity` = the name); for an Enumeration (required), an [`EnumerationType`] of the
+    /// model description ([`crate::xml::ModelInfo::enumerations`]).
     pub declared_type: Option<String>,
     /// Display unit (Real only).
     pub display_unit: Option<String>,
     /// Start value.
     pub start: Start,
-    /// Inclusive bounds (Real and Integer); the shell enforces them on every set.
+    /// Inclusive bounds (Real, Integer and Enumeration); the shell enforces them on every set.
     pub min: Option<f64>,
     /// Inclusive upper bound (see `min`).
     pub max: Option<f64>,

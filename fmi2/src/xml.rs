@@ -2,7 +2,7 @@
 //! provides it), driven by a variable table.
 
 use crate::sha256::guid_from;
-use crate::{Causality, Initial, Start, VarType, Variable, LOG_CATEGORIES};
+use crate::{Causality, EnumerationType, Initial, Start, VarType, Variable, LOG_CATEGORIES};
 use std::fmt::Write;
 
 /// Facts of the model description that are not in the variable table.
@@ -44,6 +44,10 @@ pub struct ModelInfo {
     /// inputs of the same communication point). The other outputs depend on every input (and,
     /// with Model Exchange, every state).
     pub independent_outputs: Vec<u32>,
+    /// The enumeration types (`TypeDefinitions`, after the Real types derived from the
+    /// units), in this order; every variable of type [`VarType::Enumeration`] names one of
+    /// them in its [`Variable::declared_type`].
+    pub enumerations: Vec<EnumerationType>,
 }
 
 /// Placeholder for the GUID while hashing.
@@ -223,7 +227,15 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
             }
         }
     }
-    if !types.is_empty() {
+    for v in vars.iter().filter(|v| v.ty == VarType::Enumeration) {
+        let t = v.declared_type.as_deref();
+        assert!(
+            t.is_some_and(|t| info.enumerations.iter().any(|e| e.name == t)),
+            "the Enumeration '{}' names an enumeration type of the model info (it names {t:?})",
+            v.name
+        );
+    }
+    if !types.is_empty() || !info.enumerations.is_empty() {
         let _ = writeln!(w, "  <TypeDefinitions>");
         for (name, unit, display) in &types {
             let d = display.map_or(String::new(), |d| format!(r#" displayUnit="{}""#, esc(d)));
@@ -236,6 +248,30 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
                 esc(name),
                 esc(unit)
             );
+        }
+        for e in &info.enumerations {
+            let d = if e.description.is_empty() {
+                String::new()
+            } else {
+                format!(r#" description="{}""#, esc(&e.description))
+            };
+            let _ = writeln!(w, r#"    <SimpleType name="{}"{d}>"#, esc(&e.name));
+            let _ = writeln!(w, "      <Enumeration>");
+            for item in &e.items {
+                let d = if item.description.is_empty() {
+                    String::new()
+                } else {
+                    format!(r#" description="{}""#, esc(&item.description))
+                };
+                let _ = writeln!(
+                    w,
+                    r#"        <Item name="{}" value="{}"{d}/>"#,
+                    esc(&item.name),
+                    item.value
+                );
+            }
+            let _ = writeln!(w, "      </Enumeration>");
+            let _ = writeln!(w, "    </SimpleType>");
         }
         let _ = writeln!(w, "  </TypeDefinitions>");
     }
@@ -300,7 +336,7 @@ fn write_xml(info: &ModelInfo, vars: &[Variable]) -> String {
             let _ = write!(attrs, r#" displayUnit="{}""#, esc(d));
         }
         let bound = |x: f64| match v.ty {
-            VarType::Integer => format!("{}", x as i64),
+            VarType::Integer | VarType::Enumeration => format!("{}", x as i64),
             _ => num(x),
         };
         if let Some(m) = v.min {
@@ -403,6 +439,86 @@ mod tests {
             esc(r#"a<b & "c" 'd'>"#),
             "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;"
         );
+    }
+
+    fn info(enumerations: Vec<EnumerationType>) -> ModelInfo {
+        ModelInfo {
+            model_name: "M".into(),
+            model_identifier: "M".into(),
+            description: String::new(),
+            author: String::new(),
+            version: "1".into(),
+            license: String::new(),
+            generation_tool: String::new(),
+            start_time: 0.0,
+            stop_time: 1.0,
+            tolerance: 1e-6,
+            step_size: 1e-3,
+            provides_directional_derivative: false,
+            model_exchange: None,
+            independent_outputs: Vec::new(),
+            enumerations,
+        }
+    }
+
+    fn mode_variable(declared_type: Option<&str>) -> Variable {
+        Variable {
+            vr: 7,
+            name: "mode".into(),
+            ty: VarType::Enumeration,
+            causality: Causality::Parameter,
+            variability: crate::Variability::Fixed,
+            initial: Some(Initial::Exact),
+            description: "Mode".into(),
+            unit: None,
+            declared_type: declared_type.map(str::to_string),
+            display_unit: None,
+            start: Start::Integer(1),
+            min: Some(0.0),
+            max: Some(1.0),
+            derivative_of: None,
+        }
+    }
+
+    #[test]
+    fn enumerations_are_type_definitions_and_variables_name_them() {
+        let mode = EnumerationType {
+            name: "Mode".into(),
+            description: String::new(),
+            items: vec![
+                crate::EnumerationItem {
+                    name: "off".into(),
+                    value: 0,
+                    description: "Nothing <runs>".into(),
+                },
+                crate::EnumerationItem {
+                    name: "on".into(),
+                    value: 1,
+                    description: String::new(),
+                },
+            ],
+        };
+        assert_eq!(mode.range(), Some((0, 1)));
+        assert_eq!(mode.item(1).map(|i| i.name.as_str()), Some("on"));
+        assert!(mode.item(2).is_none());
+        let (x, _) = model_description(&info(vec![mode]), &[mode_variable(Some("Mode"))]);
+        let types = x.find("<TypeDefinitions>").unwrap();
+        assert!(types < x.find("<LogCategories>").unwrap());
+        assert!(x.contains(
+            "    <SimpleType name=\"Mode\">\n      <Enumeration>\n        \
+             <Item name=\"off\" value=\"0\" description=\"Nothing &lt;runs&gt;\"/>\n        \
+             <Item name=\"on\" value=\"1\"/>\n      </Enumeration>\n    </SimpleType>\n"
+        ));
+        assert!(x.contains(r#"<Enumeration declaredType="Mode" min="0" max="1" start="1"/>"#));
+        // An Enumeration is accessed as an Integer.
+        assert_eq!(VarType::Enumeration.access_type(), VarType::Integer);
+        assert_eq!(VarType::Real.access_type(), VarType::Real);
+    }
+
+    #[test]
+    #[should_panic(expected = "names an enumeration type")]
+    fn an_enumeration_without_its_type_is_a_bug() {
+        model_description(&info(Vec::new()), &[mode_variable(Some("Mode"))]);
     }
 
     #[test]

@@ -40,6 +40,7 @@ pub fn model_info(bearing: &BearingFile) -> xml::ModelInfo {
         provides_directional_derivative: true,
         model_exchange: Some(raceway::model_exchange_capacity(bearing.bearing.z as usize).1),
         independent_outputs: Vec::new(),
+        enumerations: variables::enumerations(),
     }
 }
 

@@ -1,6 +1,6 @@
 //! `documentation/index.html` of the FMU, generated from the variable table.
 
-use crate::variables::{table, Access, Config};
+use crate::variables::{enumerations, table, Access, Config};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
 use raceway::models::{level, LEVELS};
@@ -157,7 +157,8 @@ pub fn documentation_html(
     }
     h.push_str("</table>\n<p>A level that is not available makes <code>fmi2ExitInitializationMode</code> return fmi2Error with the library's message.</p>\n");
 
-    h.push_str("<h2>Variables</h2>\n<p>Inputs are held constant over a communication step. Parameters are fixed: they can be set after fmi2Instantiate and in initialization mode only (fmi2Reset to change them later). Value references are stable.</p>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th><th>type</th><th>unit (display)</th><th>start</th><th>range</th><th>meaning</th></tr>\n");
+    let enums = enumerations();
+    h.push_str("<h2>Variables</h2>\n<p>Inputs are held constant over a communication step. Parameters are fixed: they can be set after fmi2Instantiate and in initialization mode only (fmi2Reset to change them later). Value references are stable. The mode switches are Enumerations: an importer shows their items by name; the values (listed in the range column) are read and written with fmi2GetInteger and fmi2SetInteger, and a value that is no item is refused.</p>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th><th>type</th><th>unit (display)</th><th>start</th><th>range</th><th>meaning</th></tr>\n");
     for e in &t {
         let v = &e.var;
         let unit = match (&v.unit, &v.display_unit) {
@@ -165,16 +166,29 @@ pub fn documentation_html(
             (Some(u), None) => u.clone(),
             _ => "-".into(),
         };
+        let items = v
+            .declared_type
+            .as_ref()
+            .and_then(|t| enums.iter().find(|e| &e.name == t));
         let start = match &v.start {
             Start::Real(x) => format!("{x}"),
-            Start::Integer(x) => format!("{x}"),
+            Start::Integer(x) => match items.and_then(|e| e.item(*x)) {
+                Some(item) => format!("{x} ({})", esc(&item.name)),
+                None => format!("{x}"),
+            },
             Start::Boolean(x) => format!("{x}"),
             Start::String(x) => esc(x),
             Start::None => "calculated".into(),
         };
-        let range = match (v.min, v.max) {
-            (None, None) => String::new(),
-            (lo, hi) => format!(
+        let range = match (items, v.min, v.max) {
+            (Some(e), _, _) => e
+                .items
+                .iter()
+                .map(|i| format!("{} {}", i.value, esc(&i.name)))
+                .collect::<Vec<_>>()
+                .join(", "),
+            (None, None, None) => String::new(),
+            (None, lo, hi) => format!(
                 "[{}, {}]",
                 lo.map_or("-∞".into(), |x| x.to_string()),
                 hi.map_or("+∞".into(), |x| x.to_string())
@@ -191,11 +205,9 @@ pub fn documentation_html(
             esc(&v.name),
             v.vr,
             kind,
-            match v.ty {
-                VarType::Real => "Real",
-                VarType::Integer => "Integer",
-                VarType::Boolean => "Boolean",
-                VarType::String => "String",
+            match (v.ty, &v.declared_type) {
+                (VarType::Enumeration, Some(t)) => format!("Enumeration <code>{}</code>", esc(t)),
+                (ty, _) => ty.name().to_string(),
             },
             esc(&unit),
             start,
@@ -208,7 +220,7 @@ pub fn documentation_html(
     h.push_str(COUPLING_HTML);
     h.push_str(&model_exchange_html(bearing));
 
-    h.push_str("<h2>Solver</h2>\n<ul>\n<li><code>solver.method</code>: 0 RKF45, 1 DOPRI5, 2 DOP853 (default), explicit embedded Runge–Kutta pairs with step-size control; every communication step ends exactly at t + h, and a change of the inputs is a restart of the integrator.</li>\n<li><code>solver.rtol</code>: relative tolerance (absolute tolerances are rtol × each state's nominal value). The <code>tolerance</code> of fmi2SetupExperiment, when defined, overrides it; the DefaultExperiment's tolerance is 1e-6. Tolerances below 1e-14 are refused (fmi2Error): round-off would make the integrator crawl instead of fail.</li>\n<li><code>solver.pi_beta</code>: β of the PI step-size controller in [0, 0.2]; 0 (default) is the I-controller. At loose tolerances (rtol 1e-4 and above) the reduced and full levels often leave the reference trajectory with β = 0 (a different rattle sequence, E1 0.1–1); β = 0.08 keeps them on it for about 25 % more work at equal rtol (docs/research/step-control-strays.md in the raceway repository).</li>\n<li><code>solver.max_steps</code>: work budget per communication step: attempted integrator steps (spall stops and contact events included) and, at the kinematic level, the spall passes registered (one unit each), so that no call runs unbounded whatever the inputs. When it is exhausted, or the step size underflows, or the state becomes non-finite, fmi2DoStep returns fmi2Discard and logs why (always, whatever the logging settings): the cause and its numbers, where the integrator stopped, and the work the step discarded. The FMU then stays at the step's start, the last successful communication point: every output reads that point, never the failed attempt; fmi2GetRealStatus(fmi2LastSuccessfulTime) is its time, fmi2GetBooleanStatus(fmi2Terminated) is true, and fmi2GetFMUstate gives that state. After fmi2Error from fmi2DoStep the outputs are likewise those of the step's start.</li>\n<li>Integer outputs <code>solver.steps</code>, <code>solver.rejected</code>, <code>solver.rhs_evals</code> count the integrator's work from the start to the current communication point (the work of a discarded step is in its message, not in them).</li>\n</ul>\n");
+    h.push_str("<h2>Solver</h2>\n<ul>\n<li><code>solver.method</code> (Enumeration <code>IntegrationMethod</code>): 0 <code>rkf45</code> (RKF45), 1 <code>dopri5</code> (DOPRI5), 2 <code>dop853</code> (DOP853, default), explicit embedded Runge–Kutta pairs with step-size control; every communication step ends exactly at t + h, and a change of the inputs is a restart of the integrator.</li>\n<li><code>solver.rtol</code>: relative tolerance (absolute tolerances are rtol × each state's nominal value). The <code>tolerance</code> of fmi2SetupExperiment, when defined, overrides it; the DefaultExperiment's tolerance is 1e-6. Tolerances below 1e-14 are refused (fmi2Error): round-off would make the integrator crawl instead of fail.</li>\n<li><code>solver.pi_beta</code>: β of the PI step-size controller in [0, 0.2]; 0 (default) is the I-controller. At loose tolerances (rtol 1e-4 and above) the reduced and full levels often leave the reference trajectory with β = 0 (a different rattle sequence, E1 0.1–1); β = 0.08 keeps them on it for about 25 % more work at equal rtol (docs/research/step-control-strays.md in the raceway repository).</li>\n<li><code>solver.max_steps</code>: work budget per communication step: attempted integrator steps (spall stops and contact events included) and, at the kinematic level, the spall passes registered (one unit each), so that no call runs unbounded whatever the inputs. When it is exhausted, or the step size underflows, or the state becomes non-finite, fmi2DoStep returns fmi2Discard and logs why (always, whatever the logging settings): the cause and its numbers, where the integrator stopped, and the work the step discarded. The FMU then stays at the step's start, the last successful communication point: every output reads that point, never the failed attempt; fmi2GetRealStatus(fmi2LastSuccessfulTime) is its time, fmi2GetBooleanStatus(fmi2Terminated) is true, and fmi2GetFMUstate gives that state. After fmi2Error from fmi2DoStep the outputs are likewise those of the step's start.</li>\n<li>Integer outputs <code>solver.steps</code>, <code>solver.rejected</code>, <code>solver.rhs_evals</code> count the integrator's work from the start to the current communication point (the work of a discarded step is in its message, not in them).</li>\n</ul>\n");
 
     h.push_str("<h2>Behaviour of the FMU</h2>\n<ul>\n<li>Any number of instances per process, on any threads; no global state. The FMU state can be saved (fmi2GetFMUstate) and serialized; the serialized form is versioned, pointer-free, carries the GUID, and restores bit-identically in another process.</li>\n<li>Non-finite inputs or parameters, values outside the declared ranges and impossible geometry are rejected with fmi2Error and a message naming the variable; an fmi2Set* call with a rejected value applies none of its values. No output is ever returned as NaN with fmi2OK.</li>\n<li>A wrong call sequence returns fmi2Error (\"illegal call sequence\") and has no effect. fmi2Reset returns to the just-instantiated state from any state but Fatal.</li>\n<li>Log categories: logEvents, logSolver, logStatusWarning, logStatusDiscard, logStatusError, logStatusFatal, logAll. Discard, Error and Fatal messages are always passed to the logger.</li>\n<li>fmi2GetDirectionalDerivative is provided in coupling mode motion (see above); fmi2SetRealInputDerivatives, fmi2GetRealOutputDerivatives and fmi2CancelStep return fmi2Error (not supported). All 44 FMI 2.0 functions are exported; a function of the other interface returns fmi2Error with no effect.</li>\n</ul>\n");
 

@@ -12,14 +12,16 @@
 //! Start values of inputs and parameters are the default scene's on the FMU's bearing.
 
 use fmi2::table::Row;
-use fmi2::{Causality, Initial, Start, VarType, Variability, Variable};
+use fmi2::{
+    Causality, EnumerationItem, EnumerationType, Initial, Start, VarType, Variability, Variable,
+};
 use raceway::models::LEVELS;
 use raceway::{
     output_table_with_cage, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode,
     DefectSpec, Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
 };
 use Causality::{Input as In, Output as Out, Parameter};
-use VarType::{Integer, Real};
+use VarType::{Enumeration, Integer, Real};
 
 /// What a variable reads and writes.
 #[derive(Debug, Clone, Copy)]
@@ -93,6 +95,7 @@ const fn input(
         variability: Variability::Continuous,
         initial: None,
         unit: Some(unit),
+        declared_type: None,
         min,
         max: None,
         description,
@@ -110,6 +113,7 @@ const fn journal(vr: u32, name: &'static str, k: usize, description: &'static st
         variability: Variability::Continuous,
         initial: None,
         unit: Some(if k < 3 { "m" } else { "m/s" }),
+        declared_type: None,
         min: None,
         max: None,
         description,
@@ -133,6 +137,7 @@ const fn line(
         variability: Variability::Continuous,
         initial: None,
         unit: Some(unit),
+        declared_type: None,
         min: if k == 4 { Some(0.0) } else { None },
         max: None,
         description,
@@ -150,6 +155,7 @@ const fn ring_velocity(vr: u32, name: &'static str, k: usize, description: &'sta
         variability: Variability::Continuous,
         initial: Some(Initial::Calculated),
         unit: Some("m/s"),
+        declared_type: None,
         min: None,
         max: None,
         description,
@@ -177,8 +183,35 @@ const fn param(
         variability: Variability::Fixed,
         initial: Some(Initial::Exact),
         unit,
+        declared_type: None,
         min,
         max,
+        description,
+        access: Access::Param { get, set },
+    }
+}
+
+/// A fixed parameter row that chooses among the items of the enumeration type `declared_type`
+/// (one of [`enumerations`]); its `min` and `max` are the items' range (set by [`table`]).
+const fn choice(
+    vr: u32,
+    name: &'static str,
+    declared_type: &'static str,
+    description: &'static str,
+    get: fn(&Config) -> f64,
+    set: fn(&mut Config, f64) -> Result<(), String>,
+) -> VarRow {
+    Row {
+        vr,
+        name,
+        ty: Enumeration,
+        causality: Parameter,
+        variability: Variability::Fixed,
+        initial: Some(Initial::Exact),
+        unit: None,
+        declared_type: Some(declared_type),
+        min: None,
+        max: None,
         description,
         access: Access::Param { get, set },
     }
@@ -199,6 +232,7 @@ const fn stat(
         variability: Variability::Discrete,
         initial: Some(Initial::Calculated),
         unit: None,
+        declared_type: None,
         min: None,
         max: None,
         description,
@@ -338,12 +372,10 @@ pub const ROWS: &[VarRow] = &[
         2,
         "Inner-ring (journal) velocity along z (coupling mode tlm: connect it to the JeffcottRotor's tlm.v.z); see ring.v.x",
     ),
-    param(
+    choice(
         100,
         "fidelity",
-        Integer,
-        None,
-        (Some(0.0), Some((LEVELS.len() - 1) as f64)),
+        "Fidelity",
         // Written from the level registry by `table` (fidelity_description).
         "",
         |c| c.scene.fidelity.code() as f64,
@@ -355,6 +387,9 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
+    // An Integer, not an Enumeration like the other switches: libcosim (libcosimpy 0.0.6)
+    // ignores Enumeration variables ("FMI 2.0 Enumeration variable type not supported"), and
+    // a rotor-bearing system run there (examples/systems) must set the coupling mode.
     param(
         101,
         "coupling",
@@ -375,12 +410,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         102,
         "defect.ring",
-        Integer,
-        None,
-        (Some(0.0), Some(2.0)),
+        "DefectRing",
         "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race",
         |c| c.defect.ring as f64,
         |c, v| {
@@ -427,12 +460,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         106,
         "defect.mode",
-        Integer,
-        None,
-        (Some(0.0), Some(1.0)),
+        "DefectMode",
         "Spall model: 0 finite-size ball resting on the edges (default), 1 paper-literal point contact",
         |c| match c.scene.bearing.defect.mode {
             DefectMode::Finite => 0.0,
@@ -616,12 +647,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         120,
         "solver.method",
-        Integer,
-        None,
-        (Some(0.0), Some(2.0)),
+        "IntegrationMethod",
         "Integration method: 0 RKF45, 1 DOPRI5, 2 DOP853",
         |c| c.scene.solver.method.code() as f64,
         |c, v| {
@@ -657,12 +686,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         123,
         "lumped.cage_speed",
-        Integer,
-        None,
-        (Some(0.0), Some(1.0)),
+        "CageSpeed",
         "Cage speed of the kinematic, quasi-static and lumped levels: 0 the traction's caged balance (default: the common orbital rate at which the traction's orbital torques on the balls cancel, each ball in its steady spin), 1 L1's outer-race control",
         |c| c.scene.lumped.cage_speed.code() as f64,
         |c, v| {
@@ -685,12 +712,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         125,
         "ring.axial",
-        Integer,
-        None,
-        (Some(0.0), Some(2.0)),
+        "AxialMounting",
         "Axial mounting of the inner ring (force coupling): 0 the axial load load.Fx acts on it (default); 1 located where the start's load.Fx alone puts it (a preload; centred with the balls just touching at load.Fx = 0); 2 located at ring.axial_offset. Located, the ring carries a pure radial load, bearing.F.x is the axial reaction of its location, and load.Fx cannot change after the start",
         |c| match (c.scene.mounting.axial, c.scene.mounting.axial_offset) {
             (AxialMount::Load, _) => 0.0,
@@ -742,12 +767,10 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
-    param(
+    choice(
         128,
         "cage",
-        Integer,
-        None,
-        (Some(0.0), Some(1.0)),
+        "Cage",
         "The cage of the reduced and full levels: 1 a rigid cage with its pockets, guided by the balls or a ring land, its constants from the bearing's [cage] (default; cage.speed is then the cage's own rate and cage.y, cage.z, cage.pocket.P[j] its whirl and pocket forces); 0 the paper's cage-less balls, which touch each other where they drift together (the cage outputs stay 0). The other levels have no cage body either way",
         |c| f64::from(u8::from(c.scene.full.cage)),
         |c, v| {
@@ -945,17 +968,110 @@ fn fidelity_description() -> String {
     )
 }
 
+/// The enumeration types of the mode switches (the `declared_type` of the `choice` rows of
+/// [`ROWS`]), their items named as in scene files where a scene names them: the value a
+/// variable takes is the item's value, read and written with `fmi2GetInteger` and
+/// `fmi2SetInteger`.
+pub fn enumerations() -> Vec<EnumerationType> {
+    let ty = |name: &str, description: &str, items: &[(i32, &str, &str)]| EnumerationType {
+        name: name.into(),
+        description: description.into(),
+        items: items
+            .iter()
+            .map(|&(value, name, description)| EnumerationItem {
+                name: name.into(),
+                value,
+                description: description.into(),
+            })
+            .collect(),
+    };
+    vec![
+        EnumerationType {
+            name: "Fidelity".into(),
+            description: "Fidelity level of the bearing model (the ladder L0 … L4)".into(),
+            items: LEVELS
+                .iter()
+                .map(|l| EnumerationItem {
+                    name: l.name.into(),
+                    value: l.code,
+                    description: format!("{}: {}", l.label, l.summary),
+                })
+                .collect(),
+        },
+        ty(
+            "DefectRing",
+            "The ring that carries the spall",
+            &[
+                (0, "none", "No spall (healthy bearing)"),
+                (1, "outer", "Spall on the outer race"),
+                (2, "inner", "Spall on the inner race"),
+            ],
+        ),
+        ty(
+            "DefectMode",
+            "How a ball meets the spall",
+            &[
+                (0, "finite", "Finite-size ball resting on the spall's edges"),
+                (1, "point", "Paper-literal point contact"),
+            ],
+        ),
+        ty(
+            "IntegrationMethod",
+            "Explicit embedded Runge–Kutta pair with step-size control",
+            &[
+                (0, "rkf45", "Runge–Kutta–Fehlberg 4(5)"),
+                (1, "dopri5", "Dormand–Prince 5(4)"),
+                (2, "dop853", "Dormand–Prince 8(5,3)"),
+            ],
+        ),
+        ty(
+            "CageSpeed",
+            "Cage speed of the levels with kinematic balls",
+            &[
+                (
+                    0,
+                    "traction",
+                    "The traction's caged balance: the orbital rate at which the traction's orbital torques on the balls cancel",
+                ),
+                (1, "outer_race_control", "L1's outer-race control"),
+            ],
+        ),
+        ty(
+            "AxialMounting",
+            "Axial mounting of the inner ring (force coupling)",
+            &[
+                (0, "load", "The axial load load.Fx acts on the ring"),
+                (
+                    1,
+                    "located",
+                    "Located where the start's load.Fx alone puts it (a preload)",
+                ),
+                (2, "located_offset", "Located at ring.axial_offset"),
+            ],
+        ),
+        ty(
+            "Cage",
+            "The cage of the reduced and full levels",
+            &[
+                (0, "none", "The paper's cage-less balls"),
+                (1, "rigid", "A rigid cage with its pockets, from the bearing's [cage]"),
+            ],
+        ),
+    ]
+}
+
 /// The full table of the FMU built on `bearing`: [`ROWS`] with the default scene's start
 /// values, and the real outputs (1000 + i) before the solver counters.
 pub fn table(bearing: &BearingFile) -> Vec<Entry> {
     let cfg = Config::default_for(bearing);
     let inputs = cfg.scene.operating;
     let journal = Journal::default();
+    let enums = enumerations();
     let entry = |r: &VarRow| {
         let start = match (r.access, r.ty) {
             (Access::Input { get, .. }, _) => Start::Real(get(&inputs)),
             (Access::Journal(k), _) => Start::Real(journal_get(&journal, k)),
-            (Access::Param { get, .. }, Integer) => Start::Integer(get(&cfg) as i32),
+            (Access::Param { get, .. }, Integer | Enumeration) => Start::Integer(get(&cfg) as i32),
             (Access::Param { get, .. }, _) => Start::Real(get(&cfg)),
             (Access::Line(_), _) => Start::Real(0.0),
             (
@@ -970,6 +1086,15 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
         let mut var = with_unit(r.variable(start));
         if r.name == "fidelity" {
             var.description = fidelity_description();
+        }
+        if let Some(t) = r.declared_type {
+            let (lo, hi) = enums
+                .iter()
+                .find(|e| e.name == t)
+                .and_then(EnumerationType::range)
+                .expect("a choice row names an enumeration of `enumerations` with items");
+            var.min = Some(lo.into());
+            var.max = Some(hi.into());
         }
         Entry {
             var,
@@ -1092,6 +1217,62 @@ mod tests {
         );
         let fz = t.iter().find(|e| e.var.name == "load.Fz").unwrap();
         assert_eq!(fz.var.start, Start::Real(-1000.0));
+    }
+
+    #[test]
+    fn mode_switches_are_enumerations_with_the_library_codes() {
+        let b = BearingFile::default_preset();
+        let t = table(&b);
+        let enums = enumerations();
+        let choices: Vec<&Entry> = t.iter().filter(|e| e.var.ty == Enumeration).collect();
+        assert_eq!(choices.len(), 7);
+        let mut cfg = Config::default_for(&b);
+        for e in choices {
+            let v = &e.var;
+            let ty = enums
+                .iter()
+                .find(|t| Some(&t.name) == v.declared_type.as_ref())
+                .unwrap_or_else(|| panic!("{}: its type is defined", v.name));
+            // Values 0, 1, …: the shell's range check is the check that a value is an item.
+            let values: Vec<i32> = ty.items.iter().map(|i| i.value).collect();
+            assert_eq!(
+                values,
+                (0..ty.items.len() as i32).collect::<Vec<_>>(),
+                "{}",
+                v.name
+            );
+            assert_eq!(v.min, Some(0.0), "{}", v.name);
+            assert_eq!(v.max, Some((ty.items.len() - 1) as f64), "{}", v.name);
+            let Start::Integer(start) = v.start else {
+                panic!("{}: an Integer start", v.name)
+            };
+            assert!(ty.item(start).is_some(), "{}: start {start}", v.name);
+            // Every item is a value the model takes and reads back.
+            for item in &ty.items {
+                cfg.set(&v.name, item.value.into()).unwrap();
+                assert_eq!(cfg.get(&v.name), Some(item.value.into()), "{}", item.name);
+            }
+        }
+        // The items are named as the library (and scene files) name the choices.
+        let names = |t: &str| -> Vec<String> {
+            let ty = enums.iter().find(|e| e.name == t).unwrap();
+            ty.items.iter().map(|i| i.name.clone()).collect()
+        };
+        let levels: Vec<String> = LEVELS.iter().map(|l| l.name.to_string()).collect();
+        assert_eq!(names("Fidelity"), levels);
+        assert!(LEVELS.iter().enumerate().all(|(i, l)| l.code == i as i32));
+        let methods: Vec<String> = (0..3)
+            .map(|c| MethodName::from_code(c).unwrap().name().to_string())
+            .collect();
+        assert_eq!(names("IntegrationMethod"), methods);
+        assert!(MethodName::from_code(3).is_none());
+        assert_eq!(
+            CageSpeed::from_code(1),
+            Some(CageSpeed::OuterRaceControl),
+            "{:?}",
+            names("CageSpeed")
+        );
+        assert!(CageSpeed::from_code(2).is_none());
     }
 
     #[test]

@@ -246,6 +246,25 @@ fn unavailable_fidelity_fails_exit_initialization_with_the_library_message() {
             "{}",
             h.last()
         );
+        // fidelity is an Enumeration: read and written as an Integer, not as a Real.
+        let mut code = -1;
+        assert_eq!(
+            sh::get_integer::<BallBearing>(c, &fid, 1, &mut code),
+            Fmi2Status::Ok
+        );
+        assert_eq!(code, 2, "the default, lumped");
+        let mut x = 0.0;
+        assert_eq!(
+            sh::get_real::<BallBearing>(c, &fid, 1, &mut x),
+            Fmi2Status::Error
+        );
+        assert!(
+            h.last().contains(
+                "'fidelity', an Enumeration variable (read and written as an Integer), not a Real"
+            ),
+            "{}",
+            h.last()
+        );
         sh::free_instance::<BallBearing>(c);
     }
 }

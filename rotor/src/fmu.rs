@@ -15,7 +15,7 @@
 //! | 100–115 | the Real parameters of [`PARAMS`] |
 //! | 116 | Integer parameter `coupling` (0 force, 1 tlm) |
 //! | 117 | parameter `tlm.delay` ([`TLM_DELAY`]) |
-//! | 118 | Integer parameter `disk.axial` (1 the disk rides axially with the journal, 0 not) |
+//! | 118 | Enumeration parameter `disk.axial` (1 with_journal: the disk rides axially with the journal, 0 lateral: not) |
 //! | 1000–1016 | outputs `journal.*`, `disk.*`, `shaft.*`, `unbalance.F.*` |
 //! | 1017–1021 | outputs `tlm.c0.y`, `tlm.c0.z`, `tlm.c1.y`, `tlm.c1.z`, `tlm.Zc` (tlm) |
 //!
@@ -50,8 +50,9 @@ use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::table::Row;
 use fmi2::xml;
 use fmi2::{
-    Causality, EventUpdate, FmuModel, Initial, InstantiateArgs, Interface, Logger, Start, StepEnd,
-    StepResult, VarType, Variability, Variable, LOG_EVENTS, LOG_SOLVER, LOG_STATUS_WARNING,
+    Causality, EnumerationItem, EnumerationType, EventUpdate, FmuModel, Initial, InstantiateArgs,
+    Interface, Logger, Start, StepEnd, StepResult, VarType, Variability, Variable, LOG_EVENTS,
+    LOG_SOLVER, LOG_STATUS_WARNING,
 };
 use raceway_solver::IntegratorState;
 
@@ -82,7 +83,7 @@ pub enum Role {
     Coupling,
     /// The parameter `tlm.delay` ([`TLM_DELAY`]).
     Delay,
-    /// The Integer parameter `disk.axial`.
+    /// The Enumeration parameter `disk.axial`.
     DiskAxial,
     /// Journal velocity received in coupling mode tlm, axis 0 = y, 1 = z.
     TlmV(usize),
@@ -138,6 +139,7 @@ const fn param(
         variability: Variability::Fixed,
         initial: Some(Initial::Exact),
         unit: Some(unit),
+        declared_type: None,
         min,
         max: None,
         description,
@@ -308,8 +310,34 @@ pub const TLM_DELAY: Row<ParamAccess> = param(
 
 /// Value reference of the Integer parameter `coupling`.
 pub const VR_COUPLING: u32 = 116;
-/// Value reference of the Integer parameter `disk.axial`.
+/// Value reference of the Enumeration parameter `disk.axial` (type `DiskAxial`).
 pub const VR_DISK_AXIAL: u32 = 118;
+
+/// The enumeration type of the parameter `disk.axial` (read and written with
+/// `fmi2GetInteger`/`fmi2SetInteger`, their values the items').
+pub fn enumerations() -> Vec<EnumerationType> {
+    let item = |value: i32, name: &str, description: &str| EnumerationItem {
+        name: name.into(),
+        value,
+        description: description.into(),
+    };
+    vec![EnumerationType {
+        name: "DiskAxial".into(),
+        description: "Whether the disk moves axially (coupling mode force)".into(),
+        items: vec![
+            item(
+                0,
+                "lateral",
+                "The disk moves only laterally (axial inertia journal.mass)",
+            ),
+            item(
+                1,
+                "with_journal",
+                "The disk rides axially with the journal (axial inertia journal.mass + disk.mass)",
+            ),
+        ],
+    }]
+}
 /// Value references of the inputs `tlm.v.y`, `tlm.v.z`.
 pub const VR_TLM_V: [u32; AXES] = [30, 31];
 
@@ -507,6 +535,8 @@ pub fn table() -> Vec<(Variable, Role)> {
     let mut v = var(
         VR_COUPLING,
         "coupling",
+        // An Integer, not an Enumeration: libcosim ignores Enumeration variables, and a
+        // rotor-bearing system run there (examples/systems) must set the coupling mode.
         VarType::Integer,
         Parameter,
         Fixed,
@@ -521,12 +551,13 @@ pub fn table() -> Vec<(Variable, Role)> {
     let mut v = var(
         VR_DISK_AXIAL,
         "disk.axial",
-        VarType::Integer,
+        VarType::Enumeration,
         Parameter,
         Fixed,
         "Coupling mode force: 1 (default) the disk rides axially with the journal (axial inertia journal.mass + disk.mass); 0 it moves only laterally (axial inertia journal.mass, as in coupling mode tlm, where the axial direction is the BallBearing's ring)",
     );
     v.initial = Some(Initial::Exact);
+    v.declared_type = Some("DiskAxial".into());
     v.start = Start::Integer(i32::from(d.disk_axial));
     v.min = Some(0.0);
     v.max = Some(1.0);
@@ -593,6 +624,7 @@ pub fn model_info() -> xml::ModelInfo {
             .filter(|(_, r)| matches!(r, Role::Out(o) if !o.feedthrough()))
             .map(|(v, _)| v.vr)
             .collect(),
+        enumerations: enumerations(),
     }
 }
 
@@ -1361,10 +1393,18 @@ pub fn documentation_html() -> String {
     h.push_str("<h2>Behaviour</h2>\n<ul><li>Any number of instances; no global state; FMU state get/set/serialize supported (including the TLM line's history).</li><li>Invalid parameters (non-finite, negative masses, a disk without shaft stiffness) are rejected at fmi2ExitInitializationMode with a message naming the parameter.</li><li>No directional derivatives, no input derivatives (the coupling inputs above serve instead).</li></ul>\n");
     h.push_str("<h2>Model Exchange</h2>\n<p>The same binary and model description serve <code>fmuType = fmi2ModelExchange</code> in coupling mode force (<code>coupling = 0</code>): the importer integrates the rotor's 10 states (<code>state[1]</code> &hellip; <code>state[10]</code>, vr 2000 + i: journal x, y, z, its velocities, disk y, z and their velocities; <code>der(state[i])</code>, vr 3000 + i) with its own solver. There are no event indicators; the end of the speed ramp is a time event (nextEventTime). The bearing force is the law above anchored at the time and state at which <code>bearing.*</code> was last set (set them at every evaluation, with the rates and Jacobians 0, for a force that follows the importer). Coupling mode tlm is refused at fmi2ExitInitializationMode: the transmission line exchanges waves over communication steps of <code>tlm.delay</code>, a co-simulation device.</p>\n");
     h.push_str("<h2>Variables</h2>\n<table border=\"1\"><tr><th>name</th><th>vr</th><th>causality</th><th>unit</th><th>start</th><th>description</th></tr>\n");
+    let enums = enumerations();
     for (v, _) in table() {
+        let item = |x: i32| {
+            let t = v.declared_type.as_ref()?;
+            enums.iter().find(|e| &e.name == t)?.item(x)
+        };
         let start = match v.start {
             Start::Real(x) => format!("{x}"),
-            Start::Integer(x) => format!("{x}"),
+            Start::Integer(x) => match item(x) {
+                Some(i) => format!("{x} ({})", xml::esc(&i.name)),
+                None => format!("{x}"),
+            },
             _ => String::new(),
         };
         h.push_str(&format!(

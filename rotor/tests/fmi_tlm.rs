@@ -186,10 +186,25 @@ fn the_new_variables_have_their_value_references_and_causalities() {
         let v = find(n);
         assert_eq!((v.vr, v.causality), (r, c), "{n}");
     }
+    // coupling stays an Integer (libcosim ignores Enumerations); disk.axial is an Enumeration
+    // (read and written as an Integer) with named items.
     let c = find("coupling");
     assert_eq!(c.ty, VarType::Integer);
     assert_eq!((c.min, c.max), (Some(0.0), Some(1.0)));
     assert_eq!(c.start, fmi2::Start::Integer(0));
+    let a = find("disk.axial");
+    assert_eq!(a.ty.access_type(), VarType::Integer);
+    assert_eq!(a.ty, VarType::Enumeration);
+    assert_eq!(a.declared_type.as_deref(), Some("DiskAxial"));
+    let enums = raceway_rotor::fmu::enumerations();
+    let items = |t: &str| -> Vec<(i32, String)> {
+        let e = enums.iter().find(|e| e.name == t).unwrap();
+        e.items.iter().map(|i| (i.value, i.name.clone())).collect()
+    };
+    assert_eq!(
+        items("DiskAxial"),
+        [(0, "lateral".into()), (1, "with_journal".into())]
+    );
     assert_eq!(find("tlm.delay").start, fmi2::Start::Real(1e-4));
     // the released variables kept their value references and their places
     assert_eq!((t[0].0.name.as_str(), t[0].0.vr), ("bearing.F.x", 1));

@@ -126,6 +126,28 @@ def probe_advance_check(ctx):
     return {"ok": st == 0, "status": st, "message": last_message()}
 
 
+def probe_enumeration(ctx):
+    """The mode switches are Enumerations: each takes its items through fmi2SetInteger and reads
+    them back through fmi2GetInteger; a value that is no item is refused with a message; the
+    Real functions refuse them."""
+    s = ctx.new(logging=False)
+    s.setupExperiment(tolerance=1e-6, startTime=0.0)
+    s.enterInitializationMode()  # fixed parameters are set and read there too
+    out = {}
+    for v in ctx.md.modelVariables:
+        if v.type != "Enumeration":
+            continue
+        values = sorted(int(i.value) for i in v.declaredType.items)
+        bad = [status_of(s.setInteger, [v.valueReference], [values[-1] + 1]), last_message()]
+        got = []
+        for x in values:
+            st = status_of(s.setInteger, [v.valueReference], [x])
+            got.append([st, int(s.getInteger([v.valueReference])[0])])
+        out[v.name] = {"values": values, "bad": bad, "got": got}
+    out["get_real"] = [status_of(s.getReal, [ctx.vr["fidelity"]]), last_message()]
+    return out
+
+
 def probe_wrong_guid(ctx):
     s = ctx.slave(guid="{00000000-0000-0000-0000-000000000000}")
     try:

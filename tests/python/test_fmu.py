@@ -67,7 +67,7 @@ def test_model_description_details(fmu):
     assert v["shaft.speed"].causality == "input"
     assert math.isclose(float(v["shaft.speed"].start) * rpm.factor, 9900.0, rel_tol=1e-12)
     assert float(v["load.Fz"].start) == -1000.0 and float(v["load.Fx"].start) == 4000.0
-    assert v["fidelity"].type == "Integer" and v["fidelity"].variability == "fixed"
+    assert v["fidelity"].type == "Enumeration" and v["fidelity"].variability == "fixed"
     outputs = [x for x in md.modelVariables if x.causality == "output"]
     assert len(md.outputs) == len(outputs)
     # the calculated outputs, and (Model Exchange) the states and their derivatives
