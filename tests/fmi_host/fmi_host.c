@@ -12,7 +12,8 @@
  * reference run does, enters and exits initialization, takes `steps` (default 100) steps of
  * stepSize at the times start + n * stepSize, reads the Real output, prints it and frees the
  * instance. Prints "RESULT <time> <value>" (value with 17 significant digits) on success and
- * exits 0; on any failure prints what failed and exits 1.
+ * exits 0; on any failure prints what failed and exits 1. With FMI_HOST_LOGGING=1 in the
+ * environment the instance is created with loggingOn (its log messages go to stderr).
  *
  * Build: zig cc -target x86_64-linux-gnu.2.17 -O2 -o fmi_host fmi_host.c -ldl
  *        x86_64-w64-mingw32-gcc -O2 -static -o fmi_host.exe fmi_host.c
@@ -165,6 +166,7 @@ int main(int argc, char **argv) {
     char *xml, *guid;
     double start, tolerance, stop, h, t;
     long steps, i;
+    int logging;
     fmi2ValueReference vr;
     fmi2Real value;
     Library lib;
@@ -219,7 +221,8 @@ int main(int argc, char **argv) {
     snprintf(resources, sizeof resources, "%s/resources", dir);
     file_uri(resources, uri, sizeof uri);
     printf("instantiate %s, GUID %s, resources %s\n", argv[2], guid, uri);
-    c = instantiate(argv[2], 1 /* fmi2CoSimulation */, guid, uri, &cb, 0, 0);
+    logging = getenv("FMI_HOST_LOGGING") && strcmp(getenv("FMI_HOST_LOGGING"), "1") == 0;
+    c = instantiate(argv[2], 1 /* fmi2CoSimulation */, guid, uri, &cb, 0, logging);
     if (!c) die("fmi2Instantiate failed");
     if (setup(c, 1, tolerance, start, 1, stop) > 1) die("fmi2SetupExperiment failed");
     if (enter(c) > 1) die("fmi2EnterInitializationMode failed");
