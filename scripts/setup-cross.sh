@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the cross-compilation tools `cargo run --release -p fmu-build` needs to build the FMUs'
 # binaries for the platforms they ship (docs/platforms.md):
-#   binaries/linux64 (glibc >= 2.17): cargo-zigbuild (crates.io) and zig (PyPI package ziglang, in
-#                                      the project's .venv, where fmu-build looks for it)
+#   binaries/linux64 (glibc >= 2.17): cargo-zigbuild and zig (PyPI packages cargo-zigbuild and
+#                                      ziglang, in the project's .venv, where fmu-build looks for them)
 #   binaries/win64:                    the Rust target x86_64-pc-windows-gnu (rustup) and MinGW-w64
 #                                      (Debian/Ubuntu package gcc-mingw-w64-x86-64, via apt-get)
 # Idempotent: installs only what is missing. The apt-get step needs root (or sudo).
@@ -19,15 +19,9 @@ WIN_TARGET="x86_64-pc-windows-gnu"
 say() { printf 'setup-cross: %s\n' "$*"; }
 die() { say "error: $*" >&2; exit 1; }
 
-# cargo-zigbuild
-if cargo zigbuild --help >/dev/null 2>&1; then
-    say "already installed: $(cargo-zigbuild --version 2>/dev/null || echo cargo-zigbuild)"
-else
-    say "installing cargo-zigbuild $ZIGBUILD_VERSION (cargo install --locked)"
-    cargo install --locked --quiet cargo-zigbuild --version "$ZIGBUILD_VERSION"
-fi
-
-# zig, as the PyPI package ziglang in .venv (the same environment scripts/setup-python.sh fills)
+# zig and cargo-zigbuild, as the PyPI packages ziglang and cargo-zigbuild (a prebuilt binary:
+# seconds, where `cargo install cargo-zigbuild` compiles for minutes) in .venv, the environment
+# scripts/setup-python.sh fills too; fmu-build looks for them there.
 if [ ! -x "$VENV/bin/python" ]; then
     command -v "$PY" >/dev/null 2>&1 || die "$PY not found (install Python 3 or set PYTHON=...)"
     say "creating virtual environment $VENV"
@@ -38,6 +32,13 @@ if zig_version="$("$VENV/bin/python" -m ziglang version 2>/dev/null)"; then
 else
     say "installing zig (ziglang==$ZIGLANG_VERSION) into $VENV"
     "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check "ziglang==$ZIGLANG_VERSION"
+fi
+if zigbuild_version="$("$VENV/bin/cargo-zigbuild" --version 2>/dev/null)"; then
+    say "already installed: $zigbuild_version (in $VENV)"
+else
+    say "installing cargo-zigbuild==$ZIGBUILD_VERSION into $VENV"
+    "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --no-deps \
+        "cargo-zigbuild==$ZIGBUILD_VERSION"
 fi
 
 # The Rust standard library for win64

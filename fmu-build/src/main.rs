@@ -104,10 +104,13 @@ struct Libraries {
     win64: Option<PathBuf>,
 }
 
-fn run_cargo(args: &[&str], envs: &[(String, String)], what: &str) {
+/// Runs `cargo args...`, or `program args...` for a cargo subcommand's own executable
+/// (`cargo-zigbuild zigbuild ...` is `cargo zigbuild ...`).
+fn run_cargo(program: Option<&Path>, args: &[&str], envs: &[(String, String)], what: &str) {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let program = program.map_or(cargo, |p| p.as_os_str().to_owned());
     eprintln!("fmu-build: cargo {}", args.join(" "));
-    let status = Command::new(cargo)
+    let status = Command::new(program)
         .args(args)
         .envs(envs.iter().map(|(k, v)| (k, v)))
         .current_dir(workspace_root())
@@ -129,14 +132,26 @@ fn runs(program: impl AsRef<std::ffi::OsStr>, args: &[&str]) -> bool {
 }
 
 /// Checks that the cross-compilation tools are installed (else fails naming
-/// scripts/setup-cross.sh) and returns the environment cargo-zigbuild needs to find zig.
-fn cross_tools() -> Vec<(String, String)> {
+/// scripts/setup-cross.sh). Returns cargo-zigbuild's executable (None: `cargo zigbuild` finds it
+/// on the PATH) and the environment it needs to find zig.
+fn cross_tools() -> (Option<PathBuf>, Vec<(String, String)>) {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut missing = Vec::new();
     let mut envs = Vec::new();
-    if !runs(&cargo, &["zigbuild", "--help"]) {
-        missing.push("cargo-zigbuild (crates.io)".to_string());
-    }
+    // cargo-zigbuild: the PyPI package's executable in the project's .venv
+    // (scripts/setup-cross.sh), else a `cargo-zigbuild` on the PATH (cargo install).
+    let venv_zigbuild = workspace_root()
+        .join(".venv")
+        .join("bin")
+        .join("cargo-zigbuild");
+    let zigbuild = if runs(&venv_zigbuild, &["--version"]) {
+        Some(venv_zigbuild)
+    } else {
+        if !runs(&cargo, &["zigbuild", "--help"]) {
+            missing.push("cargo-zigbuild (PyPI package cargo-zigbuild in .venv)".to_string());
+        }
+        None
+    };
     // zig: the PyPI package ziglang in the project's .venv (scripts/setup-cross.sh), unless
     // CARGO_ZIGBUILD_PYTHON_PATH names another Python or a `zig` is on the PATH.
     let venv_python = workspace_root().join(".venv").join("bin").join("python");
@@ -187,7 +202,7 @@ fn cross_tools() -> Vec<(String, String)> {
             missing.join(", ")
         ));
     }
-    envs
+    (zigbuild, envs)
 }
 
 /// Builds the cdylib of `package` (library file stem `stem`): linux64 against glibc 2.17 with
@@ -204,6 +219,7 @@ fn build_cdylib(package: &str, stem: &str, host_only: bool) -> Libraries {
         // With `-p fmu-build` in the same invocation Cargo resolves the features of the shared
         // dependencies as for `cargo run -p fmu-build`, so nothing is rebuilt with other features.
         run_cargo(
+            None,
             &["build", "--release", "-p", package, "-p", "fmu-build"],
             &[],
             package,
@@ -217,8 +233,9 @@ fn build_cdylib(package: &str, stem: &str, host_only: bool) -> Libraries {
             win64: None,
         };
     }
-    let envs = cross_tools();
+    let (zigbuild, envs) = cross_tools();
     run_cargo(
+        zigbuild.as_deref(),
         &[
             "zigbuild",
             "--release",
@@ -231,6 +248,7 @@ fn build_cdylib(package: &str, stem: &str, host_only: bool) -> Libraries {
         package,
     );
     run_cargo(
+        None,
         &[
             "build",
             "--release",
