@@ -4,6 +4,7 @@
 # Prints the kinematic fault frequencies and the envelope-spectrum peak, saves out/default_scene.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scripts/setup-cross.sh >/dev/null
 cargo run --quiet --release -p fmu-build
 scripts/setup-python.sh >/dev/null
 mkdir -p out

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: formatting and lint gates, the Rust test suite, the FMU build and the Python
-# (fmpy / libcosimpy) tests of the FMU. Works on a fresh machine with only Rust and Python 3.
+# (fmpy / libcosimpy) tests of the FMU. Works on a fresh machine with only Rust and Python 3 (plus
+# apt-get, or an installed MinGW-w64, for scripts/setup-cross.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -24,7 +25,10 @@ else
   cargo test --workspace --profile ci --no-fail-fast
 fi
 
-step "Build the FMU"
+step "Cross-compilation tools (zig, cargo-zigbuild, MinGW-w64) for the FMUs' linux64 and win64 binaries"
+scripts/setup-cross.sh
+
+step "Build the FMUs (linux64 for glibc >= 2.17, win64)"
 cargo run --quiet --release -p fmu-build
 
 step "Python environment"

@@ -7,10 +7,18 @@ use std::path::PathBuf;
 /// Accepts `file:///abs/path`, `file://localhost/abs/path`, `file:/abs/path` (the FMI 2.0
 /// standard's own example form) and, leniently, a plain absolute path. Percent-escapes are
 /// decoded (`%20` → space). Other hosts and schemes are refused.
+///
+/// On Windows the URI's path names a drive, `file:///C:/Users/x/resources`: the slash before the
+/// drive letter is dropped (`C:/Users/x/resources`), and a plain `C:\...` path is accepted too.
 pub fn file_uri_to_path(uri: &str) -> Result<PathBuf, String> {
+    file_uri_to_path_for(uri, cfg!(windows))
+}
+
+/// [`file_uri_to_path`] for a Windows (`windows`) or a Unix file system: testable on either.
+fn file_uri_to_path_for(uri: &str, windows: bool) -> Result<PathBuf, String> {
     let rest = if let Some(r) = strip_prefix_ci(uri, "file:") {
         r
-    } else if uri.starts_with('/') {
+    } else if uri.starts_with('/') || (windows && drive_prefixed(uri)) {
         return Ok(PathBuf::from(uri));
     } else {
         return Err(format!(
@@ -39,7 +47,20 @@ pub fn file_uri_to_path(uri: &str) -> Result<PathBuf, String> {
     }
     let decoded = percent_decode(path)
         .ok_or_else(|| format!("resource location '{uri}' has an invalid percent-escape"))?;
-    Ok(PathBuf::from(decoded))
+    // `/C:/x` -> `C:/x` on Windows, where a path starting with `/` is relative to the current drive.
+    match decoded.strip_prefix('/') {
+        Some(p) if windows && drive_prefixed(p) => Ok(PathBuf::from(p)),
+        _ => Ok(PathBuf::from(decoded)),
+    }
+}
+
+/// `C:` alone or followed by a separator.
+fn drive_prefixed(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2
+        && b[0].is_ascii_alphabetic()
+        && b[1] == b':'
+        && (b.len() == 2 || b[2] == b'/' || b[2] == b'\\')
 }
 
 fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
@@ -84,5 +105,27 @@ mod tests {
         assert!(file_uri_to_path("file://server/share").is_err());
         assert!(file_uri_to_path("file:///bad%2").is_err());
         assert!(file_uri_to_path("file:relative").is_err());
+    }
+
+    #[test]
+    fn windows_drives() {
+        let w = |s| {
+            file_uri_to_path_for(s, true)
+                .unwrap()
+                .to_string_lossy()
+                .into_owned()
+        };
+        assert_eq!(
+            w("file:///C:/Users/a%20b/resources"),
+            "C:/Users/a b/resources"
+        );
+        assert_eq!(w("file:/c:/x"), "c:/x");
+        assert_eq!(w("file://localhost/D:/x/"), "D:/x/");
+        assert_eq!(w("C:\\x\\resources"), "C:\\x\\resources");
+        assert_eq!(w("file:///tmp/x"), "/tmp/x");
+        // On Unix the same URI is a path whose first component is `C:`.
+        let u = file_uri_to_path_for("file:///C:/x", false).unwrap();
+        assert_eq!(u.to_string_lossy(), "/C:/x");
+        assert!(file_uri_to_path_for("C:\\x", false).is_err());
     }
 }
