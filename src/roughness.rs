@@ -220,18 +220,22 @@ impl Roughness {
     /// `shaft` (rate `shaft_rate`), and its rate \[m, m/s\].
     #[inline]
     pub fn added(&self, theta: f64, theta_rate: f64, shaft: f64, shaft_rate: f64) -> (f64, f64) {
-        let (mut v, mut r) = (0.0, 0.0);
-        if let Some(f) = &self.outer {
-            let (h, dh) = f.at(theta);
-            v += h;
-            r += dh * theta_rate;
+        let (vo, ro) = self.race(Race::Outer, theta, theta_rate);
+        let (vi, ri) = self.race(Race::Inner, theta - shaft, theta_rate - shaft_rate);
+        (vo + vi, ro + ri)
+    }
+
+    /// One race's height and its rate at angle `x` on the ring (the inner ring's own angle)
+    /// moving past the ball at `x_rate` \[m, m/s\]; 0 for a smooth race.
+    #[inline]
+    pub fn race(&self, race: Race, x: f64, x_rate: f64) -> (f64, f64) {
+        match self.track(race) {
+            Some(f) => {
+                let (h, dh) = f.at(x);
+                (h, dh * x_rate)
+            }
+            None => (0.0, 0.0),
         }
-        if let Some(f) = &self.inner {
-            let (h, dh) = f.at(theta - shaft);
-            v += h;
-            r += dh * (theta_rate - shaft_rate);
-        }
-        (v, r)
     }
 
     /// The field of one race, if it has one.

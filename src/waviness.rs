@@ -16,7 +16,7 @@
 //! evaluate (no allocation).
 
 use crate::config::ConfigError;
-use crate::geometry::Bearing;
+use crate::geometry::{Bearing, Race};
 use serde::{Deserialize, Serialize};
 
 /// Largest waviness amplitude accepted \[m\]: waviness is a µm-scale form error; anything near
@@ -177,15 +177,41 @@ impl Waviness {
         shaft: f64,
         shaft_rate: f64,
     ) -> (f64, f64) {
-        let (vo, dvo) = series(&self.outer, theta);
-        let (vi, dvi) = series(&self.inner, theta - shaft);
-        let (vb, dvb) = series(&self.ball, self.spin_per_orbit * orbit);
-        (
-            vo + vi + vb + self.deviation[j],
-            dvo * theta_rate
-                + dvi * (theta_rate - shaft_rate)
-                + dvb * self.spin_per_orbit * theta_rate,
-        )
+        let (vo, dvo) = self.race(Race::Outer, theta, theta_rate);
+        let (vi, dvi) = self.race(Race::Inner, theta - shaft, theta_rate - shaft_rate);
+        let (vb, dvb) = self.ball(orbit, theta_rate);
+        (vo + vi + vb + self.deviation[j], dvo + dvi + dvb)
+    }
+
+    /// One race's waviness and its rate at angle `x` on the ring (the inner ring's own angle:
+    /// azimuth less shaft angle) moving past the ball at `x_rate` \[m, m/s\].
+    #[inline]
+    pub fn race(&self, race: Race, x: f64, x_rate: f64) -> (f64, f64) {
+        let list = match race {
+            Race::Inner => &self.inner,
+            Race::Outer => &self.outer,
+        };
+        let (v, d) = series(list, x);
+        (v, d * x_rate)
+    }
+
+    /// A ball's waviness summed over its two contacts at orbital angle `orbit` since the start
+    /// (spin angle (dm/D)(1 + γ0)·orbit) and orbital rate `orbit_rate` \[m, m/s\].
+    #[inline]
+    pub fn ball(&self, orbit: f64, orbit_rate: f64) -> (f64, f64) {
+        let (v, d) = series(&self.ball, self.spin_per_orbit * orbit);
+        (v, d * self.spin_per_orbit * orbit_rate)
+    }
+
+    /// Whether the balls have waviness (a harmonic of even order).
+    pub fn has_ball_harmonics(&self) -> bool {
+        !self.ball.is_empty()
+    }
+
+    /// Diameter deviation ΔD of ball j \[m\] (its approach grows by ΔD over both contacts).
+    #[inline]
+    pub fn deviation(&self, j: usize) -> f64 {
+        self.deviation[j]
     }
 
     /// Ball spin angle per orbital angle at the kinematic levels, (dm/D)(1 + γ0).

@@ -78,7 +78,7 @@ pub const LEVELS: &[Level] = &[
                   spin rate about a fixed attitude axis, inner ring translations, pedestal; the \
                   full model's Hertz contacts, spall and strip traction (4 strips); ball flight \
                   and impacts with a fixed spin axis",
-        distributed: false,
+        distributed: true,
         build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
     },
     Level {
@@ -87,7 +87,7 @@ pub const LEVELS: &[Level] = &[
         code: 4,
         label: "L4",
         summary: "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
-        distributed: false,
+        distributed: true,
         build: |s, b, i| {
             let options = full::FullOptions {
                 traction: s.full.traction,
