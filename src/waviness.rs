@@ -18,6 +18,7 @@
 use crate::config::ConfigError;
 use crate::geometry::{Bearing, Race};
 use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
 
 /// Largest waviness amplitude accepted \[m\]: waviness is a µm-scale form error; anything near
 /// the Hertz deflections (~10 µm) or larger is not waviness.
@@ -40,10 +41,13 @@ pub struct WavinessSpec {
     /// Outer-race harmonics (azimuth, C1 convention).
     #[serde(default)]
     pub outer: Vec<Harmonic>,
-    /// Ball harmonics along the spin great circle, the same on every ball (spin angle 0 at the
-    /// start).
+    /// Ball harmonics along the spin great circle, the same on every ball; each ball's spin
+    /// angle starts at 0 (all in phase) or, with `ball_phase_seed`, at a random angle.
     #[serde(default)]
     pub ball: Vec<Harmonic>,
+    /// Seed of each ball's random start spin angle (uniform in [0, 2π)); None: all start at 0.
+    #[serde(default)]
+    pub ball_phase_seed: Option<u64>,
     /// Diameter deviation of each ball from D \[m\] (empty: all nominal; otherwise one per ball).
     #[serde(default)]
     pub ball_diameter_deviation: Vec<f64>,
@@ -108,10 +112,24 @@ pub struct Waviness {
     outer: Vec<Harmonic>,
     /// Ball harmonics with the two contacts' sum folded in: even orders at 2A, odd ones dropped.
     ball: Vec<Harmonic>,
+    /// Each ball's spin angle at the start \[rad\].
+    ball_phase: Vec<f64>,
     /// ΔD per ball (zeros when none given) \[m\].
     deviation: Vec<f64>,
     /// Ball spin angle per orbital angle, (dm/D)(1 + γ0): pure rolling on the fixed outer race.
     spin_per_orbit: f64,
+}
+
+/// A uniform number in [0, 1) from a seed and an index (splitmix64 of their mix).
+fn unit(seed: u64, index: u64) -> f64 {
+    let mut x = seed
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add(index.wrapping_mul(0xD1B5_4A32_D192_ED03))
+        .wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^= x >> 31;
+    (x >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// Σ A cos(n x + φ) and its derivative in x.
@@ -155,6 +173,12 @@ impl Waviness {
             inner: spec.inner.clone(),
             outer: spec.outer.clone(),
             ball,
+            ball_phase: (0..z)
+                .map(|j| match spec.ball_phase_seed {
+                    Some(seed) => TAU * unit(seed, j as u64),
+                    None => 0.0,
+                })
+                .collect(),
             deviation: if dev.is_empty() {
                 vec![0.0; z]
             } else {
@@ -179,7 +203,7 @@ impl Waviness {
     ) -> (f64, f64) {
         let (vo, dvo) = self.race(Race::Outer, theta, theta_rate);
         let (vi, dvi) = self.race(Race::Inner, theta - shaft, theta_rate - shaft_rate);
-        let (vb, dvb) = self.ball(orbit, theta_rate);
+        let (vb, dvb) = self.ball(j, orbit, theta_rate);
         (vo + vi + vb + self.deviation[j], dvo + dvi + dvb)
     }
 
@@ -195,11 +219,11 @@ impl Waviness {
         (v, d * x_rate)
     }
 
-    /// A ball's waviness summed over its two contacts at orbital angle `orbit` since the start
-    /// (spin angle (dm/D)(1 + γ0)·orbit) and orbital rate `orbit_rate` \[m, m/s\].
+    /// Ball j's waviness summed over its two contacts at orbital angle `orbit` since the start
+    /// (spin angle ψ_j0 + (dm/D)(1 + γ0)·orbit) and orbital rate `orbit_rate` \[m, m/s\].
     #[inline]
-    pub fn ball(&self, orbit: f64, orbit_rate: f64) -> (f64, f64) {
-        let (v, d) = series(&self.ball, self.spin_per_orbit * orbit);
+    pub fn ball(&self, j: usize, orbit: f64, orbit_rate: f64) -> (f64, f64) {
+        let (v, d) = series(&self.ball, self.ball_phase[j] + self.spin_per_orbit * orbit);
         (v, d * self.spin_per_orbit * orbit_rate)
     }
 

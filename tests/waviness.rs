@@ -209,6 +209,33 @@ fn even_order_ball_waviness_gives_lines_at_its_order_times_the_ball_spin() {
 }
 
 #[test]
+fn ball_waviness_with_random_phases_gives_radial_lines_at_2_fb_pm_fc() {
+    // Balls of order 2 out of phase with one another (Wardle 1988): the radial force of ball j,
+    // 2A cos(2 ψ_j + φ_j) e_r(θ_j), carries 2·f_b ± f_c; in phase (the previous test) the
+    // balls' radial parts cancel.
+    let healthy = healthy_axial();
+    let (_, f_c) = shaft_cage_hz(&healthy);
+    let b = Bearing::new(&healthy.bearing).unwrap();
+    let f_b = b.dm / b.d * (1.0 + b.gamma(b.alpha0)) * f_c;
+    let wavy = with_waviness(
+        &healthy,
+        WavinessSpec {
+            ball: vec![Harmonic(2.0, 0.2e-6, 0.0)],
+            ball_phase_seed: Some(5),
+            ..Default::default()
+        },
+    );
+    let (s, base) = (pedestal_spectrum(&wavy), pedestal_spectrum(&healthy));
+    for f in [2.0 * f_b - f_c, 2.0 * f_b + f_c] {
+        assert_line(&s, &base, (f - 0.5 * f_c, f + 0.5 * f_c), f);
+    }
+    // Nothing radial at 2·f_b itself.
+    let mid = s.value[s.bin_of(2.0 * f_b).unwrap()];
+    let line = signal::peak_near(&s, 2.0 * f_b + f_c, 2.0).unwrap().value;
+    assert!(mid < 1e-2 * line, "at 2 f_b: {mid:e} against {line:e}");
+}
+
+#[test]
 fn an_off_size_ball_adds_its_deviation_to_its_contact_approach() {
     // A ball ΔD larger adds ΔD to its approach at a fixed ring; the ring then gives way. Under a
     // pure axial load every ball has the same contact stiffness k along its normal

@@ -30,6 +30,7 @@ fn distributed_defects_do_not_allocate_in_a_step() {
             } else {
                 vec![]
             },
+            ball_phase_seed: Some(1),
             ball_diameter_deviation: vec![0.1e-6; 14],
         });
         let mut sim = Simulation::new(&s).unwrap();
