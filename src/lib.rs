@@ -31,8 +31,10 @@ mod defect;
 mod geometry;
 mod limits;
 mod operating;
+mod roughness;
 mod scene;
 mod simulation;
+mod waviness;
 
 pub mod contact;
 pub mod fault_frequencies;
@@ -67,9 +69,11 @@ pub use models::{
     out, output_table, output_table_for, output_table_with_cage, OutputInfo, SimError,
 };
 pub use operating::{rpm_to_rad_s, OperatingPoint, RingLoad};
+pub use roughness::{track_radius, Roughness, RoughnessSpec, TrackField, TrackRoughness};
 pub use scene::{
     AxialMount, BearingRef, CageSpeed, CouplingMode, Fidelity, FullSettings, LumpedOptions,
     MethodName, Mounting, OutputSettings, Pulse, Resonator, Scene, SolverSettings, DEFAULT_SCENE,
     MAX_PI_BETA, MIN_RTOL, RTOL_FLOOR_WHY,
 };
 pub use simulation::{model_exchange_capacity, Journal, Simulation, WorkStats};
+pub use waviness::{Harmonic, Waviness, WavinessSpec};

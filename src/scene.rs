@@ -37,11 +37,14 @@
 //! displacement and velocity in, the bearing's reaction out, see [`CouplingMode`]), and
 //! `[mounting]` (`axial = "load"`, the default: Fa acts on the inner ring; or `"located"`: the
 //! ring is held axially at `axial_offset`, by default where the start's Fa puts it, so that an
-//! angular-contact bearing carries a pure radial load; see [`Mounting`]).
+//! angular-contact bearing carries a pure radial load; see [`Mounting`]), and the distributed
+//! defects `[waviness]` ([`WavinessSpec`]) and `[roughness]` ([`RoughnessSpec`]).
 
 use crate::config::{BearingFile, ConfigError};
 use crate::defect::DefectSpec;
 use crate::operating::OperatingPoint;
+use crate::roughness::RoughnessSpec;
+use crate::waviness::WavinessSpec;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -512,6 +515,10 @@ struct SceneFile {
     coupling: CouplingFile,
     #[serde(default)]
     mounting: Mounting,
+    #[serde(default)]
+    waviness: Option<WavinessSpec>,
+    #[serde(default)]
+    roughness: Option<RoughnessSpec>,
 }
 
 fn default_bearing() -> BearingRef {
@@ -545,6 +552,10 @@ pub struct Scene {
     pub coupling: CouplingMode,
     /// How the inner ring is held axially (table `[mounting]`).
     pub mounting: Mounting,
+    /// Harmonic waviness of races and balls, off-size balls (table `[waviness]`); None: none.
+    pub waviness: Option<WavinessSpec>,
+    /// Random roughness of the race tracks (table `[roughness]`); None: smooth tracks.
+    pub roughness: Option<RoughnessSpec>,
 }
 
 impl Scene {
@@ -569,6 +580,8 @@ impl Scene {
             full: FullSettings::default(),
             coupling: CouplingMode::Force,
             mounting: Mounting::default(),
+            waviness: None,
+            roughness: None,
         }
     }
 
@@ -633,6 +646,8 @@ impl Scene {
             full: file.full,
             coupling,
             mounting: file.mounting,
+            waviness: file.waviness,
+            roughness: file.roughness,
         };
         scene.validate()?;
         Ok(scene)
@@ -756,6 +771,12 @@ impl Scene {
         }
         if let Some(d) = &self.defect {
             d.validate()?;
+        }
+        if let Some(w) = &self.waviness {
+            w.validate()?;
+        }
+        if let Some(r) = &self.roughness {
+            r.validate()?;
         }
         Ok(())
     }

@@ -29,6 +29,9 @@ pub struct Level {
     pub label: &'static str,
     /// What the level computes, in one line.
     pub summary: &'static str,
+    /// Whether the level carries the distributed defects (scene tables `[waviness]` and
+    /// `[roughness]`, docs/model.md#distributed); the others refuse a scene that has them.
+    pub distributed: bool,
     /// Builds the level's model.
     pub build: Constructor,
 }
@@ -43,6 +46,7 @@ pub const LEVELS: &[Level] = &[
         summary: "Kinematic signal generator: impulse trains at the fault frequencies of the \
                   traction's cage speed (L1 with the balls' steady spin, the caged balance of \
                   their orbital torques); no dynamics",
+        distributed: false,
         build: |s, b, i| Ok(Box::new(kinematic::KinematicModel::new(s, b, i)?)),
     },
     Level {
@@ -52,6 +56,7 @@ pub const LEVELS: &[Level] = &[
         label: "L1",
         summary: "Quasi-static Jones–Harris load distribution and bearing stiffness at the \
                   current inputs; no dynamics",
+        distributed: false,
         build: |s, b, i| Ok(Box::new(quasi_static::QuasiStaticModel::new(s, b, i)?)),
     },
     Level {
@@ -61,6 +66,7 @@ pub const LEVELS: &[Level] = &[
         label: "L2",
         summary: "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, \
                   Hertz contacts and the spall; the default",
+        distributed: true,
         build: |s, b, i| Ok(Box::new(lumped::LumpedModel::new(s, b, i)?)),
     },
     Level {
@@ -72,6 +78,7 @@ pub const LEVELS: &[Level] = &[
                   spin rate about a fixed attitude axis, inner ring translations, pedestal; the \
                   full model's Hertz contacts, spall and strip traction (4 strips); ball flight \
                   and impacts with a fixed spin axis",
+        distributed: true,
         build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
     },
     Level {
@@ -80,6 +87,7 @@ pub const LEVELS: &[Level] = &[
         code: 4,
         label: "L4",
         summary: "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
+        distributed: true,
         build: |s, b, i| {
             let options = full::FullOptions {
                 traction: s.full.traction,
@@ -112,7 +120,28 @@ pub fn build(
     bearing: &Bearing,
     inputs: &OperatingPoint,
 ) -> Result<Box<dyn Model>, SimError> {
-    (level(scene.fidelity).build)(scene, bearing, inputs)
+    let row = level(scene.fidelity);
+    let waviness = scene.waviness.as_ref().is_some_and(|w| !w.is_empty());
+    let roughness = scene.roughness.as_ref().is_some_and(|r| !r.is_empty());
+    if !row.distributed && (waviness || roughness) {
+        let what = match (waviness, roughness) {
+            (true, true) => "[waviness] and [roughness]",
+            (true, false) => "[waviness]",
+            _ => "[roughness]",
+        };
+        let carriers: Vec<&str> = LEVELS
+            .iter()
+            .filter(|l| l.distributed)
+            .map(|l| l.name)
+            .collect();
+        return Err(SimError::Unsupported(format!(
+            "the {} level ({}) does not carry the scene's {what}; levels that do: {}",
+            row.name,
+            row.label,
+            carriers.join(", ")
+        )));
+    }
+    (row.build)(scene, bearing, inputs)
 }
 
 impl Fidelity {

@@ -6,7 +6,8 @@
 //! the rings through the series Hertz constant of its two contacts and the contact damping (or,
 //! with a `[lubrication]` section, the two lubricant films in series, docs/model.md#film).
 //! A spall removes the finite-ball drop g(y_b) from the ball's approach and changes the Hertz
-//! constant of its race (docs/model.md#spall).
+//! constant of its race (docs/model.md#spall). Waviness, off-size balls and track roughness add
+//! their approach at each ball's azimuth (docs/model.md#distributed).
 //!
 //! Besides the mechanical states, the cage angle θ_c and the shaft angle φ are states (so that
 //! speed changes between communication steps keep the balls and an inner-ring spall continuous).
@@ -21,7 +22,9 @@ use crate::geometry::{Bearing, Race};
 use crate::load_distribution;
 use crate::models::{out, SimError};
 use crate::operating::{OperatingPoint, RingLoad};
+use crate::roughness::Roughness;
 use crate::scene::{CageSpeed, Pulse, Resonator, Scene};
+use crate::waviness::Waviness;
 use std::f64::consts::{PI, TAU};
 
 // State layout.
@@ -141,6 +144,10 @@ pub struct LumpedModel {
     resonator: Option<(f64, f64, f64)>, // (m_r, k_r, c_r)
     pulse: Option<Pulse>,
     defect: Option<Defect>,
+    /// Harmonic waviness and off-size balls (docs/model.md#waviness).
+    waviness: Option<Waviness>,
+    /// Random track roughness (docs/model.md#roughness).
+    roughness: Option<Roughness>,
     /// Slip jitter: standard deviation of each ball's position [rad] and the seed.
     jitter_sigma: f64,
     jitter_seed: u64,
@@ -235,6 +242,14 @@ impl LumpedModel {
             resonator,
             pulse: scene.pulse.clone(),
             defect,
+            waviness: match &scene.waviness {
+                Some(w) => Waviness::new(w, bearing)?,
+                None => None,
+            },
+            roughness: match &scene.roughness {
+                Some(r) => Roughness::new(r, bearing)?,
+                None => None,
+            },
             jitter_sigma: scene.lumped.slip_jitter * TAU / bearing.z as f64,
             jitter_seed: scene.lumped.seed,
             theta_start: 0.0,
@@ -551,6 +566,27 @@ impl LumpedModel {
                             q_raw = self.unclamped_force(k, delta, delta_rate);
                         }
                     }
+                }
+                if self.waviness.is_some() || self.roughness.is_some() {
+                    // The distributed defects' added approach at the ball's azimuth.
+                    let (theta, theta_rate) = if equal_spacing {
+                        self.ball_angle(j, y[CAGE], cage_rate)
+                    } else {
+                        (theta[i], theta_rate[i])
+                    };
+                    let shaft_rate = self.inputs.shaft_speed;
+                    if let Some(w) = &self.waviness {
+                        let orbit = theta - self.theta_start - TAU * j as f64 / self.z as f64;
+                        let (dd, dr) = w.added(j, theta, theta_rate, orbit, y[SHAFT], shaft_rate);
+                        delta += dd;
+                        delta_rate += dr;
+                    }
+                    if let Some(r) = &self.roughness {
+                        let (dd, dr) = r.added(theta, theta_rate, y[SHAFT], shaft_rate);
+                        delta += dd;
+                        delta_rate += dr;
+                    }
+                    q_raw = self.unclamped_force(k, delta, delta_rate);
                 }
                 if let Some(f) = &self.film {
                     q_raw = f.force(

@@ -203,6 +203,7 @@ impl ReducedModel {
         if inputs.shaft_speed > 0.0 {
             core.cage_ratio = full.cage_speed() / inputs.shaft_speed;
         }
+        core.set_distributed(scene, bearing)?;
         let mut m = Self {
             core,
             traction,

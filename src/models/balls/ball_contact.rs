@@ -290,11 +290,13 @@ pub fn evaluate(
         damping,
         traction,
         defect,
+        None,
         Law::Clamped,
     )
 }
 
-/// [`evaluate`] with an explicit normal-force [`Law`].
+/// [`evaluate`] with an explicit normal-force [`Law`] and the distributed defects' added
+/// approach `added` (δ, δ̇) \[m, m/s\] (docs/model.md#distributed).
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub fn evaluate_law(
@@ -305,6 +307,7 @@ pub fn evaluate_law(
     damping: f64,
     traction: Option<(&TractionCurve, &Strips)>,
     defect: Option<DefectView<'_>>,
+    added: Option<(f64, f64)>,
     law: Law,
 ) -> ContactOut {
     let (mut out, loaded) = evaluate_normal(
@@ -314,6 +317,7 @@ pub fn evaluate_law(
         ball_radius,
         damping,
         defect,
+        added,
         law,
         traction.is_some(),
     );
@@ -346,11 +350,22 @@ pub fn slip_field_law(
     ball_radius: f64,
     damping: f64,
     defect: Option<DefectView<'_>>,
+    added: Option<(f64, f64)>,
     law: Law,
 ) -> Option<SlipField> {
-    evaluate_normal(ball, ring, race, ball_radius, damping, defect, law, true)
-        .1
-        .map(|(sf, _)| sf)
+    evaluate_normal(
+        ball,
+        ring,
+        race,
+        ball_radius,
+        damping,
+        defect,
+        added,
+        law,
+        true,
+    )
+    .1
+    .map(|(sf, _)| sf)
 }
 
 /// Everything of [`evaluate_law`] but the traction: the contact with its normal force, and,
@@ -365,6 +380,7 @@ pub fn evaluate_normal(
     ball_radius: f64,
     damping: f64,
     defect: Option<DefectView<'_>>,
+    added: Option<(f64, f64)>,
     law: Law,
     slip: bool,
 ) -> (ContactOut, Option<(SlipField, [V3; 3])>) {
@@ -377,6 +393,7 @@ pub fn evaluate_normal(
         ball_radius,
         damping,
         defect,
+        added,
         law,
         slip,
         &mut out,
@@ -444,6 +461,7 @@ pub fn evaluate_normal_at(
     ball_radius: f64,
     damping: f64,
     defect: Option<DefectView<'_>>,
+    added: Option<(f64, f64)>,
     law: Law,
     slip: bool,
     out: &mut ContactOut,
@@ -461,6 +479,10 @@ pub fn evaluate_normal_at(
         n3,
     } = *g;
     let mut delta = l - race.e;
+    // Waviness, roughness, an off-size ball: their added approach (docs/model.md#distributed).
+    if let Some((a, _)) = added {
+        delta += a;
+    }
     *out = ContactOut {
         delta,
         bx,
@@ -481,6 +503,9 @@ pub fn evaluate_normal_at(
     let gc = ring.to_inertial([race.xg, race.rg * ey, race.rg * ez]);
     let v_gc = add(ring.v, cross(ring.beta_rate, gc));
     let mut ddelta = dot(n, sub(ball.v, v_gc));
+    if let Some((_, a_rate)) = added {
+        ddelta += a_rate;
+    }
     let mut k = race.k;
     let mut k_cbrt = race.k_cbrt;
     let mut a_star = race.a_star;

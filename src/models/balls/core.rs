@@ -20,7 +20,9 @@ use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::models::{out, RingStates, SimError};
 use crate::operating::{OperatingPoint, RingLoad};
-use crate::scene::Pulse;
+use crate::roughness::Roughness;
+use crate::scene::{Pulse, Scene};
+use crate::waviness::Waviness;
 use std::f64::consts::TAU;
 
 /// How a ball's angular velocity follows from its states.
@@ -104,6 +106,10 @@ pub struct BallCore {
     pub(crate) c_pz: f64,
     pub(crate) pulse: Option<Pulse>,
     pub(crate) defect: Option<Defect>,
+    /// Race waviness and off-size balls (docs/model.md#waviness).
+    pub(crate) waviness: Option<Waviness>,
+    /// Track roughness (docs/model.md#roughness).
+    pub(crate) roughness: Option<Roughness>,
     /// Semi-major-axis factor of the spall-edge contact.
     pub(crate) defect_a_star: f64,
     pub(crate) inputs: OperatingPoint,
@@ -207,6 +213,8 @@ impl BallCore {
             c_pz: file.pedestal.c_z,
             pulse,
             defect,
+            waviness: None,
+            roughness: None,
             defect_a_star,
             inputs: *inputs,
             ring_load: None,
@@ -348,6 +356,66 @@ impl BallCore {
         })
     }
 
+    /// The distributed defects' added approach at ball j's contact with `race` and its rate
+    /// \[m, m/s\] (docs/model.md#distributed): the race's waviness and roughness at the ball's
+    /// angle on the ring (the inner ring's own angle: azimuth less shaft angle), which moves
+    /// past the ball at its orbital rate `w` (less the shaft speed on the inner ring), and half
+    /// the ball's diameter deviation. None without distributed defects.
+    #[inline(always)]
+    pub fn added_approach(
+        &self,
+        y: &[f64],
+        j: usize,
+        race: Race,
+        pose: &RingPose,
+        kin: &BallKin,
+        w: f64,
+    ) -> Option<(f64, f64)> {
+        if self.waviness.is_none() && self.roughness.is_none() {
+            return None;
+        }
+        let theta = pose.azimuth(kin.p);
+        let (x, rate) = match race {
+            Race::Inner => (theta - y[self.lay.phi()], w - self.inputs.shaft_speed),
+            Race::Outer => (theta, w),
+        };
+        let (mut a, mut r) = (0.0, 0.0);
+        if let Some(wv) = &self.waviness {
+            let (v, d) = wv.race(race, x, rate);
+            a += v + 0.5 * wv.deviation(j);
+            r += d;
+        }
+        if let Some(rg) = &self.roughness {
+            let (v, d) = rg.race(race, x, rate);
+            a += v;
+            r += d;
+        }
+        Some((a, r))
+    }
+
+    /// Sets the distributed defects of a scene (docs/model.md#distributed): race waviness,
+    /// off-size balls and roughness. Ball waviness needs the ball's spin angle, which these
+    /// levels do not integrate (C2): refused.
+    pub fn set_distributed(&mut self, scene: &Scene, bearing: &Bearing) -> Result<(), SimError> {
+        let waviness = match &scene.waviness {
+            Some(w) => Waviness::new(w, bearing)?,
+            None => None,
+        };
+        if waviness.as_ref().is_some_and(|w| w.has_ball_harmonics()) {
+            return Err(SimError::Unsupported(
+                "ball waviness ([waviness] ball) needs the ball's spin angle, which the reduced \
+                 and full levels do not integrate (docs/model.md#c2); the lumped level carries it"
+                    .into(),
+            ));
+        }
+        self.waviness = waviness;
+        self.roughness = match &scene.roughness {
+            Some(r) => Roughness::new(r, bearing)?,
+            None => None,
+        };
+        Ok(())
+    }
+
     /// Both normal contacts of ball j (inner, outer) under the frozen laws, with the slip fields
     /// of the loaded ones when `slip` (traction on): the first stage of
     /// [`ball_contact::evaluate_law`] one ball at a time ([`BallCore::normal_contacts_into`] for
@@ -402,6 +470,7 @@ impl BallCore {
                     self.ball_radius,
                     self.c_br,
                     self.spall_view(y, j, ring, w),
+                    self.added_approach(y, j, ring, pose, kin, w),
                     sw.law(j, k),
                     slip,
                     c,
@@ -436,6 +505,7 @@ impl BallCore {
                 self.c_br,
                 None,
                 self.spall_view(y, j, ring, w),
+                self.added_approach(y, j, ring, pose, &kin, w),
                 Law::Closed,
             );
             (contact_event(&c), c.q_raw)

@@ -105,6 +105,7 @@ impl FullModel {
             scene.pulse.clone(),
             None,
             (true, held, scene.full.cage),
+            Some(scene),
         )
     }
 
@@ -126,6 +127,7 @@ impl FullModel {
             None,
             l1,
             (false, None, false),
+            None,
         )
     }
 
@@ -138,6 +140,7 @@ impl FullModel {
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
         (settle, held_axial, cage): (bool, Option<f64>, bool),
+        distributed: Option<&Scene>,
     ) -> Result<Self, SimError> {
         let file = &bearing.file;
         let z = bearing.z;
@@ -153,7 +156,7 @@ impl FullModel {
         } else {
             None
         };
-        let core = BallCore::new(
+        let mut core = BallCore::new(
             bearing,
             inputs,
             Layout::full(z).with_cage(cage),
@@ -163,6 +166,10 @@ impl FullModel {
             pulse,
             held_axial,
         )?;
+        if let Some(scene) = distributed {
+            // Before the start's steady-rotation solve, which then includes them.
+            core.set_distributed(scene, bearing)?;
+        }
         let mut m = Self {
             core,
             traction,
@@ -325,6 +332,7 @@ impl FullModel {
                 c.ball_radius,
                 c.c_br,
                 c.spall_view(y, j, race, w),
+                c.added_approach(y, j, race, pose, &kin, w),
                 c.sw.law(j, k),
             )
         };
@@ -562,7 +570,10 @@ impl Model for FullModel {
             .cage
             .as_ref()
             .is_some_and(|cg| cg.params.guidance == crate::config::CageGuidance::InnerLand);
-        if self.traction.is_some() || inner_land {
+        // The distributed defects' added approach turns with the ball's azimuth, which the
+        // analytic form leaves out: central differences as well.
+        let distributed = self.core.waviness.is_some() || self.core.roughness.is_some();
+        if self.traction.is_some() || inner_land || distributed {
             return None;
         }
         let inner = self.core.inner_pose(y);
