@@ -246,7 +246,22 @@ fn unavailable_fidelity_fails_exit_initialization_with_the_library_message() {
             "{}",
             h.last()
         );
-        // fidelity is an Enumeration: read and written as an Integer, not as a Real.
+        sh::free_instance::<BallBearing>(c);
+    }
+    // fidelity is an Enumeration: read and written as an Integer, not as a Real (values are
+    // read from initialization mode on).
+    let c = h.inst(&ballbearing_fmu::guid(&b), None);
+    // SAFETY: test importer: the component comes from instantiate and is live, and the arrays
+    // and strings passed outlive the call (FMI 2.0 pointer rules).
+    unsafe {
+        assert_eq!(
+            sh::setup_experiment::<BallBearing>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            sh::enter_initialization_mode::<BallBearing>(c),
+            Fmi2Status::Ok
+        );
         let mut code = -1;
         assert_eq!(
             sh::get_integer::<BallBearing>(c, &fid, 1, &mut code),

@@ -102,6 +102,8 @@ def test_envelope_bpfo_matches_raceway_frequencies(raceway, made, preset):
     r = simulate_fmu(str(fmu), stop_time=0.5, output_interval=1 / fs, output=["pedestal.a.z"])
     a = r["pedestal.a.z"][len(r) // 10:]  # past the start transient
     peak = envelope_peak(a, fs, 0.5 * fr["bpfo"], 1.5 * fr["bpfo"])
+    print(f"{preset}: envelope BPFO {peak:.2f} Hz, raceway frequencies {fr['bpfo']:.2f} Hz at "
+          f"{math.degrees(alpha):.2f} deg ({100 * (peak / fr['bpfo'] - 1):+.2f} %)")
     assert peak == pytest.approx(fr["bpfo"], rel=0.01), (peak, fr)
 
 
