@@ -14,8 +14,9 @@ use std::os::raw::{c_char, c_int, c_void};
 use std::path::Path;
 
 // ---------------------------------------------------------------------------------------------
-// Reference run through the shipped shared library itself (dlopen), so that any importer
-// loading the FMU reproduces it bit for bit
+// Reference run through the shipped shared library itself (dlopen), so that an importer loading
+// the FMU reproduces it bit for bit where the C maths library rounds as the build machine's
+// (docs/platforms.md)
 // ---------------------------------------------------------------------------------------------
 
 #[link(name = "dl")]
