@@ -255,7 +255,10 @@ fn reduced_two_outer_spalls_a_ball_meets_both_a_quarter_turn_apart() {
                 r.cage,
                 (gap - expect) * 1e6
             );
-            assert!((gap - expect).abs() < 10e-6, "ball {j}: {gap} vs {expect}");
+            // Within 20 µs, a fifth of the ≈ 100 µs a pass lasts: the ball meets the second
+            // spall where it lies. (The entry, where the outer force falls below 5 %, sits a
+            // few µs deeper into one spall than the other: measured −6.7 … −8.7 µs.)
+            assert!((gap - expect).abs() < 20e-6, "ball {j}: {gap} vs {expect}");
             checked += 1;
         }
     }
