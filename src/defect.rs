@@ -106,6 +106,65 @@ impl DefectSpec {
     }
 }
 
+/// A spall's error with its field renamed for entry `k` of several: `defect.width` becomes
+/// `defect[k].width` (k from 0, the `[[defect]]` entry); unchanged with one spall (`several`
+/// false), so that a one-spall scene reports exactly what it always did.
+pub fn indexed_error(e: ConfigError, k: usize, several: bool) -> ConfigError {
+    match e.field.strip_prefix("defect.") {
+        Some(rest) if several => ConfigError::new(format!("defect[{k}].{rest}"), e.message),
+        _ => e,
+    }
+}
+
+/// Precomputes every spall of a scene ([`Defect::new`] each, errors named `defect[k].field`
+/// when there are several) and refuses two on the same ring whose angular extents
+/// [θ_d0 − θ_e, θ_d0 + θ_e] intersect (the ball-level and lumped models let each ball meet
+/// one spall per race at a time), with a message naming both.
+pub fn build_all<'a>(
+    specs: impl IntoIterator<Item = &'a DefectSpec>,
+    bearing: &Bearing,
+    reference_load: f64,
+) -> Result<Vec<Defect>, ConfigError> {
+    let specs: Vec<&DefectSpec> = specs.into_iter().collect();
+    let several = specs.len() > 1;
+    let all = specs
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            Defect::new(s, bearing, reference_load).map_err(|e| indexed_error(e, k, several))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    check_overlaps(all.iter().map(|d| (d.ring(), d.theta0(), d.half_angle())))?;
+    Ok(all)
+}
+
+/// Refuses two spalls `(ring, θ_d0, θ_e)` on the same ring whose angular extents intersect
+/// (|wrap(θ_a − θ_b)| < θ_ea + θ_eb); the error names both entries, `defect[a]` and `defect[b]`.
+pub fn check_overlaps(
+    spalls: impl IntoIterator<Item = (Race, f64, f64)>,
+) -> Result<(), ConfigError> {
+    let spalls: Vec<(Race, f64, f64)> = spalls.into_iter().collect();
+    for (b, &(rb, tb, eb)) in spalls.iter().enumerate() {
+        for (a, &(ra, ta, ea)) in spalls[..b].iter().enumerate() {
+            let gap = wrap(ta - tb).abs();
+            if ra == rb && gap < ea + eb {
+                return Err(ConfigError::new(
+                    format!("defect[{b}]"),
+                    format!(
+                        "the {ring}-race spalls defect[{a}] (theta0 = {ta} rad, half angle \
+                         {ea:.6} rad) and defect[{b}] (theta0 = {tb} rad, half angle {eb:.6} rad) \
+                         overlap: their centres are {gap:.6} rad apart, less than the sum of \
+                         their half angles {:.6} rad",
+                        ea + eb,
+                        ring = ra.name()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Which feature of the spall carries the ball.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ContactKind {

@@ -18,6 +18,8 @@
 //! depth = 0.2e-3
 //! theta0 = 3.1416                 # rad, C1 (docs/model.md#c1) convention (π = load-zone centre)
 //!
+//!                                 # or any number of spalls: [[defect]] tables
+//!                                 # (docs/scenes.md#several-spalls)
 //! [solver]
 //! method = "dop853"
 //! rtol = 1e-6
@@ -500,7 +502,7 @@ struct SceneFile {
     fidelity: Fidelity,
     operating: OperatingTable,
     #[serde(default)]
-    defect: Option<DefectSpec>,
+    defect: Option<Spalls>,
     #[serde(default)]
     solver: SolverSettings,
     #[serde(default)]
@@ -521,6 +523,53 @@ struct SceneFile {
     roughness: Option<RoughnessSpec>,
 }
 
+/// The scene file's `defect` key: one table `[defect]` (one spall, as always) or an array of
+/// tables `[[defect]]` (any number of spalls). A parse error inside the array names the entry,
+/// `defect[k]: ...` (k from 0).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+enum Spalls {
+    /// `[defect]`.
+    One(DefectSpec),
+    /// `[[defect]]`.
+    Many(Vec<DefectSpec>),
+}
+
+impl<'de> Deserialize<'de> for Spalls {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = Spalls;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table [defect] or an array of tables [[defect]]")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<Spalls, A::Error> {
+                DefectSpec::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(Spalls::One)
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Spalls, A::Error> {
+                let mut all = Vec::new();
+                loop {
+                    match seq.next_element::<DefectSpec>() {
+                        Ok(Some(s)) => all.push(s),
+                        Ok(None) => return Ok(Spalls::Many(all)),
+                        Err(e) => {
+                            return Err(serde::de::Error::custom(format!(
+                                "defect[{}]: {e}",
+                                all.len()
+                            )))
+                        }
+                    }
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
 fn default_bearing() -> BearingRef {
     BearingRef::Named(crate::config::DEFAULT_PRESET.to_string())
 }
@@ -536,8 +585,13 @@ pub struct Scene {
     pub fidelity: Fidelity,
     /// Shaft speed and loads (the file's `[operating]` table, in SI units).
     pub operating: OperatingPoint,
-    /// The spall (table `[defect]`); None for a healthy bearing.
+    /// The spall (table `[defect]`), or the first of several (`[[defect]]`, entry 0); None for
+    /// a healthy bearing.
     pub defect: Option<DefectSpec>,
+    /// The second and later spalls of a `[[defect]]` array (entries 1, 2, ...); empty with one
+    /// spall or none, and only allowed with a first one in `defect`. [`Scene::defects`] lists
+    /// them all.
+    pub more_defects: Vec<DefectSpec>,
     /// Integration method and tolerances (table `[solver]`).
     pub solver: SolverSettings,
     /// Duration, sampling and output selection (table `[output]`).
@@ -573,6 +627,7 @@ impl Scene {
             fidelity: Fidelity::default(),
             operating,
             defect: None,
+            more_defects: Vec::new(),
             solver: SolverSettings::default(),
             output: OutputSettings::default(),
             pulse: None,
@@ -633,12 +688,25 @@ impl Scene {
                 ),
             )
         })?;
+        let (defect, more_defects) = match file.defect {
+            None => (None, Vec::new()),
+            Some(Spalls::One(d)) => (Some(d), Vec::new()),
+            Some(Spalls::Many(mut all)) => {
+                if all.is_empty() {
+                    (None, all)
+                } else {
+                    let first = all.remove(0);
+                    (Some(first), all)
+                }
+            }
+        };
         let scene = Scene {
             name: file.name,
             bearing,
             fidelity: file.fidelity,
             operating: file.operating.into(),
-            defect: file.defect,
+            defect,
+            more_defects,
             solver: file.solver,
             output: file.output,
             pulse: file.pulse,
@@ -651,6 +719,27 @@ impl Scene {
         };
         scene.validate()?;
         Ok(scene)
+    }
+
+    /// Every spall of the scene, in file order: `defect`, then `more_defects`.
+    pub fn defects(&self) -> impl Iterator<Item = &DefectSpec> + '_ {
+        self.defect.iter().chain(self.more_defects.iter())
+    }
+
+    /// Number of spalls.
+    pub fn n_defects(&self) -> usize {
+        self.defects().count()
+    }
+
+    /// Replaces the spalls: the first becomes `defect`, the rest `more_defects` (none: healthy).
+    pub fn set_defects(&mut self, mut all: Vec<DefectSpec>) {
+        if all.is_empty() {
+            self.defect = None;
+            self.more_defects.clear();
+        } else {
+            self.defect = Some(all.remove(0));
+            self.more_defects = all;
+        }
     }
 
     /// Checks every value of the scene (the bearing is validated separately).
@@ -769,8 +858,19 @@ impl Scene {
                 "must lie in [0, 0.5) (a fraction of the ball spacing)",
             ));
         }
-        if let Some(d) = &self.defect {
-            d.validate()?;
+        if self.defect.is_none() && !self.more_defects.is_empty() {
+            return Err(ConfigError::new(
+                "defect",
+                format!(
+                    "{} later spall(s) but no first one (Scene::defect is None)",
+                    self.more_defects.len()
+                ),
+            ));
+        }
+        let several = !self.more_defects.is_empty();
+        for (k, d) in self.defects().enumerate() {
+            d.validate()
+                .map_err(|e| crate::defect::indexed_error(e, k, several))?;
         }
         if let Some(w) = &self.waviness {
             w.validate()?;

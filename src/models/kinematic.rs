@@ -129,6 +129,13 @@ impl KinematicModel {
             super::held_axial(scene, bearing, inputs)?,
             None,
         )?;
+        if scene.n_defects() > 1 {
+            return Err(SimError::Input(format!(
+                "the kinematic level (L0s) generates the impulse train of one spall; this scene \
+                 has {} ([[defect]]): simulate it at the lumped, reduced or full level",
+                scene.n_defects()
+            )));
+        }
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);

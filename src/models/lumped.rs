@@ -143,7 +143,8 @@ pub struct LumpedModel {
     c_pz: f64,
     resonator: Option<(f64, f64, f64)>, // (m_r, k_r, c_r)
     pulse: Option<Pulse>,
-    defect: Option<Defect>,
+    /// The spalls (docs/model.md#several-spalls): each ball checks each.
+    defects: Vec<Defect>,
     /// Harmonic waviness and off-size balls (docs/model.md#waviness).
     waviness: Option<Waviness>,
     /// Random track roughness (docs/model.md#roughness).
@@ -162,9 +163,10 @@ pub struct LumpedModel {
     /// Static ring displacement relative to the outer ring from L1 at rest (for the initial
     /// state: this model has no centrifugal ball forces, see [`LumpedModel::new`]).
     ring_offset: [f64; 3],
+    /// Spall zone of ball j for spall k at `k * z + j` (z entries without a spall).
     zones: Vec<Zone>,
-    /// Compliance K^(−2/3) of the race without the spall.
-    c_other: f64,
+    /// Groove compliances K^(−2/3) of the (inner, outer) race without a spall.
+    c_groove: [f64; 2],
     /// (sin, cos) of each ball's offset 2πj/z from ball 0.
     ball_offsets: Vec<(f64, f64)>,
     /// Contact mode of each ball, frozen inside a step once [`Model::update_mode`] has run
@@ -205,10 +207,8 @@ impl LumpedModel {
             (r.mass, r.mass * w * w, 2.0 * r.damping_ratio * r.mass * w)
         });
         let reference_load = reference_ball_load(bearing, inputs);
-        let defect = match &scene.defect {
-            Some(spec) => Some(Defect::new(spec, bearing, reference_load)?),
-            None => None,
-        };
+        let defects = crate::defect::build_all(scene.defects(), bearing, reference_load)?;
+        let n_zones = bearing.z * defects.len().max(1);
         let mut m = Self {
             bearing: bearing.clone(),
             z: bearing.z,
@@ -241,7 +241,7 @@ impl LumpedModel {
             c_pz: file.pedestal.c_z,
             resonator,
             pulse: scene.pulse.clone(),
-            defect,
+            defects,
             waviness: match &scene.waviness {
                 Some(w) => Waviness::new(w, bearing)?,
                 None => None,
@@ -258,11 +258,11 @@ impl LumpedModel {
             cage: scene.lumped.cage_speed,
             l1_inputs: *inputs,
             ring_offset: [0.0; 3],
-            zones: vec![Zone::Outside; bearing.z],
-            c_other: match scene.defect.as_ref().map(|d| d.ring) {
-                Some(Race::Inner) => bearing.k_outer.powf(-2.0 / 3.0),
-                _ => bearing.k_inner.powf(-2.0 / 3.0),
-            },
+            zones: vec![Zone::Outside; n_zones],
+            c_groove: [
+                bearing.k_inner.powf(-2.0 / 3.0),
+                bearing.k_outer.powf(-2.0 / 3.0),
+            ],
             ball_offsets: (0..bearing.z)
                 .map(|j| (TAU * j as f64 / bearing.z as f64).sin_cos())
                 .collect(),
@@ -311,12 +311,18 @@ impl LumpedModel {
     /// Ball 0's start azimuth: 0, or half a spacing when that puts a ball near the spall
     /// (docs/model.md#initial-state: no ball within θ_e + 0.02 rad of a defect at the start).
     fn choose_theta_start(&self) -> f64 {
-        let Some(d) = &self.defect else { return 0.0 };
-        let clear = d.half_angle() + 0.02;
+        if self.defects.is_empty() {
+            return 0.0;
+        }
         let spacing = TAU / self.z as f64;
         [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
             .into_iter()
-            .find(|&s| (0..self.z).all(|j| wrap(s + spacing * j as f64 - d.theta0()).abs() > clear))
+            .find(|&s| {
+                self.defects.iter().all(|d| {
+                    let clear = d.half_angle() + 0.02;
+                    (0..self.z).all(|j| wrap(s + spacing * j as f64 - d.theta0()).abs() > clear)
+                })
+            })
             .unwrap_or(0.5 * spacing)
     }
 
@@ -536,7 +542,12 @@ impl LumpedModel {
                 let j = base + i;
                 let (mut delta, mut delta_rate, mut k, mut q_raw) =
                     (delta[i], delta_rate[i], k0, q_raw[i]);
-                if let (Some(d), zone) = (&self.defect, self.zones[j]) {
+                // Each spall the ball is over: its drop and rate, and the defective race's
+                // blended compliance (a ball meets at most one spall per race at a time).
+                let mut c_race = self.c_groove;
+                let mut hit = false;
+                for (k, d) in self.defects.iter().enumerate() {
+                    let zone = self.zones[k * self.z + j];
                     if zone != Zone::Outside {
                         let (theta, theta_rate) = if equal_spacing {
                             self.ball_angle(j, y[CAGE], cage_rate)
@@ -560,12 +571,17 @@ impl LumpedModel {
                         if let Some(c) = d.contact_at(y_b) {
                             delta -= c.g;
                             delta_rate -= c.dg_dy * y_rate;
-                            // Series constant with the defective race's blended compliance.
-                            let c_sum = c.k_edge.powf(-2.0 / 3.0) + self.c_other;
-                            k = 1.0 / (c_sum * c_sum.sqrt());
-                            q_raw = self.unclamped_force(k, delta, delta_rate);
+                            c_race[usize::from(d.ring() == Race::Outer)] =
+                                c.k_edge.powf(-2.0 / 3.0);
+                            hit = true;
                         }
                     }
+                }
+                if hit {
+                    // Series constant with the defective races' blended compliances.
+                    let c_sum = c_race[0] + c_race[1];
+                    k = 1.0 / (c_sum * c_sum.sqrt());
+                    q_raw = self.unclamped_force(k, delta, delta_rate);
                 }
                 if self.waviness.is_some() || self.roughness.is_some() {
                     // The distributed defects' added approach at the ball's azimuth.
@@ -622,11 +638,12 @@ impl LumpedModel {
     /// Re-derives the spall zone of every ball at (t, y).
     fn update_zones(&mut self, t: f64, y: &[f64]) {
         let cage_rate = self.cage_rate();
-        if let Some(d) = &self.defect {
+        for (k, d) in self.defects.iter().enumerate() {
             for j in 0..self.z {
                 let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
                 let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                self.zones[j] = Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
+                self.zones[k * self.z + j] =
+                    Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
             }
         }
     }
@@ -886,7 +903,7 @@ impl Model for LumpedModel {
     fn next_stop(&self, t: f64, y: &[f64], t_max: f64) -> Option<f64> {
         let mut best = f64::INFINITY;
         let cage_rate = self.cage_rate();
-        if let Some(d) = &self.defect {
+        for d in &self.defects {
             let bounds = self.stop_angles(d);
             for j in 0..self.z {
                 let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
@@ -1039,12 +1056,9 @@ impl Model for LumpedModel {
 
     fn rollback(&mut self, b: &[f64], _t: f64, _y: &[f64]) -> Result<(), String> {
         let z = self.z;
-        if b.len() != 9 + 3 * z {
-            return Err(format!(
-                "lumped checkpoint has {} values, got {}",
-                9 + 3 * z,
-                b.len()
-            ));
+        let n = 9 + 2 * z + self.zones.len();
+        if b.len() != n {
+            return Err(format!("lumped checkpoint has {n} values, got {}", b.len()));
         }
         self.cage_ratio = b[0];
         self.l1_inputs = OperatingPoint {

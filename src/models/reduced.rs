@@ -196,7 +196,7 @@ impl ReducedModel {
             Layout::reduced(z).with_cage(scene.full.cage),
             BallSpin::Fixed { cos: 1.0, sin: 0.0 },
             false,
-            full.defect().cloned(),
+            full.defects().to_vec(),
             scene.pulse.clone(),
             full.held_axial(),
         );
@@ -308,9 +308,14 @@ impl ReducedModel {
         self.core.contact_forces()
     }
 
-    /// The spall, if any.
+    /// The spall, if any (the first of several).
     pub fn defect(&self) -> Option<&Defect> {
         self.core.defect()
+    }
+
+    /// Every spall.
+    pub fn defects(&self) -> &[Defect] {
+        self.core.defects()
     }
 
     /// Sum of the Hertz potentials (2/5)Kδ^{5/2} of all intact contacts \[J\].

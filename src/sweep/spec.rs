@@ -74,7 +74,25 @@ pub fn known_keys() -> Vec<&'static str> {
     KEYS.iter().map(|(k, _)| *k).collect()
 }
 
+/// `defect[k].field` (one spall of several, k from 0 in `[[defect]]` order) as (k, field),
+/// for the fields `ring`, `width`, `depth` and `theta0`.
+pub fn indexed_defect_key(key: &str) -> Option<(usize, &str)> {
+    let rest = key.strip_prefix("defect[")?;
+    let (k, field) = rest.split_once("].")?;
+    let k = k.parse().ok()?;
+    ["ring", "width", "depth", "theta0"]
+        .contains(&field)
+        .then_some((k, field))
+}
+
 fn key_kind(key: &str) -> Result<KeyKind, SweepError> {
+    if let Some((_, field)) = indexed_defect_key(key) {
+        return Ok(if field == "ring" {
+            KeyKind::Ring
+        } else {
+            KeyKind::Number
+        });
+    }
     KEYS.iter()
         .find(|(k, _)| *k == key)
         .map(|(_, kind)| *kind)
@@ -585,11 +603,41 @@ impl Sweep {
         });
         let mut defect = template;
         let mut present = self.base.defect.is_some();
+        // The second and later spalls of a [[defect]] base scene (keys defect[k].field).
+        let mut more = self.base.more_defects.clone();
         for (key, v) in self.set.iter().chain(run.params.iter()) {
             let num = || match v {
                 AxisValue::Num(x) => Ok(*x),
                 AxisValue::Text(s) => Err(format!("{key} = \"{s}\": expected a number")),
             };
+            if let Some((k, field)) = indexed_defect_key(key) {
+                let n = usize::from(self.base.defect.is_some()) + more.len();
+                let spec = match k {
+                    0 if present => &mut defect,
+                    _ if k >= 1 && k < n => &mut more[k - 1],
+                    _ => {
+                        return Err(format!(
+                            "{key}: the base scene has {n} spall(s) (defect[0] .. defect[{}])",
+                            n.max(1) - 1
+                        ))
+                    }
+                };
+                match field {
+                    "ring" => match parse_ring(key, v)? {
+                        Some(r) => spec.ring = r,
+                        None => {
+                            return Err(format!(
+                                "{key} = none: one spall of several cannot be removed (sweep \
+                                 defect.ring = none for a healthy bearing)"
+                            ))
+                        }
+                    },
+                    "width" => spec.width = num()?,
+                    "depth" => spec.depth = num()?,
+                    _ => spec.theta0 = num()?,
+                }
+                continue;
+            }
             match key.as_str() {
                 "defect.ring" => match parse_ring(key, v)? {
                     Some(r) => {
@@ -646,6 +694,7 @@ impl Sweep {
             }
         }
         scene.defect = present.then_some(defect);
+        scene.more_defects = if present { more } else { Vec::new() };
         scene.validate().map_err(|e| e.to_string())?;
         if scene.output.skip >= scene.output.duration {
             return Err(format!(

@@ -69,16 +69,24 @@ pub fn reference_ball_load(bearing: &Bearing, inputs: &OperatingPoint) -> f64 {
 /// Ball 0's start azimuth: 0 (where L1 puts it), or an offset when that puts a ball within
 /// θ_e + 0.02 rad of the spall (docs/model.md#initial-state step 4).
 pub fn choose_theta_start(z: usize, defect: Option<&Defect>) -> f64 {
-    let Some(d) = defect else { return 0.0 };
-    let clear = d.half_angle() + 0.02;
+    choose_theta_start_all(z, defect.map(std::slice::from_ref).unwrap_or_default())
+}
+
+/// [`choose_theta_start`] clear of every spall of `defects` (the first offset that is, else
+/// half a spacing; 0 without spalls).
+pub fn choose_theta_start_all(z: usize, defects: &[Defect]) -> f64 {
+    if defects.is_empty() {
+        return 0.0;
+    }
     let spacing = TAU / z as f64;
-    let theta0 = match d.ring() {
-        Race::Outer | Race::Inner => d.theta0(),
-    };
     [0.0, 0.5 * spacing, 0.25 * spacing, 0.75 * spacing]
         .into_iter()
         .find(|&s| {
-            (0..z).all(|j| crate::defect::wrap(s + spacing * j as f64 - theta0).abs() > clear)
+            defects.iter().all(|d| {
+                let clear = d.half_angle() + 0.02;
+                let theta0 = d.theta0();
+                (0..z).all(|j| crate::defect::wrap(s + spacing * j as f64 - theta0).abs() > clear)
+            })
         })
         .unwrap_or(0.5 * spacing)
 }
@@ -105,13 +113,14 @@ pub struct BallCore {
     pub(crate) c_py: f64,
     pub(crate) c_pz: f64,
     pub(crate) pulse: Option<Pulse>,
-    pub(crate) defect: Option<Defect>,
+    /// The spalls (docs/model.md#several-spalls): each ball checks each.
+    pub(crate) defects: Vec<Defect>,
     /// Race waviness and off-size balls (docs/model.md#waviness).
     pub(crate) waviness: Option<Waviness>,
     /// Track roughness (docs/model.md#roughness).
     pub(crate) roughness: Option<Roughness>,
-    /// Semi-major-axis factor of the spall-edge contact.
-    pub(crate) defect_a_star: f64,
+    /// Semi-major-axis factor of each spall's edge contact.
+    pub(crate) defect_a_star: Vec<f64>,
     pub(crate) inputs: OperatingPoint,
     /// A force law on the inner ring added to `inputs`' load (force coupling).
     pub(crate) ring_load: Option<RingLoad>,
@@ -146,8 +155,9 @@ pub struct BallCore {
 }
 
 impl BallCore {
-    /// The core for `bearing` at `inputs` with state layout `lay`, the spall of `defect` (its
-    /// blend length from [`reference_ball_load`]), ball 0 placed clear of it
+    /// The core for `bearing` at `inputs` with state layout `lay`, the spalls of `defects` (their
+    /// blend length from [`reference_ball_load`]; overlapping spalls refused), ball 0 placed
+    /// clear of them
     /// ([`choose_theta_start`]), the cage ratio of outer-race control at α0 until the model
     /// sets its own, and the initial state zero. A layout with the cage block gets the cage of
     /// the bearing file ([`Cage`]); one without gets the ball-to-ball contacts instead.
@@ -158,24 +168,18 @@ impl BallCore {
         lay: Layout,
         spin: BallSpin,
         tilt: bool,
-        defect: Option<&DefectSpec>,
+        defects: &[DefectSpec],
         pulse: Option<Pulse>,
         held_axial: Option<f64>,
     ) -> Result<Self, SimError> {
-        let defect = match defect {
-            Some(spec) => Some(Defect::new(
-                spec,
-                bearing,
-                reference_ball_load(bearing, inputs),
-            )?),
-            None => None,
-        };
+        let defects =
+            crate::defect::build_all(defects, bearing, reference_ball_load(bearing, inputs))?;
         Ok(Self::with_defect(
-            bearing, inputs, lay, spin, tilt, defect, pulse, held_axial,
+            bearing, inputs, lay, spin, tilt, defects, pulse, held_axial,
         ))
     }
 
-    /// [`BallCore::new`] with the spall already built.
+    /// [`BallCore::new`] with the spalls already built.
     #[allow(clippy::too_many_arguments)]
     pub fn with_defect(
         bearing: &Bearing,
@@ -183,16 +187,18 @@ impl BallCore {
         lay: Layout,
         spin: BallSpin,
         tilt: bool,
-        defect: Option<Defect>,
+        defects: Vec<Defect>,
         pulse: Option<Pulse>,
         held_axial: Option<f64>,
     ) -> Self {
         let file = &bearing.file;
         let z = bearing.z;
-        let defect_a_star = defect
-            .as_ref()
-            .map_or(0.0, |d| d.corner_hertz().semi_axis_factors().0);
-        let theta_start = choose_theta_start(z, defect.as_ref());
+        let defect_a_star = defects
+            .iter()
+            .map(|d| d.corner_hertz().semi_axis_factors().0)
+            .collect();
+        let theta_start = choose_theta_start_all(z, &defects);
+        let sw = Switches::with_spalls(z, defects.len());
         Self {
             lay,
             z,
@@ -212,7 +218,7 @@ impl BallCore {
             c_py: file.pedestal.c_y,
             c_pz: file.pedestal.c_z,
             pulse,
-            defect,
+            defects,
             waviness: None,
             roughness: None,
             defect_a_star,
@@ -221,7 +227,7 @@ impl BallCore {
             cage_ratio: 0.5 * (1.0 - bearing.gamma(bearing.alpha0)),
             theta_start,
             start_note: None,
-            sw: Switches::new(z),
+            sw,
             q_inner: vec![0.0; z],
             q_outer: vec![0.0; z],
             y0: vec![0.0; lay.dim()],
@@ -246,9 +252,14 @@ impl BallCore {
         &self.sw
     }
 
-    /// The spall, if any.
+    /// The spall, if any (the first of several).
     pub fn defect(&self) -> Option<&Defect> {
-        self.defect.as_ref()
+        self.defects.first()
+    }
+
+    /// Every spall.
+    pub fn defects(&self) -> &[Defect] {
+        &self.defects
     }
 
     /// Normal forces of the last evaluation: (inner, outer) per ball \[N\].
@@ -261,7 +272,7 @@ impl BallCore {
         self.held_axial
     }
 
-    /// True when ball j is inside the spall zone |θ_bd| < θ_e (as of the last mode update).
+    /// True when ball j is inside a spall zone |θ_bd| < θ_e (as of the last mode update).
     pub fn in_defect_zone(&self, j: usize) -> bool {
         j < self.z && self.sw.side(j) != 0.0
     }
@@ -334,13 +345,15 @@ impl BallCore {
         (d.theta_bd(pose.azimuth(kin.p), y[self.lay.phi()]), rate)
     }
 
-    /// The spall as seen by ball j on `race` in the frozen interval (orbital rate `w`).
+    /// The spall on `race` ball j is over in the frozen interval (orbital rate `w`), as it
+    /// sees it (spalls on one race do not overlap: at most one).
     #[inline(always)]
     pub fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        let d = self.defect.as_ref()?;
-        if d.ring() != race || self.sw.side(j) == 0.0 {
-            return None;
-        }
+        let (k, d) = self
+            .defects
+            .iter()
+            .enumerate()
+            .find(|(k, d)| d.ring() == race && self.sw.side_of(*k, j) != 0.0)?;
         // θ_bd turns with the ball, less the shaft for an inner-race spall.
         let rate = match race {
             Race::Inner => w - self.inputs.shaft_speed,
@@ -348,11 +361,11 @@ impl BallCore {
         };
         Some(DefectView {
             defect: d,
-            side: self.sw.side(j),
+            side: self.sw.side_of(k, j),
             phi: y[self.lay.phi()],
             theta_bd_rate: rate,
-            a_star: self.defect_a_star,
-            blend: self.sw.blend(j),
+            a_star: self.defect_a_star[k],
+            blend: self.sw.blend_of(k, j),
         })
     }
 
@@ -521,14 +534,16 @@ impl BallCore {
     /// and put back, no allocation).
     pub fn update_mode(&mut self, t: f64, y: &[f64]) {
         let z = self.z;
-        if let Some(d) = self.defect.as_ref() {
+        let defects = std::mem::take(&mut self.defects);
+        for (k, d) in defects.iter().enumerate() {
             let mut angles = std::mem::take(&mut self.sw.angles);
-            for (j, a) in angles.iter_mut().enumerate().take(z) {
+            for (j, a) in angles[k * z..(k + 1) * z].iter_mut().enumerate() {
                 *a = self.theta_bd(d, y, j);
             }
             self.sw.angles = angles;
-            self.sw.update_spall(t, d);
+            self.sw.update_spall(t, k, d);
         }
+        self.defects = defects;
         let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
         let mut events = std::mem::take(&mut self.sw.contact_events);
         for (j, e) in events.iter_mut().enumerate().take(z) {
@@ -546,18 +561,17 @@ impl BallCore {
             g[2 * j] = gi;
             g[2 * j + 1] = go;
         }
-        let Some(d) = self.defect.as_ref() else {
-            return;
-        };
-        for j in 0..self.z {
-            let (tbd, _) = self.theta_bd(d, y, j);
-            self.sw.spall_events(d, j, tbd, g);
+        for (k, d) in self.defects.iter().enumerate() {
+            for j in 0..self.z {
+                let (tbd, _) = self.theta_bd(d, y, j);
+                self.sw.spall_events(d, k, j, tbd, g);
+            }
         }
     }
 
     /// Number of event functions.
     pub fn n_events(&self) -> usize {
-        self.sw.n_events(self.defect.is_some())
+        self.sw.n_events(self.defects.len())
     }
 
     /// The next kink of the pulse after t, if not after `t_max` (a stop).

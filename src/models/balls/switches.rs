@@ -5,10 +5,11 @@
 //! state; a model that owns a [`Switches`] evaluates a frozen law inside each step
 //! ([`Switches::law`], [`Switches::blend`], [`Switches::side`]) and locates the switches as
 //! state events. Event indices, per ball j of z: 2j, 2j + 1 the inner and outer contact
-//! (min(δ′, Q/S)); with a spall 2z + 2j the zone edge, 2z + 2j + 1 the spall centre and
-//! 4z + j the blend boundary.
+//! (min(δ′, Q/S)); with spalls, spall k's block starts at b = 2z + 3zk: b + 2j the zone edge,
+//! b + 2j + 1 the spall centre and b + 2z + j the blend boundary (with one spall 2z + 2j,
+//! 2z + 2j + 1 and 4z + j). Each ball has its own frozen half and blend side per spall.
 //!
-//! A model fills [`Switches::angles`] (θ_bd and its rate per ball) and, after
+//! A model fills [`Switches::angles`] (θ_bd and its rate per spall and ball) and, after
 //! [`Switches::update_spall`], [`Switches::contact_events`] (the contact functions under the new
 //! halves) before [`Switches::update_contacts`]; nothing here allocates after construction.
 
@@ -27,7 +28,10 @@ pub const EVENT_ROOT_TOL: f64 = 1e-10;
 #[derive(Debug, Clone, Default)]
 pub struct Switches {
     z: usize,
-    /// Frozen spall half per ball: 0 outside, −1 / +1 the sign of y_b.
+    /// Spall slots: the number of spalls, at least 1 (the buffers of a healthy model keep
+    /// the one-spall size, which its checkpoint has always had).
+    spalls: usize,
+    /// Frozen spall half of ball j for spall k at `k z + j`: 0 outside, −1 / +1 the sign of y_b.
     sides: Vec<f64>,
     /// Balls whose half changed in the last mode update (their contact functions jump there).
     sides_changed: Vec<bool>,
@@ -50,7 +54,8 @@ pub struct Switches {
     /// and by how much: a short loss or touch inside one step has two roots that the sign test
     /// at the step end misses, so the integrator also tests this time.
     suspect: Option<(f64, f64)>,
-    /// Per ball: θ_bd and its rate at the state of the mode update (filled by the model).
+    /// Per spall k and ball j (at `k z + j`): θ_bd and its rate at the state of the mode
+    /// update (filled by the model).
     pub angles: Vec<(f64, f64)>,
     /// Per ball: the contact event functions and unclamped forces (inner, outer) at the state
     /// of the mode update under the updated halves (filled by the model).
@@ -64,43 +69,65 @@ pub fn contact_event(c: &ContactOut) -> f64 {
 }
 
 impl Switches {
-    /// Modes for z balls: all outside the spall, contacts under the clamped law until the
-    /// first mode update.
+    /// Modes for z balls and one spall slot: all outside the spall, contacts under the
+    /// clamped law until the first mode update.
     pub fn new(z: usize) -> Self {
+        Self::with_spalls(z, 1)
+    }
+
+    /// [`Switches::new`] with `spalls` spall slots (at least 1 is kept).
+    pub fn with_spalls(z: usize, spalls: usize) -> Self {
+        let n = spalls.max(1);
+        let events = 2 * z + 3 * z * n;
         Self {
             z,
-            sides: vec![0.0; z],
-            sides_changed: vec![false; z],
-            in_blend: vec![false; z],
+            spalls: n,
+            sides: vec![0.0; n * z],
+            sides_changed: vec![false; n * z],
+            in_blend: vec![false; n * z],
             closed: vec![[true; 2]; z],
             modes_set: false,
-            fired: vec![false; 5 * z],
-            flipped_at: vec![f64::NAN; 5 * z],
+            fired: vec![false; events],
+            flipped_at: vec![f64::NAN; events],
             suspect: None,
-            angles: vec![(0.0, 0.0); z],
+            angles: vec![(0.0, 0.0); n * z],
             contact_events: vec![[(0.0, 0.0); 2]; z],
         }
     }
 
-    /// Number of event functions: the contacts, and with a spall the edges, centres and blends.
-    pub fn n_events(&self, spall: bool) -> usize {
-        if spall {
-            5 * self.z
-        } else {
-            2 * self.z
-        }
+    /// Number of event functions: the contacts, and per spall (`spalls` of them) the edges,
+    /// centres and blends.
+    pub fn n_events(&self, spalls: usize) -> usize {
+        2 * self.z + 3 * self.z * spalls.min(self.spalls)
     }
 
-    /// Frozen spall half of ball j (0 outside the zone).
+    /// Frozen spall half of ball j (0 outside every spall's zone; else the half of the first
+    /// spall it is over).
     #[inline(always)]
     pub fn side(&self, j: usize) -> f64 {
-        self.sides[j]
+        (0..self.spalls)
+            .map(|k| self.sides[k * self.z + j])
+            .find(|&s| s != 0.0)
+            .unwrap_or(0.0)
     }
 
-    /// Frozen blend side of ball j (`None` before the first mode update: by the position).
+    /// Frozen half of ball j on spall k (0 outside its zone).
+    #[inline(always)]
+    pub fn side_of(&self, k: usize, j: usize) -> f64 {
+        self.sides[k * self.z + j]
+    }
+
+    /// Frozen blend side of ball j on the first spall (`None` before the first mode update).
     #[inline(always)]
     pub fn blend(&self, j: usize) -> Option<bool> {
-        self.modes_set.then(|| self.in_blend[j])
+        self.blend_of(0, j)
+    }
+
+    /// Frozen blend side of ball j on spall k (`None` before the first mode update: by the
+    /// position).
+    #[inline(always)]
+    pub fn blend_of(&self, k: usize, j: usize) -> Option<bool> {
+        self.modes_set.then(|| self.in_blend[k * self.z + j])
     }
 
     /// The normal-force law of ball j's contact `k` (0 inner, 1 outer) in the frozen mode.
@@ -144,8 +171,9 @@ impl Switches {
     }
 
     /// Appends the frozen modes and the switch memory to `b` (a model's
-    /// [`crate::models::Model::checkpoint`]); [`Switches::CHECKPOINT_PER_BALL`] values per ball
-    /// and 4 more. No allocation once `b` has its size.
+    /// [`crate::models::Model::checkpoint`]); [`Switches::checkpoint_len`] values
+    /// ([`Switches::CHECKPOINT_PER_BALL`] per ball and 4 more with one spall slot). No
+    /// allocation once `b` has its size.
     pub fn checkpoint(&self, b: &mut Vec<f64>) {
         let flag = |on: bool| f64::from(u8::from(on));
         let (has, t, e) = self.suspect.map_or((0.0, 0.0, 0.0), |(t, e)| (1.0, t, e));
@@ -158,27 +186,35 @@ impl Switches {
         b.extend_from_slice(&self.flipped_at);
     }
 
-    /// Values per ball in [`Switches::checkpoint`] (sides, their changes, blends, two contacts,
-    /// and five events' flags and flip times).
+    /// Values per ball in [`Switches::checkpoint`] with one spall slot (sides, their changes,
+    /// blends, two contacts, and five events' flags and flip times).
     pub const CHECKPOINT_PER_BALL: usize = 15;
 
-    /// Puts back what [`Switches::checkpoint`] wrote (exactly `4 + 15 z` values).
+    /// Length of [`Switches::checkpoint`]: 4 + z (2 + 2·2 + 9 n) for n spall slots (4 + 15 z
+    /// with one).
+    pub fn checkpoint_len(&self) -> usize {
+        4 + self.z * (6 + 9 * self.spalls)
+    }
+
+    /// Puts back what [`Switches::checkpoint`] wrote (exactly [`Switches::checkpoint_len`]
+    /// values).
     pub fn rollback(&mut self, b: &[f64]) -> Result<(), String> {
         let z = self.z;
-        if b.len() != 4 + Self::CHECKPOINT_PER_BALL * z {
+        let n = self.spalls;
+        if b.len() != self.checkpoint_len() {
             return Err(format!(
                 "mode checkpoint has {} values, got {}",
-                4 + Self::CHECKPOINT_PER_BALL * z,
+                self.checkpoint_len(),
                 b.len()
             ));
         }
         self.modes_set = b[0] != 0.0;
         self.suspect = (b[1] != 0.0).then_some((b[2], b[3]));
-        let (sides, b) = b[4..].split_at(z);
-        let (changed, b) = b.split_at(z);
-        let (blend, b) = b.split_at(z);
+        let (sides, b) = b[4..].split_at(n * z);
+        let (changed, b) = b.split_at(n * z);
+        let (blend, b) = b.split_at(n * z);
         let (closed, b) = b.split_at(2 * z);
-        let (fired, flipped) = b.split_at(5 * z);
+        let (fired, flipped) = b.split_at(2 * z + 3 * n * z);
         self.sides.copy_from_slice(sides);
         for (v, &x) in self.sides_changed.iter_mut().zip(changed) {
             *v = x != 0.0;
@@ -203,43 +239,48 @@ impl Switches {
         }
     }
 
-    /// Spall event functions of ball j at θ_bd = `tbd` (index 2z + 2j, 2z + 2j + 1, 4z + j):
+    /// Spall event functions of ball j on spall k at θ_bd = `tbd` (index b + 2j, b + 2j + 1,
+    /// b + 2z + j with b = 2z + 3zk; with one spall 2z + 2j, 2z + 2j + 1, 4z + j):
     /// θ_e − |θ_bd| (edge crossings); while the ball is in the zone θ_bd clipped to ±0.5 rad
     /// (the centre, where the ball changes corners; 1 outside the zone, where the wrap of θ_bd
     /// at ±π would fire a spurious event once per orbit of every ball); the blend boundary
     /// ([`Defect::blend_margin`]).
     #[inline(always)]
-    pub fn spall_events(&self, d: &Defect, j: usize, tbd: f64, g: &mut [f64]) {
+    pub fn spall_events(&self, d: &Defect, k: usize, j: usize, tbd: f64, g: &mut [f64]) {
         let z2 = 2 * self.z;
-        g[z2 + 2 * j] = d.zone_margin(tbd);
-        g[z2 + 2 * j + 1] = if self.sides[j] != 0.0 {
+        let b = z2 + 3 * self.z * k;
+        g[b + 2 * j] = d.zone_margin(tbd);
+        g[b + 2 * j + 1] = if self.sides[k * self.z + j] != 0.0 {
             tbd.clamp(-0.5, 0.5)
         } else {
             1.0
         };
-        g[2 * z2 + j] = d.blend_margin(tbd);
+        g[b + z2 + j] = d.blend_margin(tbd);
     }
 
-    /// Re-derives the frozen spall halves and blend sides from [`Switches::angles`] (at time
-    /// t). A ball whose centre event just fired changes halves and one whose edge event fired
+    /// Re-derives the frozen halves and blend sides of spall k from [`Switches::angles`] (at
+    /// time t). A ball whose centre event just fired changes halves and one whose edge event fired
     /// enters (on the side of θ_bd) or leaves the zone: at the located state θ_bd sits within
     /// the location tolerance of the boundary on either side (the state is re-integrated by the
     /// method, not taken from the interpolant), so its sign alone could keep the old half for
     /// the rest of the pass. Every other ball takes its half from θ_bd (a position a hair ahead
     /// along the motion decides at a boundary). Blend sides likewise: a fired blend event
     /// flips, others follow the sign of the blend function.
-    pub fn update_spall(&mut self, t: f64, d: &Defect) {
+    pub fn update_spall(&mut self, t: f64, k: usize, d: &Defect) {
         let te = d.half_angle();
-        let z2 = 2 * self.z;
+        let z = self.z;
+        let z2 = 2 * z;
+        let base = 3 * z * k;
+        let at = k * z;
         let hair = |(tbd, rate): (f64, f64)| {
             tbd + 1e-12 * rate.signum() * f64::from(u8::from(rate != 0.0))
         };
-        for j in 0..self.z {
-            let (tbd, rate) = self.angles[j];
-            let (edge, centre) = (z2 + 2 * j, z2 + 2 * j + 1);
+        for j in 0..z {
+            let (tbd, rate) = self.angles[at + j];
+            let (edge, centre) = (base + z2 + 2 * j, base + z2 + 2 * j + 1);
             let fired = |i: usize| self.modes_set && self.fired[i];
             let kept = |i: usize| self.modes_set && self.flipped_at[i] == t;
-            let before = self.sides[j];
+            let before = self.sides[at + j];
             let (side, flipped) = if fired(centre) && before != 0.0 {
                 (-before, Some(centre))
             } else if fired(edge) {
@@ -267,17 +308,17 @@ impl Switches {
             if let Some(i) = flipped {
                 self.flipped_at[i] = t;
             }
-            self.sides[j] = side;
-            self.sides_changed[j] = side != before;
+            self.sides[at + j] = side;
+            self.sides_changed[at + j] = side != before;
         }
-        let z4 = 4 * self.z;
-        for j in 0..self.z {
+        let z4 = base + 4 * z;
+        for j in 0..z {
             let i = z4 + j;
             if self.modes_set && self.fired[i] {
-                self.in_blend[j] = !self.in_blend[j];
+                self.in_blend[at + j] = !self.in_blend[at + j];
                 self.flipped_at[i] = t;
             } else if !(self.modes_set && self.flipped_at[i] == t) {
-                self.in_blend[j] = d.blend_margin(hair(self.angles[j])) < 0.0;
+                self.in_blend[at + j] = d.blend_margin(hair(self.angles[at + j])) < 0.0;
             }
         }
     }
@@ -293,7 +334,8 @@ impl Switches {
         for j in 0..self.z {
             // A ball that changed halves at this update has new contact functions: only
             // their signs tell the modes.
-            let flip = self.modes_set && !self.sides_changed[j];
+            let changed = (0..self.spalls).any(|k| self.sides_changed[k * self.z + j]);
+            let flip = self.modes_set && !changed;
             for k in 0..2 {
                 let (g, q) = self.contact_events[j][k];
                 let i = 2 * j + k;

@@ -101,7 +101,7 @@ impl FullModel {
             bearing,
             inputs,
             options,
-            scene.defect.as_ref(),
+            &scene.defects().cloned().collect::<Vec<_>>(),
             scene.pulse.clone(),
             None,
             (true, held, scene.full.cage),
@@ -123,7 +123,7 @@ impl FullModel {
             bearing,
             inputs,
             options,
-            None,
+            &[],
             None,
             l1,
             (false, None, false),
@@ -136,7 +136,7 @@ impl FullModel {
         bearing: &Bearing,
         inputs: &OperatingPoint,
         options: FullOptions,
-        defect: Option<&DefectSpec>,
+        defects: &[DefectSpec],
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
         (settle, held_axial, cage): (bool, Option<f64>, bool),
@@ -162,7 +162,7 @@ impl FullModel {
             Layout::full(z).with_cage(cage),
             BallSpin::Free,
             true,
-            defect,
+            defects,
             pulse,
             held_axial,
         )?;
@@ -354,9 +354,14 @@ impl FullModel {
             .map_or(f64::NAN, |d| self.core.theta_bd(d, y, j).0)
     }
 
-    /// The spall, if any.
+    /// The spall, if any (the first of several).
     pub fn defect(&self) -> Option<&Defect> {
         self.core.defect()
+    }
+
+    /// Every spall.
+    pub fn defects(&self) -> &[Defect] {
+        self.core.defects()
     }
 
     /// Total mechanical energy \[J\]: kinetic (balls incl. rotation, inner-ring translation and

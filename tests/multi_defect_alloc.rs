@@ -1,0 +1,81 @@
+//! With several spalls (two outer, one inner) the lumped and reduced models' right-hand side,
+//! event functions and mode updates do not allocate (a counting global allocator watches
+//! them), with balls inside the spall zones; the event count is 2z + 3z per spall.
+
+use raceway::models::{LumpedModel, Model, ReducedModel};
+use raceway::{Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene};
+#[path = "common/alloc_counter.rs"]
+mod alloc_counter;
+use alloc_counter::allocations_during;
+
+fn spall(ring: Race, theta0: f64) -> DefectSpec {
+    DefectSpec {
+        ring,
+        width: 1.0e-3,
+        depth: 0.2e-3,
+        theta0,
+    }
+}
+
+#[test]
+fn rhs_and_events_do_not_allocate_with_three_spalls() {
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
+    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
+    scene.set_defects(vec![
+        spall(Race::Outer, 0.0),
+        spall(Race::Outer, 0.1),
+        spall(Race::Inner, 0.05),
+    ]);
+    assert_eq!(scene.n_defects(), 3);
+    let bearing = Bearing::new(&scene.bearing).unwrap();
+    let inputs = scene.operating;
+    let z = bearing.z;
+    for level in [Fidelity::Lumped, Fidelity::Reduced] {
+        scene.fidelity = level;
+        let mut m: Box<dyn Model> = match level {
+            Fidelity::Lumped => Box::new(LumpedModel::new(&scene, &bearing, &inputs).unwrap()),
+            _ => Box::new(ReducedModel::new(&scene, &bearing, &inputs).unwrap()),
+        };
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        if level == Fidelity::Reduced {
+            assert_eq!(m.n_events(), 2 * z + 3 * z * 3);
+        }
+        let mut d = vec![0.0; n];
+        let mut o = vec![0.0; raceway::output_table(z).len()];
+        let mut g = vec![0.0; m.n_events()];
+        // Move the balls over the spalls: sweep the cage angle (state 10 of the lumped level,
+        // the reference cage angle ψ of the reduced level).
+        let psi = match level {
+            Fidelity::Reduced => Some(
+                ReducedModel::new(&scene, &bearing, &inputs)
+                    .unwrap()
+                    .layout()
+                    .psi(),
+            ),
+            _ => None,
+        };
+        let mut in_zone = 0;
+        let (count, ()) = allocations_during(|| {
+            for k in 0..16 {
+                let s = -0.3 + 0.6 * k as f64 / 15.0;
+                match psi {
+                    Some(p) => y[p] = s,
+                    None => y[10] = s,
+                }
+                m.update_mode(0.0, &y);
+                m.rhs(0.0, &y, &mut d);
+                m.events(0.0, &y, &mut g);
+                m.outputs(0.0, &y, &mut o);
+                // Balls whose outer contact force dropped to 0 are over a spall.
+                in_zone += (0..z)
+                    .filter(|&j| o[raceway::out::CONTACT_START + z + j] == 0.0)
+                    .count();
+            }
+        });
+        assert!(d.iter().all(|v| v.is_finite()), "{level:?}");
+        assert_eq!(count, 0, "allocations in rhs/events/outputs ({level:?})");
+        assert!(in_zone > 0, "{level:?}: no ball reached a spall");
+    }
+}
