@@ -116,22 +116,24 @@ pub fn indexed_error(e: ConfigError, k: usize, several: bool) -> ConfigError {
     }
 }
 
-/// Precomputes every spall of a scene ([`Defect::new`] each, errors named `defect[k].field`
-/// when there are several) and refuses two on the same ring whose angular extents
+/// Precomputes every spall of a scene with its mode ([`Defect::with_mode`] each, see
+/// [`crate::Scene::spalls`]; errors named `defect[k].field` when there are several) and
+/// refuses two on the same ring whose angular extents
 /// [θ_d0 − θ_e, θ_d0 + θ_e] intersect (the ball-level and lumped models let each ball meet
 /// one spall per race at a time), with a message naming both.
 pub fn build_all<'a>(
-    specs: impl IntoIterator<Item = &'a DefectSpec>,
+    specs: impl IntoIterator<Item = (&'a DefectSpec, Option<DefectMode>)>,
     bearing: &Bearing,
     reference_load: f64,
 ) -> Result<Vec<Defect>, ConfigError> {
-    let specs: Vec<&DefectSpec> = specs.into_iter().collect();
+    let specs: Vec<(&DefectSpec, Option<DefectMode>)> = specs.into_iter().collect();
     let several = specs.len() > 1;
     let all = specs
         .iter()
         .enumerate()
-        .map(|(k, s)| {
-            Defect::new(s, bearing, reference_load).map_err(|e| indexed_error(e, k, several))
+        .map(|(k, &(s, mode))| {
+            Defect::with_mode(s, bearing, reference_load, mode)
+                .map_err(|e| indexed_error(e, k, several))
         })
         .collect::<Result<Vec<_>, _>>()?;
     check_overlaps(all.iter().map(|d| (d.ring(), d.theta0(), d.half_angle())))?;
@@ -308,7 +310,18 @@ impl Defect {
         bearing: &Bearing,
         reference_load: f64,
     ) -> Result<Defect, ConfigError> {
-        Self::build(spec, bearing, reference_load, true)
+        Self::build(spec, bearing, reference_load, true, None)
+    }
+
+    /// [`Defect::new`] in `mode` instead of the bearing's `[defect] mode` (None: the bearing's),
+    /// for a spall of several that has its own (`mode` of a `[[defect]]` entry).
+    pub fn with_mode(
+        spec: &DefectSpec,
+        bearing: &Bearing,
+        reference_load: f64,
+        mode: Option<DefectMode>,
+    ) -> Result<Defect, ConfigError> {
+        Self::build(spec, bearing, reference_load, true, mode)
     }
 
     /// The spall's azimuthal extent and largest drop without the drop table (the kinematic
@@ -321,7 +334,17 @@ impl Defect {
         bearing: &Bearing,
         reference_load: f64,
     ) -> Result<SpallSummary, ConfigError> {
-        let d = Self::build(spec, bearing, reference_load, false)?;
+        Self::summary_with_mode(spec, bearing, reference_load, None)
+    }
+
+    /// [`Defect::summary`] in `mode` (None: the bearing's), as [`Defect::with_mode`].
+    pub fn summary_with_mode(
+        spec: &DefectSpec,
+        bearing: &Bearing,
+        reference_load: f64,
+        mode: Option<DefectMode>,
+    ) -> Result<SpallSummary, ConfigError> {
+        let d = Self::build(spec, bearing, reference_load, false, mode)?;
         Ok(SpallSummary {
             ring: d.ring,
             theta0: d.theta0,
@@ -330,12 +353,14 @@ impl Defect {
         })
     }
 
-    /// [`Defect::new`]; without `table` the drop table stays empty (only for [`Defect::summary`]).
+    /// [`Defect::new`]; without `table` the drop table stays empty (only for [`Defect::summary`]);
+    /// `mode` overrides the bearing's.
     fn build(
         spec: &DefectSpec,
         bearing: &Bearing,
         reference_load: f64,
         table: bool,
+        mode: Option<DefectMode>,
     ) -> Result<Defect, ConfigError> {
         spec.validate()?;
         let d_ball = bearing.d;
@@ -357,6 +382,7 @@ impl Defect {
             ));
         }
         let defaults = &bearing.file.defect;
+        let mode = mode.unwrap_or(defaults.mode);
         let edge_radius = defaults.edge_radius;
         if !(edge_radius.is_finite() && edge_radius > 0.0) {
             return Err(ConfigError::new(
@@ -440,7 +466,7 @@ impl Defect {
             // right half are the mirror images of the left half's (the same drop, the contact
             // point mirrored), equal to a direct solve up to rounding; this halves the set-up.
             let mirror = n - 1 - i;
-            if defaults.mode == DefectMode::Finite && mirror < i {
+            if mode == DefectMode::Finite && mirror < i {
                 let m: DropNode = nodes[mirror];
                 let node = DropNode {
                     y_b,
@@ -450,7 +476,7 @@ impl Defect {
                 nodes.push(node);
                 continue;
             }
-            let node = match defaults.mode {
+            let node = match mode {
                 DefectMode::Finite => {
                     let (g, y_q, kind) = geo.rolling_ball(y_b);
                     let k = match kind {
@@ -492,7 +518,7 @@ impl Defect {
         let max_drop = if table {
             nodes.iter().map(|n| n.g).fold(0.0, f64::max)
         } else {
-            match defaults.mode {
+            match mode {
                 DefectMode::Finite => geo.rolling_ball(0.0).0,
                 DefectMode::Point => geo.depth_at(0.0),
             }
@@ -502,7 +528,7 @@ impl Defect {
             width: spec.width,
             depth: spec.depth,
             theta0: wrap(spec.theta0),
-            mode: defaults.mode,
+            mode,
             r,
             half_width,
             r_d1,

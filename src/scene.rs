@@ -42,7 +42,7 @@
 //! angular-contact bearing carries a pure radial load; see [`Mounting`]), and the distributed
 //! defects `[waviness]` ([`WavinessSpec`]) and `[roughness]` ([`RoughnessSpec`]).
 
-use crate::config::{BearingFile, ConfigError};
+use crate::config::{BearingFile, ConfigError, DefectMode};
 use crate::defect::DefectSpec;
 use crate::operating::OperatingPoint;
 use crate::roughness::RoughnessSpec;
@@ -532,7 +532,21 @@ enum Spalls {
     /// `[defect]`.
     One(DefectSpec),
     /// `[[defect]]`.
-    Many(Vec<DefectSpec>),
+    Many(Vec<SpallEntry>),
+}
+
+/// One entry of a `[[defect]]` array: a [`DefectSpec`] and, optionally, its own mode.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpallEntry {
+    ring: crate::geometry::Race,
+    width: f64,
+    depth: f64,
+    #[serde(default)]
+    theta0: f64,
+    /// `"finite"` or `"point"`; absent: the bearing's `[defect] mode`.
+    #[serde(default)]
+    mode: Option<DefectMode>,
 }
 
 impl<'de> Deserialize<'de> for Spalls {
@@ -553,7 +567,7 @@ impl<'de> Deserialize<'de> for Spalls {
             ) -> Result<Spalls, A::Error> {
                 let mut all = Vec::new();
                 loop {
-                    match seq.next_element::<DefectSpec>() {
+                    match seq.next_element::<SpallEntry>() {
                         Ok(Some(s)) => all.push(s),
                         Ok(None) => return Ok(Spalls::Many(all)),
                         Err(e) => {
@@ -592,6 +606,10 @@ pub struct Scene {
     /// spall or none, and only allowed with a first one in `defect`. [`Scene::defects`] lists
     /// them all.
     pub more_defects: Vec<DefectSpec>,
+    /// Each spall's own mode, in the order of [`Scene::defects`] (the `mode` key of a
+    /// `[[defect]]` entry): None, or no entry at all (the `[defect]` table, an empty list),
+    /// takes the bearing's `[defect] mode`.
+    pub defect_modes: Vec<Option<DefectMode>>,
     /// Integration method and tolerances (table `[solver]`).
     pub solver: SolverSettings,
     /// Duration, sampling and output selection (table `[output]`).
@@ -628,6 +646,7 @@ impl Scene {
             operating,
             defect: None,
             more_defects: Vec::new(),
+            defect_modes: Vec::new(),
             solver: SolverSettings::default(),
             output: OutputSettings::default(),
             pulse: None,
@@ -688,16 +707,26 @@ impl Scene {
                 ),
             )
         })?;
-        let (defect, more_defects) = match file.defect {
-            None => (None, Vec::new()),
-            Some(Spalls::One(d)) => (Some(d), Vec::new()),
-            Some(Spalls::Many(mut all)) => {
-                if all.is_empty() {
-                    (None, all)
+        let (defect, more_defects, defect_modes) = match file.defect {
+            None => (None, Vec::new(), Vec::new()),
+            Some(Spalls::One(d)) => (Some(d), Vec::new(), Vec::new()),
+            Some(Spalls::Many(all)) => {
+                // Modes only when an entry has one: a list of Nones is the bearing's mode for
+                // all, which an empty list says (one entry then equals the [defect] table).
+                let modes: Vec<Option<DefectMode>> = all.iter().map(|e| e.mode).collect();
+                let modes = if modes.iter().any(Option::is_some) {
+                    modes
                 } else {
-                    let first = all.remove(0);
-                    (Some(first), all)
-                }
+                    Vec::new()
+                };
+                let mut specs = all.into_iter().map(|e| DefectSpec {
+                    ring: e.ring,
+                    width: e.width,
+                    depth: e.depth,
+                    theta0: e.theta0,
+                });
+                let first = specs.next();
+                (first, specs.collect(), modes)
             }
         };
         let scene = Scene {
@@ -707,6 +736,7 @@ impl Scene {
             operating: file.operating.into(),
             defect,
             more_defects,
+            defect_modes,
             solver: file.solver,
             output: file.output,
             pulse: file.pulse,
@@ -726,13 +756,22 @@ impl Scene {
         self.defect.iter().chain(self.more_defects.iter())
     }
 
+    /// Every spall with its own mode (None: the bearing's `[defect] mode`), in file order.
+    pub fn spalls(&self) -> impl Iterator<Item = (&DefectSpec, Option<DefectMode>)> + '_ {
+        self.defects()
+            .enumerate()
+            .map(|(k, d)| (d, self.defect_modes.get(k).copied().flatten()))
+    }
+
     /// Number of spalls.
     pub fn n_defects(&self) -> usize {
         self.defects().count()
     }
 
-    /// Replaces the spalls: the first becomes `defect`, the rest `more_defects` (none: healthy).
+    /// Replaces the spalls: the first becomes `defect`, the rest `more_defects` (none: healthy);
+    /// their modes are the bearing's (`defect_modes` cleared).
     pub fn set_defects(&mut self, mut all: Vec<DefectSpec>) {
+        self.defect_modes.clear();
         if all.is_empty() {
             self.defect = None;
             self.more_defects.clear();
@@ -864,6 +903,16 @@ impl Scene {
                 format!(
                     "{} later spall(s) but no first one (Scene::defect is None)",
                     self.more_defects.len()
+                ),
+            ));
+        }
+        if self.defect_modes.len() > self.n_defects() {
+            return Err(ConfigError::new(
+                "defect",
+                format!(
+                    "{} spall modes for {} spall(s)",
+                    self.defect_modes.len(),
+                    self.n_defects()
                 ),
             ));
         }

@@ -473,3 +473,82 @@ base = "../scenes/two-spalls.toml"
         "{e}"
     );
 }
+
+#[test]
+fn each_spall_of_several_may_have_its_own_mode() {
+    // defect[1] in the paper-literal point mode, defect[0] in the bearing's (finite ball): the
+    // largest drop is the finite ball's geometric limit R − √(R² − w_d²/4) for the first (its
+    // floor, 0.2 mm deep, is out of reach) and the depth h_d for the second.
+    let sc = scene_with(
+        r#"
+[[defect]]
+ring = "outer"
+width = 1.0e-3
+depth = 0.2e-3
+theta0 = 2.356194490192345
+
+[[defect]]
+ring = "outer"
+width = 1.0e-3
+depth = 0.2e-3
+theta0 = 3.9269908169872414
+mode = "point"
+"#,
+    );
+    assert_eq!(sc.defect_modes, [None, Some(raceway::DefectMode::Point)]);
+    let b = Bearing::new(&sc.bearing).unwrap();
+    let r = 0.5 * b.d;
+    let g_finite = r - (r * r - 0.25e-6).sqrt();
+    let m = raceway::models::ReducedModel::new(&sc, &b, &sc.operating).unwrap();
+    let d = m.defects();
+    assert_eq!(d.len(), 2);
+    assert_eq!(d[0].mode(), raceway::DefectMode::Finite);
+    assert_eq!(d[1].mode(), raceway::DefectMode::Point);
+    assert!(
+        (d[0].max_drop() / g_finite - 1.0).abs() < 1e-9,
+        "{}",
+        d[0].max_drop()
+    );
+    assert!(
+        (d[1].max_drop() / 0.2e-3 - 1.0).abs() < 1e-12,
+        "{}",
+        d[1].max_drop()
+    );
+    // The lumped level too: in point mode the ball drops by the depth d(y_b) under the nominal
+    // contact, h_d(1 − (2y_b/w_d)²), steep from the edges on; the finite ball only sinks
+    // R − √(R² − x²) once its centre is x past the leading corner (x²/2R: 1 µm at x = 0.09 mm).
+    // So the unloaded part of a pass over defect[1] is several times longer than over
+    // defect[0] (measured 55 vs 10 µs); with both finite they are equal.
+    let unloaded = |scene: &Scene| {
+        let mut s = scene.clone();
+        s.fidelity = Fidelity::Lumped;
+        let r = run(&s, 0.02, 1e-6);
+        let mut d: Vec<f64> =
+            r.qo.iter()
+                .flat_map(|q| passes(q, 0.01, 3))
+                .filter(|&(a, b)| r.t[a] > 2e-3 && b + 1 < r.t.len())
+                .map(|(a, b)| r.t[b] - r.t[a])
+                .collect();
+        d.sort_by(f64::total_cmp);
+        (d[0], d[d.len() - 1])
+    };
+    let (short, long) = unloaded(&sc);
+    let (f0, f1) = unloaded(&scene_with(TWO_OUTER));
+    eprintln!(
+        "unloaded pass: finite {:.1} µs, point {:.1} µs (both finite: {:.1} … {:.1} µs)",
+        short * 1e6,
+        long * 1e6,
+        f0 * 1e6,
+        f1 * 1e6
+    );
+    assert!(long > 2.5 * short && f1 < 1.25 * f0);
+    // A mode that is neither is named.
+    let text = raceway::DEFAULT_SCENE.replace(
+        "[defect]",
+        "[[defect]]\nring = \"inner\"\nwidth = 1e-3\ndepth = 1e-4\nmode = \"exact\"\n\n[[defect]]",
+    );
+    let e = Scene::from_toml_str(&text, "test", None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("defect[0]") && e.contains("exact"), "{e}");
+}

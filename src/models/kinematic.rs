@@ -139,7 +139,8 @@ impl KinematicModel {
         let defect = match &scene.defect {
             Some(spec) => {
                 let q_ref = table.q_max.max(10.0);
-                Some(Defect::summary(spec, bearing, q_ref)?)
+                let mode = scene.spalls().next().and_then(|(_, m)| m);
+                Some(Defect::summary_with_mode(spec, bearing, q_ref, mode)?)
             }
             None => None,
         };

@@ -207,7 +207,7 @@ impl LumpedModel {
             (r.mass, r.mass * w * w, 2.0 * r.damping_ratio * r.mass * w)
         });
         let reference_load = reference_ball_load(bearing, inputs);
-        let defects = crate::defect::build_all(scene.defects(), bearing, reference_load)?;
+        let defects = crate::defect::build_all(scene.spalls(), bearing, reference_load)?;
         let n_zones = bearing.z * defects.len().max(1);
         let mut m = Self {
             bearing: bearing.clone(),

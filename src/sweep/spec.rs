@@ -694,7 +694,12 @@ impl Sweep {
             }
         }
         scene.defect = present.then_some(defect);
-        scene.more_defects = if present { more } else { Vec::new() };
+        if present {
+            scene.more_defects = more;
+        } else {
+            scene.more_defects.clear();
+            scene.defect_modes.clear();
+        }
         scene.validate().map_err(|e| e.to_string())?;
         if scene.output.skip >= scene.output.duration {
             return Err(format!(

@@ -16,6 +16,7 @@ use super::layout::{
 };
 use super::pass::{BallFrame, ContactPass, Loaded, Normal};
 use super::switches::{contact_event, Switches};
+use crate::config::DefectMode;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::models::{out, RingStates, SimError};
@@ -155,7 +156,8 @@ pub struct BallCore {
 }
 
 impl BallCore {
-    /// The core for `bearing` at `inputs` with state layout `lay`, the spalls of `defects` (their
+    /// The core for `bearing` at `inputs` with state layout `lay`, the spalls of `defects`, each
+    /// in its mode (None: the bearing's; their
     /// blend length from [`reference_ball_load`]; overlapping spalls refused), ball 0 placed
     /// clear of them
     /// ([`choose_theta_start`]), the cage ratio of outer-race control at α0 until the model
@@ -168,12 +170,15 @@ impl BallCore {
         lay: Layout,
         spin: BallSpin,
         tilt: bool,
-        defects: &[DefectSpec],
+        defects: &[(DefectSpec, Option<DefectMode>)],
         pulse: Option<Pulse>,
         held_axial: Option<f64>,
     ) -> Result<Self, SimError> {
-        let defects =
-            crate::defect::build_all(defects, bearing, reference_ball_load(bearing, inputs))?;
+        let defects = crate::defect::build_all(
+            defects.iter().map(|(d, m)| (d, *m)),
+            bearing,
+            reference_ball_load(bearing, inputs),
+        )?;
         Ok(Self::with_defect(
             bearing, inputs, lay, spin, tilt, defects, pulse, held_axial,
         ))

@@ -101,7 +101,10 @@ impl FullModel {
             bearing,
             inputs,
             options,
-            &scene.defects().cloned().collect::<Vec<_>>(),
+            &scene
+                .spalls()
+                .map(|(d, m)| (d.clone(), m))
+                .collect::<Vec<_>>(),
             scene.pulse.clone(),
             None,
             (true, held, scene.full.cage),
@@ -136,7 +139,7 @@ impl FullModel {
         bearing: &Bearing,
         inputs: &OperatingPoint,
         options: FullOptions,
-        defects: &[DefectSpec],
+        defects: &[(DefectSpec, Option<crate::config::DefectMode>)],
         pulse: Option<Pulse>,
         l1: Option<&QuasiStatic>,
         (settle, held_axial, cage): (bool, Option<f64>, bool),
