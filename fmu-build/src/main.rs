@@ -20,9 +20,7 @@
 
 use clap::Parser;
 use raceway::{BearingFile, DEFAULT_PRESET};
-use std::ffi::CString;
 use std::io::Write;
-use std::os::raw::{c_char, c_int, c_void};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -273,49 +271,6 @@ fn build_cdylib(package: &str, stem: &str, host_only: bool) -> Libraries {
     }
 }
 
-// dlopen, to check the exports of the built libraries.
-#[link(name = "dl")]
-extern "C" {
-    fn dlopen(filename: *const c_char, flag: c_int) -> *mut c_void;
-    fn dlsym(handle: *mut c_void, symbol: *const c_char) -> *mut c_void;
-}
-const RTLD_NOW: c_int = 2;
-const RTLD_LOCAL: c_int = 0;
-
-/// Checks that the shared library at `path` exports the whole FMI 2.0 function set (Model
-/// Exchange and Co-Simulation: [`fmi2::exports::EXPORTED_FUNCTIONS`]); an importer of either
-/// interface resolves every function at load time.
-fn check_exports(path: &Path) -> Result<(), String> {
-    let cpath = CString::new(path.as_os_str().to_string_lossy().as_bytes())
-        .map_err(|_| "path contains NUL".to_string())?;
-    // SAFETY: plain dlopen/dlsym of a library this program just built; nothing is called.
-    unsafe {
-        let h = dlopen(cpath.as_ptr(), RTLD_NOW | RTLD_LOCAL);
-        if h.is_null() {
-            return Err(format!("dlopen {} failed", path.display()));
-        }
-        let missing: Vec<&str> = fmi2::exports::EXPORTED_FUNCTIONS
-            .iter()
-            .copied()
-            .filter(|name| {
-                let c = CString::new(*name).expect("no NUL");
-                dlsym(h, c.as_ptr()).is_null()
-            })
-            .collect();
-        if missing.is_empty() {
-            Ok(())
-        } else {
-            Err(format!(
-                "{} does not export {} of the {} FMI 2.0 functions: {}",
-                path.display(),
-                missing.len(),
-                fmi2::exports::EXPORTED_FUNCTIONS.len(),
-                missing.join(", ")
-            ))
-        }
-    }
-}
-
 /// The exported names and the imported DLLs of a PE32+ (win64) image, read from its export and
 /// import directories.
 fn pe_exports_imports(data: &[u8]) -> Option<(Vec<String>, Vec<String>)> {
@@ -488,7 +443,7 @@ fn stage_libraries(libs: &Libraries, model: &str) -> (PathBuf, Vec<u8>, Option<V
     let read =
         |p: &Path| std::fs::read(p).unwrap_or_else(|e| fail(format!("{}: {e}", p.display())));
     let staged = stage_library(&libs.linux64, &format!("{model}.so"));
-    check_exports(&staged).unwrap_or_else(|e| fail(e));
+    fmu_pack::check_exports(&staged).unwrap_or_else(|e| fail(e));
     let so = read(&staged);
     let dll = libs.win64.as_ref().map(|lib| {
         let staged = stage_library(lib, &format!("{model}.dll"));

@@ -101,6 +101,40 @@ impl Api {
     }
 }
 
+/// Checks that the shared library at `path` exports the whole FMI 2.0 function set (Model
+/// Exchange and Co-Simulation: [`fmi2::exports::EXPORTED_FUNCTIONS`]); an importer of either
+/// interface resolves every function at load time.
+pub fn check_exports(path: &Path) -> Result<(), String> {
+    let cpath = CString::new(path.as_os_str().to_string_lossy().as_bytes())
+        .map_err(|_| "path contains NUL".to_string())?;
+    // SAFETY: plain dlopen/dlsym of a library this program just built; nothing is called.
+    unsafe {
+        let h = dlopen(cpath.as_ptr(), RTLD_NOW | RTLD_LOCAL);
+        if h.is_null() {
+            return Err(format!("dlopen {} failed", path.display()));
+        }
+        let missing: Vec<&str> = fmi2::exports::EXPORTED_FUNCTIONS
+            .iter()
+            .copied()
+            .filter(|name| {
+                let c = CString::new(*name).expect("no NUL");
+                dlsym(h, c.as_ptr()).is_null()
+            })
+            .collect();
+        if missing.is_empty() {
+            Ok(())
+        } else {
+            Err(format!(
+                "{} does not export {} of the {} FMI 2.0 functions: {}",
+                path.display(),
+                missing.len(),
+                fmi2::exports::EXPORTED_FUNCTIONS.len(),
+                missing.join(", ")
+            ))
+        }
+    }
+}
+
 /// Logger for the reference run. With the format "%s" the message is the sixth argument,
 /// which the C ABIs of linux64 (x86-64, aarch64) pass like a fixed argument.
 unsafe extern "C" fn print_logger(
