@@ -540,8 +540,7 @@ impl LumpedModel {
             }
             for i in 0..m {
                 let j = base + i;
-                let (mut delta, mut delta_rate, mut k, mut q_raw) =
-                    (delta[i], delta_rate[i], k0, q_raw[i]);
+                let (mut delta, mut delta_rate, mut k) = (delta[i], delta_rate[i], k0);
                 // Each spall the ball is over: its drop and rate, and the defective race's
                 // blended compliance (a ball meets at most one spall per race at a time).
                 let mut c_race = self.c_groove;
@@ -581,9 +580,9 @@ impl LumpedModel {
                     // Series constant with the defective races' blended compliances.
                     let c_sum = c_race[0] + c_race[1];
                     k = 1.0 / (c_sum * c_sum.sqrt());
-                    q_raw = self.unclamped_force(k, delta, delta_rate);
                 }
-                if self.waviness.is_some() || self.roughness.is_some() {
+                let distributed = self.waviness.is_some() || self.roughness.is_some();
+                if distributed {
                     // The distributed defects' added approach at the ball's azimuth.
                     let (theta, theta_rate) = if equal_spacing {
                         self.ball_angle(j, y[CAGE], cage_rate)
@@ -602,18 +601,23 @@ impl LumpedModel {
                         delta += dd;
                         delta_rate += dr;
                     }
-                    q_raw = self.unclamped_force(k, delta, delta_rate);
                 }
-                if let Some(f) = &self.film {
-                    q_raw = f.force(
+                // The force once, at the final approach and constant (the chunk's own when
+                // nothing changed them).
+                let q_raw = if let Some(f) = &self.film {
+                    f.force(
                         k,
                         delta,
                         delta_rate,
                         ar[i] * inv_len[i],
                         theta_rate[i],
                         self.inputs.shaft_speed,
-                    );
-                }
+                    )
+                } else if hit || distributed {
+                    self.unclamped_force(k, delta, delta_rate)
+                } else {
+                    q_raw[i]
+                };
                 each(
                     j,
                     &Approach {
