@@ -566,6 +566,13 @@ impl Simulation {
         );
         o.max_steps = scene.solver.max_steps;
         o.pi_beta = scene.solver.pi_beta;
+        // The models' events are contacts and spall boundaries. 50 steps in a row ending in one,
+        // within 10 ns, is chatter (a contact damping far beyond critical opens and closes a
+        // contact every step or two), not physics: the fastest contact vibration of a preset's
+        // ball lasts microseconds, and the envelope's busiest runs (balls rattling in a spall
+        // under light load) take more than 1e-4 s for such a run.
+        o.chatter_events = 50;
+        o.chatter_span = 1e-8;
         o
     }
 
@@ -1026,7 +1033,10 @@ impl Simulation {
                 }
                 Err(e) => {
                     let model = self.model.as_ref();
-                    let message = e.describe(&|i| format!("{} (state {i})", model.state_name(i)));
+                    let message = e.describe_with_events(
+                        &|i| format!("{} (state {i})", model.state_name(i)),
+                        &|i| model.event_name(i),
+                    );
                     return Err(self.failure(message));
                 }
             };

@@ -1737,3 +1737,36 @@ fn a_state_whose_model_time_disagrees_with_the_shell_is_refused_at_the_step() {
         sh::free_instance::<BallBearing>(c);
     }
 }
+
+/// A contact damping far beyond critical (contact.c_br = 8.6e10 N s/m, a fuzz finding: the
+/// clamped contact law then opens and closes a contact every step or two, and a 10 µs step crept
+/// on for 9 s to the step budget) makes the step end at once as fmi2Discard, naming the
+/// chattering contact; the outputs stay those of the step's start.
+#[test]
+fn chattering_contacts_fail_the_step_at_once_naming_the_contact() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, s) = configured(
+        &h,
+        &b,
+        &[("fidelity", 2)],
+        &[("contact.c_br", 8.589934592e10)],
+    );
+    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+    let before = all_outputs(c, &b);
+    // SAFETY: c is a live instance.
+    let status = unsafe { sh::do_step::<BallBearing>(c, 0.0, 1e-5, 1) };
+    let (logged, message) = h.last_entry();
+    assert_eq!(status, Fmi2Status::Discard, "{message}");
+    assert_eq!(logged, Fmi2Status::Discard, "{message}");
+    assert!(
+        message.contains("events chatter") && message.contains("the contact of ball"),
+        "{message}"
+    );
+    // Work in the tens of steps, not the budget's millions.
+    let (accepted, rejected, _) = discarded_work(&message);
+    assert!(accepted + rejected < 10_000, "{message}");
+    assert!(all_outputs(c, &b) == before, "the outputs changed");
+    // SAFETY: c is a live instance.
+    unsafe { sh::free_instance::<BallBearing>(c) };
+}

@@ -52,6 +52,21 @@ pub enum SolverError {
         /// Steps attempted (accepted and rejected) in the call.
         steps: u64,
     },
+    /// Steps end in events again and again, a few steps apart (Zeno behaviour,
+    /// [`crate::Options::chatter_events`]).
+    Chattering {
+        /// Time of the last event.
+        t: f64,
+        /// The event function of the last event.
+        index: usize,
+        /// Steps with events in the run.
+        events: u32,
+        /// At most this many accepted steps lay between two of them
+        /// ([`crate::Options::chatter_steps`]).
+        steps: u64,
+        /// Time from the first event of the run to the last.
+        span: f64,
+    },
     /// The options (or a setter's argument, or the initial state) are invalid.
     InvalidOptions(String),
     /// The requested end time lies before the current time or is not finite.
@@ -82,6 +97,15 @@ impl SolverError {
     /// The message, with state components called `name(i)` (a caller that knows what they
     /// are names them; [`std::fmt::Display`] says "state component i").
     pub fn describe(&self, name: &dyn Fn(usize) -> String) -> String {
+        self.describe_with_events(name, &|i| format!("event function {i}"))
+    }
+
+    /// [`SolverError::describe`], with event functions called `event(i)` as well.
+    pub fn describe_with_events(
+        &self,
+        name: &dyn Fn(usize) -> String,
+        event: &dyn Fn(usize) -> String,
+    ) -> String {
         match self {
             SolverError::StepSizeUnderflow { t, h, h_min, limit } => {
                 let base = format!(
@@ -124,6 +148,21 @@ impl SolverError {
             ),
             SolverError::StepBudget { t, steps } => format!(
                 "step budget exhausted: {steps} steps attempted in one call, stopped at t = {t} s"
+            ),
+            SolverError::Chattering {
+                t,
+                index,
+                events,
+                steps,
+                span,
+            } => format!(
+                "events chatter at t = {t} s: {events} steps in a row ended in an event, in \
+                 {span:.3e} s, each within {} steps of the one before, the last at {} (Zeno \
+                 behaviour: \
+                 the integration would creep on at a few steps per event). A stiffness, damping \
+                 or mass parameter is probably far outside the physical range",
+                steps,
+                event(*index)
             ),
             SolverError::InvalidOptions(msg) => format!("invalid solver options: {msg}"),
             SolverError::InvalidTarget { t, t_end } => format!(

@@ -86,6 +86,47 @@ pub(super) fn locate<S: EventSystem + ?Sized>(
 }
 
 impl Integrator {
+    /// Zeno guard ([`crate::Options::chatter_events`]): event `i` fires now.
+    fn check_chatter(&mut self, i: usize) -> Result<(), SolverError> {
+        if self.opts.chatter_events == 0 {
+            return Ok(());
+        }
+        let steps = self.stats.steps;
+        let last = self.chatter_step;
+        if last == steps {
+            // another event of the same step
+            return Ok(());
+        }
+        let close = last != u64::MAX
+            && steps.saturating_sub(last) <= self.opts.chatter_steps
+            && self.t - self.chatter_t0 <= self.opts.chatter_span;
+        if close {
+            self.chatter_run += 1;
+        } else {
+            self.chatter_run = 1;
+            self.chatter_t0 = self.t;
+        }
+        self.chatter_step = steps;
+        if self.chatter_run >= self.opts.chatter_events {
+            let events = self.chatter_run;
+            self.reset_chatter();
+            return Err(SolverError::Chattering {
+                t: self.t,
+                index: i,
+                events,
+                steps: self.opts.chatter_steps,
+                span: self.t - self.chatter_t0,
+            });
+        }
+        Ok(())
+    }
+
+    /// Forget the firing history of the Zeno guard (a state put in from outside).
+    pub(super) fn reset_chatter(&mut self) {
+        self.chatter_step = u64::MAX;
+        self.chatter_run = 0;
+    }
+
     fn prepare_events(&mut self, m: usize) {
         if self.g_old.len() != m {
             self.g_old = vec![0.0; m];
@@ -236,6 +277,7 @@ impl Integrator {
             let mut stop = None;
             for i in 0..m {
                 if self.fired[i] {
+                    self.check_chatter(i)?;
                     self.stats.events += 1;
                     if sys.handle_event(i, self.t, &mut self.y) == EventAction::Stop
                         && stop.is_none()

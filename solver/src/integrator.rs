@@ -53,6 +53,11 @@ pub struct Integrator {
     /// Sample spacing of an observer that interpolates only at multiples of it
     /// ([`Integrator::set_sample_grid`]).
     pub(super) sample_grid: Option<f64>,
+    /// Zeno guard: accepted-step count at the last event (`u64::MAX`: none), events in a row
+    /// close together, and the time the run began.
+    pub(super) chatter_step: u64,
+    pub(super) chatter_run: u32,
+    pub(super) chatter_t0: f64,
 }
 
 /// The integrator's state at one time (time, state, proposed step, FSAL stage, controller and
@@ -194,6 +199,9 @@ impl Integrator {
             event_mask: Vec::new(),
             fired: Vec::new(),
             sample_grid: None,
+            chatter_step: u64::MAX,
+            chatter_run: 0,
+            chatter_t0: 0.0,
             opts: options,
         })
     }
@@ -337,6 +345,7 @@ impl Integrator {
         self.t = t;
         self.fsal_valid = false;
         self.event_mask.clear();
+        self.reset_chatter();
     }
 
     /// [`Integrator::set_state`] with checks of the length and finiteness.
@@ -411,6 +420,7 @@ impl Integrator {
         self.event_mask.clear();
         self.event_mask.extend_from_slice(&c.event_mask);
         self.stats = c.stats;
+        self.reset_chatter();
     }
 
     /// Restore a snapshot (same method and dimension; the options stay those of `self`).
@@ -443,6 +453,7 @@ impl Integrator {
         self.ctrl.last_rejected = s.last_rejected;
         self.event_mask.clone_from(&s.event_mask);
         self.stats = s.stats;
+        self.reset_chatter();
         Ok(())
     }
 

@@ -51,6 +51,18 @@ pub struct Options {
     /// falls more slowly than `h^{q+1}` and the nominal exponent shrinks too little
     /// (default `false`).
     pub observed_order_on_reject: bool,
+    /// Zeno guard of [`crate::Integrator::advance_with_events`]: this many steps ending in an
+    /// event (of any functions) in a row, each within [`Options::chatter_steps`] accepted steps
+    /// of the one before and all within [`Options::chatter_span`] of time, stop the call with
+    /// [`SolverError::Chattering`] instead of creeping on at a few steps per event. 0 (default)
+    /// turns it off: a system whose events are legitimately a step or two apart (a polynomial
+    /// flight between bounces takes one step) must not use it without a span that tells
+    /// chatter from physics.
+    pub chatter_events: u32,
+    /// See [`Options::chatter_events`] (default 3).
+    pub chatter_steps: u64,
+    /// See [`Options::chatter_events`]: the run must fit in this time \[s\] (default ∞).
+    pub chatter_span: f64,
 }
 
 impl Options {
@@ -73,6 +85,9 @@ impl Options {
             event_tol: 1e-13,
             restart_after_discontinuity: false,
             observed_order_on_reject: false,
+            chatter_events: 0,
+            chatter_steps: 3,
+            chatter_span: f64::INFINITY,
         }
     }
 

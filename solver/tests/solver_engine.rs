@@ -372,6 +372,84 @@ fn bouncing_ball_impacts_and_stop() {
     }
 }
 
+/// Zeno: a ball bouncing with restitution r = 0.8 comes to rest at t* = t_1 (1 + r)/(1 − r) after
+/// infinitely many bounces, t_k = t_1 + Σ_{j<k} 2 r^j v_1 / g. Steps are at most h_max = 1 ms (a
+/// parabola is exact for the method, so that bound sets them). With the guard on (50 steps ending
+/// in an event, each within 3 steps of the one before) the call stops with
+/// [`SolverError::Chattering`] at a bounce time, every one of the 50 flights of the run at most
+/// 3 h_max long, before t*. Off (the default), or with a span shorter than those 50 flights, it
+/// goes on past that bounce (and a later stop's run fits in the span).
+#[test]
+fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
+    let (g, r, h0): (f64, f64, f64) = (9.81, 0.8, 2.0);
+    let t1 = (2.0 * h0 / g).sqrt();
+    let v1 = g * t1;
+    let t_star = t1 * (1.0 + r) / (1.0 - r);
+    let flight = |j: i32| 2.0 * r.powi(j) * v1 / g;
+    let bounce = |k: i32| t1 + (1..k).map(flight).sum::<f64>();
+    let h_max = 1e-3;
+    for m in [Method::Rkf45, Method::Dopri5, Method::Dop853] {
+        let run = |guard: u32, span: f64| {
+            let mut ball = Ball {
+                g,
+                r,
+                bounces: 0,
+                max_bounces: usize::MAX,
+                times: Vec::new(),
+            };
+            let mut o = Options::new(m, 1e-10, vec![1e-12]);
+            o.h_max = h_max;
+            o.chatter_events = guard;
+            o.chatter_span = span;
+            let mut it = Integrator::new(o, 0.0, &[h0, 0.0]).unwrap();
+            let e = it.advance_with_events(&mut ball, t_star, None);
+            (e, ball.times)
+        };
+        let (e, times) = run(50, f64::INFINITY);
+        let Err(SolverError::Chattering {
+            t, index, events, ..
+        }) = e
+        else {
+            panic!("{m}: {e:?} after {} bounces", times.len());
+        };
+        assert_eq!((index, events), (0, 50), "{m}");
+        // the stopping event is not handled: it is bounce k = len + 1
+        let k = times.len() as i32 + 1;
+        assert!(
+            (t - bounce(k)).abs() < 1e-9 && t < t_star,
+            "{m}: {t} vs {}",
+            bounce(k)
+        );
+        assert!(
+            flight(k - 50) <= 3.0 * h_max,
+            "{m}: flight {}",
+            flight(k - 50)
+        );
+        let msg = e.unwrap_err().to_string();
+        assert!(
+            msg.contains("50 steps") && msg.contains("event function 0"),
+            "{msg}"
+        );
+        let span = bounce(k) - bounce(k - 49);
+        let (e, more) = run(0, f64::INFINITY);
+        assert!(
+            !matches!(e, Err(SolverError::Chattering { .. })) && more.len() > times.len() + 1,
+            "{m}: {e:?} after {} bounces",
+            more.len()
+        );
+        // A shorter span: past bounce k, and a later stop fits in it.
+        let (e, more) = run(50, 0.5 * span);
+        assert!(
+            more.len() > times.len() + 1,
+            "{m}: {e:?} after {} bounces",
+            more.len()
+        );
+        if let Err(SolverError::Chattering { span: s, .. }) = e {
+            assert!(s <= 0.5 * span, "{m}: {s} > {}", 0.5 * span);
+        }
+    }
+}
+
 /// Relay with a discrete mode: heating y' = +1 until y = 1, cooling y' = -2 until y = 0. The mode
 /// only changes in handle_event; events are functions of the frozen mode. Exact switch times
 /// 1, 1.5, 2.5, 3, 4, 4.5, ...

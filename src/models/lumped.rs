@@ -976,6 +976,10 @@ impl Model for LumpedModel {
         self.z
     }
 
+    fn event_name(&self, i: usize) -> String {
+        format!("the contact of ball {}", i + 1)
+    }
+
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         self.approaches(t, y, |j, a| {
             g[j] = Self::contact_event(a);

@@ -179,6 +179,12 @@ pub trait Model: Send + CloneModel {
         0
     }
 
+    /// What event function `i` watches, for failure messages: e.g. "the outer contact of ball
+    /// 3" (balls counted from 1). Default: its index.
+    fn event_name(&self, i: usize) -> String {
+        format!("event function {i}")
+    }
+
     /// Event functions g_i(t, y): a sign change inside a step is an event, after which
     /// [`Model::update_mode`] is called at the located time.
     fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}

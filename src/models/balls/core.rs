@@ -967,6 +967,10 @@ macro_rules! forward_to_ball_core {
             self.core.events(y, g);
         }
 
+        fn event_name(&self, i: usize) -> String {
+            self.core.sw.event_name(i)
+        }
+
         fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {
             let mut dydt = std::mem::take(&mut self.core.scratch);
             self.rhs(t, y, &mut dydt);

@@ -101,6 +101,34 @@ impl Switches {
         2 * self.z + 3 * self.z * spalls.min(self.spalls)
     }
 
+    /// What event function `i` watches (the layout of [`Switches::n_events`]; balls and spalls
+    /// counted from 1).
+    pub fn event_name(&self, i: usize) -> String {
+        let z = self.z;
+        if i < 2 * z {
+            let race = if i.is_multiple_of(2) {
+                "inner"
+            } else {
+                "outer"
+            };
+            return format!("the {race} contact of ball {}", i / 2 + 1);
+        }
+        let (k, r) = ((i - 2 * z) / (3 * z), (i - 2 * z) % (3 * z));
+        let (what, j) = if r < 2 * z {
+            (
+                if r.is_multiple_of(2) {
+                    "edge"
+                } else {
+                    "centre"
+                },
+                r / 2,
+            )
+        } else {
+            ("blend", r - 2 * z)
+        };
+        format!("ball {} at the {what} of spall {}", j + 1, k + 1)
+    }
+
     /// Frozen spall half of ball j (0 outside every spall's zone; else the half of the first
     /// spall it is over).
     #[inline(always)]
@@ -349,5 +377,26 @@ impl Switches {
         }
         self.fired.iter_mut().for_each(|f| *f = false);
         self.modes_set = true;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Switches;
+
+    #[test]
+    fn event_names_follow_the_layout() {
+        // 3 balls, 2 spalls: contacts 0..6, then per spall edges/centres 2z and blends z.
+        let mut sw = Switches::new(3);
+        sw.spalls = 2;
+        assert_eq!(sw.n_events(2), 6 + 2 * 9);
+        assert_eq!(sw.event_name(0), "the inner contact of ball 1");
+        assert_eq!(sw.event_name(5), "the outer contact of ball 3");
+        assert_eq!(sw.event_name(6), "ball 1 at the edge of spall 1");
+        assert_eq!(sw.event_name(9), "ball 2 at the centre of spall 1");
+        assert_eq!(sw.event_name(12), "ball 1 at the blend of spall 1");
+        assert_eq!(sw.event_name(14), "ball 3 at the blend of spall 1");
+        assert_eq!(sw.event_name(15), "ball 1 at the edge of spall 2");
+        assert_eq!(sw.event_name(23), "ball 3 at the blend of spall 2");
     }
 }
