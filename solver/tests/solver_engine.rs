@@ -437,6 +437,39 @@ fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
             "{m}: {e:?} after {} bounces",
             more.len()
         );
+        // A span that holds the run: the same stop.
+        let (e2, times2) = run(50, 2.0 * span);
+        assert!(
+            matches!(e2, Err(SolverError::Chattering { t: t2, .. }) if t2 == t)
+                && times2.len() == times.len(),
+            "{m}: {e2:?}"
+        );
+        // A state put back (rollback) starts the count afresh: stopped in the flight before
+        // bounce k − 40 (inside the run) and put back, the stop comes 49 bounces after that
+        // bounce, at k + 9.
+        let mut ball = Ball {
+            g,
+            r,
+            bounces: 0,
+            max_bounces: usize::MAX,
+            times: Vec::new(),
+        };
+        let mut o = Options::new(m, 1e-10, vec![1e-12]);
+        o.h_max = h_max;
+        o.chatter_events = 50;
+        let mut it = Integrator::new(o, 0.0, &[h0, 0.0]).unwrap();
+        let t_mid = 0.5 * (bounce(k - 41) + bounce(k - 40));
+        let first = it.advance_with_events(&mut ball, t_mid, None);
+        assert_eq!(first, Ok(AdvanceOutcome::Reached), "{m}");
+        let mut c = Checkpoint::default();
+        it.checkpoint(&mut c);
+        it.rollback(&c);
+        let again = it.advance_with_events(&mut ball, t_star, None);
+        assert!(
+            matches!(again, Err(SolverError::Chattering { .. })),
+            "{m}: {again:?}"
+        );
+        assert_eq!(ball.times.len(), times.len() + 9, "{m}");
         // A shorter span: past bounce k, and a later stop fits in it.
         let (e, more) = run(50, 0.5 * span);
         assert!(
