@@ -389,7 +389,9 @@ fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
     let bounce = |k: i32| t1 + (1..k).map(flight).sum::<f64>();
     let h_max = 1e-3;
     for m in [Method::Rkf45, Method::Dopri5, Method::Dop853] {
-        let run = |guard: u32, span: f64| {
+        // To t* with the guard's settings; with `pause`, first to that time and the state put
+        // back there (rollback to a checkpoint taken there).
+        let run_paused = |guard: u32, span: f64, pause: Option<f64>| {
             let mut ball = Ball {
                 g,
                 r,
@@ -402,9 +404,17 @@ fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
             o.chatter_events = guard;
             o.chatter_span = span;
             let mut it = Integrator::new(o, 0.0, &[h0, 0.0]).unwrap();
+            if let Some(tp) = pause {
+                let first = it.advance_with_events(&mut ball, tp, None);
+                assert_eq!(first, Ok(AdvanceOutcome::Reached), "{m}");
+                let mut c = Checkpoint::default();
+                it.checkpoint(&mut c);
+                it.rollback(&c);
+            }
             let e = it.advance_with_events(&mut ball, t_star, None);
             (e, ball.times)
         };
+        let run = |guard: u32, span: f64| run_paused(guard, span, None);
         let (e, times) = run(50, f64::INFINITY);
         let Err(SolverError::Chattering {
             t, index, events, ..
@@ -447,29 +457,13 @@ fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
         // A state put back (rollback) starts the count afresh: stopped in the flight before
         // bounce k − 40 (inside the run) and put back, the stop comes 49 bounces after that
         // bounce, at k + 9.
-        let mut ball = Ball {
-            g,
-            r,
-            bounces: 0,
-            max_bounces: usize::MAX,
-            times: Vec::new(),
-        };
-        let mut o = Options::new(m, 1e-10, vec![1e-12]);
-        o.h_max = h_max;
-        o.chatter_events = 50;
-        let mut it = Integrator::new(o, 0.0, &[h0, 0.0]).unwrap();
         let t_mid = 0.5 * (bounce(k - 41) + bounce(k - 40));
-        let first = it.advance_with_events(&mut ball, t_mid, None);
-        assert_eq!(first, Ok(AdvanceOutcome::Reached), "{m}");
-        let mut c = Checkpoint::default();
-        it.checkpoint(&mut c);
-        it.rollback(&c);
-        let again = it.advance_with_events(&mut ball, t_star, None);
+        let (again, after) = run_paused(50, f64::INFINITY, Some(t_mid));
         assert!(
             matches!(again, Err(SolverError::Chattering { .. })),
             "{m}: {again:?}"
         );
-        assert_eq!(ball.times.len(), times.len() + 9, "{m}");
+        assert_eq!(after.len(), times.len() + 9, "{m}");
         // A shorter span: past bounce k, and a later stop fits in it.
         let (e, more) = run(50, 0.5 * span);
         assert!(
