@@ -157,11 +157,9 @@ impl SolverError {
                 span,
             } => format!(
                 "events chatter at t = {t} s: {events} steps in a row ended in an event, in \
-                 {span:.3e} s, each within {} steps of the one before, the last at {} (Zeno \
-                 behaviour: \
-                 the integration would creep on at a few steps per event). A stiffness, damping \
-                 or mass parameter is probably far outside the physical range",
-                steps,
+                 {span:.3e} s, each within {steps} steps of the one before, the last at {} \
+                 (Zeno behaviour: the integration would creep on at a few steps per event). A \
+                 stiffness, damping or mass parameter is probably far outside the physical range",
                 event(*index)
             ),
             SolverError::InvalidOptions(msg) => format!("invalid solver options: {msg}"),

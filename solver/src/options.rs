@@ -159,6 +159,12 @@ impl Options {
                 self.event_tol
             ));
         }
+        if self.chatter_span.is_nan() || self.chatter_span < 0.0 {
+            return bad(format!(
+                "chatter_span must be ≥ 0 (∞ for no limit), got {}",
+                self.chatter_span
+            ));
+        }
         Ok(())
     }
 }

@@ -415,6 +415,10 @@ fn zeno_guard_stops_a_chattering_call_at_a_bounce() {
             (e, ball.times)
         };
         let run = |guard: u32, span: f64| run_paused(guard, span, None);
+        let mut o = Options::new(m, 1e-10, vec![1e-12]);
+        o.chatter_span = f64::NAN;
+        let bad = Integrator::new(o, 0.0, &[h0, 0.0]).unwrap_err().to_string();
+        assert!(bad.contains("chatter_span"), "{bad}");
         let (e, times) = run(50, f64::INFINITY);
         let Err(SolverError::Chattering {
             t, index, events, ..
