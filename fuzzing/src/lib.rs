@@ -34,6 +34,14 @@ use std::path::Path;
 /// `-timeout` (wall) catches a call that blocks.
 pub const HANG_S: f64 = 30.0;
 
+/// The step budget (`solver.max_steps`, units of work per communication step) the harnesses give
+/// their instances. A parameter set that makes the integration crawl (a contact damping of 1e9
+/// N s/m: steps of 3e-10 s) ends as fmi2Discard when the budget is spent; at the FMU's default,
+/// 2 000 000, that takes about 10 s here and 40 CPU s in libFuzzer's instrumented build, beyond
+/// [`HANG_S`]. At this budget it takes about 0.5 s (2 s instrumented), so that a call that
+/// [`HANG_S`] catches is one the budget does not bound.
+pub const FUZZ_MAX_STEPS: i32 = 100_000;
+
 /// The fuzz input as a source of choices (zeros once exhausted).
 pub struct Bytes<'a> {
     data: &'a [u8],
@@ -120,7 +128,7 @@ fn finding(what: String) -> Result<(), String> {
 thread_local! {
     /// The default bearing's GUID, Real value references and Real output value references:
     /// made once (the GUID hashes the whole model description).
-    static SESSION_TABLE: (CString, Vec<u32>, Vec<u32>) = {
+    static SESSION_TABLE: (CString, Vec<u32>, Vec<u32>, u32) = {
         let b = raceway::BearingFile::default_preset();
         let table = ballbearing_fmu::variables::table(&b);
         let real = |e: &&ballbearing_fmu::variables::Entry| e.var.ty == fmi2::VarType::Real;
@@ -132,7 +140,13 @@ thread_local! {
             .map(|e| e.var.vr)
             .collect();
         let guid = CString::new(ballbearing_fmu::guid(&b)).expect("no NUL");
-        (guid, reals, outputs)
+        let budget = table
+            .iter()
+            .find(|e| e.var.name == "solver.max_steps")
+            .expect("solver.max_steps")
+            .var
+            .vr;
+        (guid, reals, outputs, budget)
     };
 }
 
@@ -144,13 +158,15 @@ struct Session {
     t: f64,
     reals: Vec<u32>,
     outputs: Vec<u32>,
+    /// Value reference of solver.max_steps.
+    budget: u32,
     /// A saved FMU state and the call state it was saved in.
     saved: Option<(Fmi2FmuState, State)>,
 }
 
 impl Session {
     fn new() -> Result<Self, String> {
-        let (guid, reals, outputs) = SESSION_TABLE.with(Clone::clone);
+        let (guid, reals, outputs, budget) = SESSION_TABLE.with(Clone::clone);
         let log = LogCapture::new();
         // SAFETY: the strings and callbacks outlive the call.
         let c = unsafe {
@@ -167,15 +183,33 @@ impl Session {
         if c.is_null() {
             return Err(format!("fmi2Instantiate returned NULL: {}", log.last()));
         }
-        Ok(Self {
+        let s = Self {
             log,
             c,
             state: State::Instantiated,
             t: 0.0,
             reals,
             outputs,
+            budget,
             saved: None,
-        })
+        };
+        s.set_budget()?;
+        Ok(s)
+    }
+
+    /// Gives the instance the harnesses' step budget ([`FUZZ_MAX_STEPS`]); after
+    /// instantiation and after every fmi2Reset (which restores the start values).
+    fn set_budget(&self) -> Result<(), String> {
+        // SAFETY: live instance; one value.
+        let st = unsafe { sh::set_integer::<M>(self.c, &self.budget, 1, &FUZZ_MAX_STEPS) };
+        if st == Fmi2Status::Ok {
+            Ok(())
+        } else {
+            Err(format!(
+                "setting solver.max_steps failed: {}",
+                self.log.last()
+            ))
+        }
     }
 
     /// Checks a call's status against the standard and moves the tracked state.
@@ -336,7 +370,11 @@ impl Session {
                         st,
                         t0.elapsed().as_secs_f64(),
                         State::Instantiated,
-                    )
+                    )?;
+                    if st == Fmi2Status::Ok {
+                        self.set_budget()?;
+                    }
+                    Ok(())
                 }
                 7 => {
                     // a restored state brings back the call state it was saved in
