@@ -80,6 +80,56 @@ pub struct Bearing {
     pub film: Option<(FilmContact, FilmContact)>,
 }
 
+/// Peak Hertz pressure at which [`contact_damping_limit`] takes the contact stiffness: ISO 76's
+/// rating pressure (`limits::RATING_PRESSURE`, a test checks they agree) \[Pa\].
+const DAMPING_REFERENCE_PRESSURE: f64 = 4.2e9;
+
+/// How many times the critical damping of a ball on its contacts `contact.c_br` may be.
+pub const MAX_CONTACT_DAMPING_RATIO: f64 = 100.0;
+
+/// Critical damping 2√(k m) of a ball of mass `ball_mass` on its two contacts in series, with the
+/// linearized stiffness k = 1.5 K^{2/3} Q^{1/3} at the ball load Q where the more loaded contact
+/// reaches [`DAMPING_REFERENCE_PRESSURE`] (the stiffest a rated load makes it) \[N s/m\].
+pub fn critical_contact_damping(races: [(&HertzContact, f64); 2], ball_mass: f64) -> f64 {
+    // p0 = 1.5 Q / (π a b) with a b ∝ Q^{2/3}: Q at the pressure, for each race.
+    let q_at = |h: &HertzContact| {
+        let (a, b) = h.semi_axes(1.0);
+        let p_unit = 1.5 / (PI * a * b);
+        (DAMPING_REFERENCE_PRESSURE / p_unit).powi(3)
+    };
+    let q = q_at(races[0].0).min(q_at(races[1].0));
+    let compliance: f64 = races.iter().map(|(_, k)| k.powf(-2.0 / 3.0)).sum();
+    let k_series = compliance.powf(-1.5);
+    let k_lin = 1.5 * k_series.powf(2.0 / 3.0) * q.cbrt();
+    2.0 * (k_lin * ball_mass).sqrt()
+}
+
+/// `contact.c_br` at most [`MAX_CONTACT_DAMPING_RATIO`] × [`critical_contact_damping`]: beyond it
+/// the damping is no bearing's (the literature's is 0.25…2.5e-5 × the contact stiffness, about the
+/// critical damping), and the models crawl (a 1e9 N s/m damping makes the lumped level step at
+/// 3e-10 s; 8.6e10 makes its contacts chatter).
+fn check_contact_damping(
+    c_br: f64,
+    races: [(&HertzContact, f64); 2],
+    ball_mass: f64,
+) -> Result<(), ConfigError> {
+    let c_crit = critical_contact_damping(races, ball_mass);
+    if c_br <= MAX_CONTACT_DAMPING_RATIO * c_crit {
+        return Ok(());
+    }
+    Err(ConfigError::new(
+        "contact.c_br",
+        format!(
+            "{c_br} N s/m is {:.3e} times the critical damping of a ball on its contacts \
+             (2√(k m) = {c_crit:.4} N s/m at the stiffness of a rated load); at most \
+             {MAX_CONTACT_DAMPING_RATIO} times ({:.4} N s/m) is accepted: a damping far beyond \
+             critical is no bearing's, and the integration would crawl",
+            c_br / c_crit,
+            MAX_CONTACT_DAMPING_RATIO * c_crit
+        ),
+    ))
+}
+
 impl Bearing {
     /// Builds the derived geometry; the file is validated first.
     pub fn new(file: &BearingFile) -> Result<Self, ConfigError> {
@@ -109,6 +159,13 @@ impl Bearing {
         let hertz_inner = hertz(Race::Inner, b.f_inner)?;
         let hertz_outer = hertz(Race::Outer, b.f_outer)?;
         let ball_mass = m.density * PI * d.powi(3) / 6.0;
+        let k_inner = file.contact.k_inner.unwrap_or(hertz_inner.stiffness);
+        let k_outer = file.contact.k_outer.unwrap_or(hertz_outer.stiffness);
+        check_contact_damping(
+            file.contact.c_br,
+            [(&hertz_inner, k_inner), (&hertz_outer, k_outer)],
+            ball_mass,
+        )?;
         let film = match &file.lubrication {
             Some(l) => {
                 let lub = Lubricant::new(l)?;
@@ -133,8 +190,8 @@ impl Bearing {
             e_prime,
             ball_mass,
             ball_inertia: ball_mass * d * d / 10.0,
-            k_inner: file.contact.k_inner.unwrap_or(hertz_inner.stiffness),
-            k_outer: file.contact.k_outer.unwrap_or(hertz_outer.stiffness),
+            k_inner,
+            k_outer,
             hertz_inner,
             hertz_outer,
         })

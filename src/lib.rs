@@ -63,7 +63,9 @@ pub use config::{
     PRESETS,
 };
 pub use defect::DefectSpec;
-pub use geometry::{race_curvatures, Bearing, Race};
+pub use geometry::{
+    critical_contact_damping, race_curvatures, Bearing, Race, MAX_CONTACT_DAMPING_RATIO,
+};
 pub use limits::{peak_contact, StaticRating, MAX_CONTACT_PRESSURE, RATING_PRESSURE};
 pub use models::{
     out, output_table, output_table_for, output_table_with_cage, OutputInfo, SimError,

@@ -36,7 +36,8 @@ pub const HANG_S: f64 = 30.0;
 
 /// The step budget (`solver.max_steps`, units of work per communication step) the harnesses give
 /// their instances. A parameter set that makes the integration crawl (a contact damping of 1e9
-/// N s/m: steps of 3e-10 s) ends as fmi2Discard when the budget is spent; at the FMU's default,
+/// N s/m made steps of 3e-10 s before `contact.c_br` was bounded) ends as fmi2Discard when the
+/// budget is spent; at the FMU's default,
 /// 2 000 000, that takes about 10 s here and 40 CPU s in libFuzzer's instrumented build, beyond
 /// [`HANG_S`]. At this budget it takes about 0.5 s (2 s instrumented), so that a call that
 /// [`HANG_S`] catches is one the budget does not bound.
