@@ -12,7 +12,8 @@ runs="${1:-1000000}"
 targets="${2:-fmi_calls}"
 seed="${3:-1}"
 out=docs/research/fuzz-driver.md
-mkdir -p target
+# (row files apart from scripts/fuzz_long.sh's target/fuzz-*.row, which its table globs)
+mkdir -p target/fuzz-driver
 for t in $targets; do
   case "$t" in
     fmi_calls) test=fmi_call_sequences_follow_the_standard ;;
@@ -36,9 +37,9 @@ for t in $targets; do
   fi
   echo "$t: $cases cases, $verdict, ${wall} s"
   echo "| \`$t\` | $cases | $seed | $verdict | ${wall} s | \`scripts/fuzz_driver_long.sh $runs $t $seed\` |" \
-    >"target/fuzz-driver-$t.row"
+    >"target/fuzz-driver/$t.row"
 done
-rows=$(cat target/fuzz-driver-*.row 2>/dev/null)
+rows=$(cat target/fuzz-driver/*.row 2>/dev/null)
 cat >"$out" <<MD
 # Long runs of the seeded random driver
 
