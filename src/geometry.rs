@@ -89,7 +89,7 @@ pub const MAX_CONTACT_DAMPING_RATIO: f64 = 100.0;
 
 /// Critical damping 2√(k m) of a ball of mass `ball_mass` on its two contacts in series, with the
 /// linearized stiffness k = 1.5 K^{2/3} Q^{1/3} at the ball load Q where the more loaded contact
-/// reaches [`DAMPING_REFERENCE_PRESSURE`] (the stiffest a rated load makes it) \[N s/m\].
+/// reaches ISO 76's rating pressure, 4200 MPa (the stiffest a rated load makes it) \[N s/m\].
 pub fn critical_contact_damping(races: [(&HertzContact, f64); 2], ball_mass: f64) -> f64 {
     // p0 = 1.5 Q / (π a b) with a b ∝ Q^{2/3}: Q at the pressure, for each race.
     let q_at = |h: &HertzContact| {
