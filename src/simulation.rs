@@ -567,8 +567,9 @@ impl Simulation {
         o.max_steps = scene.solver.max_steps;
         o.pi_beta = scene.solver.pi_beta;
         // The models' events are contacts and spall boundaries. 50 steps in a row ending in one,
-        // within 10 ns, is chatter (a contact damping far beyond critical opens and closes a
-        // contact every step or two), not physics: the fastest contact vibration of a preset's
+        // within 10 ns, is chatter (as a contact damping far beyond critical, before contact.c_br
+        // was bounded, opened and closed a contact every step or two), not physics: the fastest
+        // contact vibration of a preset's
         // ball lasts microseconds, and the envelope's busiest runs (balls rattling in a spall
         // under light load) take more than 1e-4 s for such a run.
         o.chatter_events = 50;
