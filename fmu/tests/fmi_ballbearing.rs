@@ -1273,6 +1273,22 @@ fn configured(
     }
 }
 
+/// An instance that [`configured`] initialized (status `s` must be fmi2OK) takes one 0.1 ms step
+/// with fmi2OK and is freed.
+fn steps_once_then_frees(h: &H, c: Fmi2Component, s: Fmi2Status) {
+    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+    // SAFETY: c is a live instance, freed once.
+    unsafe {
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 1e-4, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+        sh::free_instance::<BallBearing>(c);
+    }
+}
+
 fn real(c: Fmi2Component, b: &BearingFile, name: &str) -> f64 {
     let mut v = f64::NAN;
     // SAFETY: c is a live instance; one value.
@@ -1420,17 +1436,7 @@ fn line_inputs_outside_tlm_are_reported_once() {
         &[("fidelity", 2), ("coupling", 2)],
         &[("tlm.c1.z", -50.0)],
     );
-    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
-    // SAFETY: c is a live instance.
-    unsafe {
-        assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 1e-4, 1),
-            Fmi2Status::Ok,
-            "{}",
-            h.last()
-        );
-        sh::free_instance::<BallBearing>(c);
-    }
+    steps_once_then_frees(&h, c, s);
     assert_eq!(count(&h), 0);
 }
 
@@ -1783,15 +1789,5 @@ fn a_contact_damping_far_beyond_critical_is_refused_at_initialization() {
         &[("fidelity", 2)],
         &[("contact.c_br", 0.99 * limit)],
     );
-    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
-    // SAFETY: c is a live instance.
-    unsafe {
-        assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 1e-4, 1),
-            Fmi2Status::Ok,
-            "{}",
-            h.last()
-        );
-        sh::free_instance::<BallBearing>(c);
-    }
+    steps_once_then_frees(&h, c, s);
 }
