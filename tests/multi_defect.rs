@@ -19,6 +19,23 @@ fn scene_with(spalls: &str) -> Scene {
     Scene::from_toml_str(&t, "test", None).unwrap_or_else(|e| panic!("{e}\n{t}"))
 }
 
+/// The default scene's spall centre θ_d0 = 3.1416 rad as its file writes it (not π).
+#[allow(clippy::approx_constant)]
+const DEFAULT_THETA0: f64 = 3.1416;
+
+/// `[[defect]]` entries of 1.0 × 0.2 mm spalls, one per (ring, θ_d0).
+fn spalls(entries: &[(&str, f64)]) -> String {
+    entries
+        .iter()
+        .map(|(ring, theta0)| {
+            format!(
+                "[[defect]]\nring = \"{ring}\"\nwidth = 1.0e-3\ndepth = 0.2e-3\ntheta0 = {theta0:?}\n"
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 const TWO_OUTER: &str = r#"
 [[defect]]
 ring = "outer"
@@ -268,15 +285,7 @@ fn reduced_two_outer_spalls_a_ball_meets_both_a_quarter_turn_apart() {
 #[test]
 fn one_spall_in_array_form_is_the_table_form_bit_for_bit() {
     let table = Scene::default_scene();
-    let array = scene_with(
-        r#"
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 3.1416
-"#,
-    );
+    let array = scene_with(&spalls(&[("outer", DEFAULT_THETA0)]));
     assert_eq!(table, array);
     for level in [Fidelity::Lumped, Fidelity::Reduced] {
         let (mut a, mut b) = (table.clone(), array.clone());
@@ -302,21 +311,7 @@ theta0 = 3.1416
 
 #[test]
 fn outer_and_inner_spall_give_both_bpfo_and_bpfi() {
-    let sc = scene_with(
-        r#"
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 3.1416
-
-[[defect]]
-ring = "inner"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 0.0
-"#,
-    );
+    let sc = scene_with(&spalls(&[("outer", DEFAULT_THETA0), ("inner", 0.0)]));
     let mut sim = Simulation::new(&sc).unwrap();
     let ftf = sim.cage_speed() / TAU;
     let fs_shaft = sc.operating.shaft_speed / TAU;
@@ -359,27 +354,7 @@ theta0 = 0.0
 #[test]
 fn overlapping_spalls_are_refused_naming_both() {
     // θ_e ≈ 0.02 rad for a 1 mm spall: centres 0.01 rad apart overlap.
-    let sc = scene_with(
-        r#"
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 1.0
-
-[[defect]]
-ring = "inner"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 1.0
-
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 1.01
-"#,
-    );
+    let sc = scene_with(&spalls(&[("outer", 1.0), ("inner", 1.0), ("outer", 1.01)]));
     for level in [Fidelity::Lumped, Fidelity::Reduced, Fidelity::Full] {
         let mut s = sc.clone();
         s.fidelity = level;
@@ -479,22 +454,7 @@ fn each_spall_of_several_may_have_its_own_mode() {
     // defect[1] in the paper-literal point mode, defect[0] in the bearing's (finite ball): the
     // largest drop is the finite ball's geometric limit R − √(R² − w_d²/4) for the first (its
     // floor, 0.2 mm deep, is out of reach) and the depth h_d for the second.
-    let sc = scene_with(
-        r#"
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 2.356194490192345
-
-[[defect]]
-ring = "outer"
-width = 1.0e-3
-depth = 0.2e-3
-theta0 = 3.9269908169872414
-mode = "point"
-"#,
-    );
+    let sc = scene_with(&format!("{TWO_OUTER}mode = \"point\"\n"));
     assert_eq!(sc.defect_modes, [None, Some(raceway::DefectMode::Point)]);
     let b = Bearing::new(&sc.bearing).unwrap();
     let r = 0.5 * b.d;
