@@ -376,17 +376,8 @@ fn stall(tolerance: f64, max_steps: i32) -> Stall {
             sh::enter_initialization_mode::<BallBearing>(c),
             Fmi2Status::Ok
         );
-        assert_eq!(
-            sh::exit_initialization_mode::<BallBearing>(c),
-            Fmi2Status::Ok
-        );
-        assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1),
-            Fmi2Status::Ok,
-            "{}",
-            h.last()
-        );
-        sh::free_instance::<BallBearing>(c);
+        let s = sh::exit_initialization_mode::<BallBearing>(c);
+        steps_once_then_frees(&h, c, s, 1e-3);
         Stall {
             status,
             message,
@@ -1273,14 +1264,14 @@ fn configured(
     }
 }
 
-/// An instance that [`configured`] initialized (status `s` must be fmi2OK) takes one 0.1 ms step
-/// with fmi2OK and is freed.
-fn steps_once_then_frees(h: &H, c: Fmi2Component, s: Fmi2Status) {
+/// An instance whose initialization ended with status `s` (which must be fmi2OK) takes one step
+/// of `step` seconds from 0 with fmi2OK and is freed.
+fn steps_once_then_frees(h: &H, c: Fmi2Component, s: Fmi2Status, step: f64) {
     assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
     // SAFETY: c is a live instance, freed once.
     unsafe {
         assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 1e-4, 1),
+            sh::do_step::<BallBearing>(c, 0.0, step, 1),
             Fmi2Status::Ok,
             "{}",
             h.last()
@@ -1436,7 +1427,7 @@ fn line_inputs_outside_tlm_are_reported_once() {
         &[("fidelity", 2), ("coupling", 2)],
         &[("tlm.c1.z", -50.0)],
     );
-    steps_once_then_frees(&h, c, s);
+    steps_once_then_frees(&h, c, s, 1e-4);
     assert_eq!(count(&h), 0);
 }
 
@@ -1789,5 +1780,5 @@ fn a_contact_damping_far_beyond_critical_is_refused_at_initialization() {
         &[("fidelity", 2)],
         &[("contact.c_br", 0.99 * limit)],
     );
-    steps_once_then_frees(&h, c, s);
+    steps_once_then_frees(&h, c, s, 1e-4);
 }
