@@ -3,6 +3,7 @@
 # toolchain, no sanitizer: the harnesses check the properties themselves) for RUNS cases, then
 # writes docs/research/fuzz.md with what each run printed.
 # Usage: scripts/fuzz_long.sh [RUNS, default 1000000] [TARGETS, default "input_files state_blob fmi_calls"]
+#        FUZZ_SECONDS=S scripts/fuzz_long.sh ...   (each target also stops after S seconds)
 #        scripts/fuzz_long.sh --table   (only rewrite docs/research/fuzz.md from the kept rows)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -16,12 +17,19 @@ if [ -n "$targets" ]; then
   command -v cargo-fuzz >/dev/null 2>&1 || cargo install cargo-fuzz --locked
 fi
 out=docs/research/fuzz.md
+seconds="${FUZZ_SECONDS:-}"
+limit=""
+prefix=""
+if [ -n "$seconds" ]; then
+  limit="-max_total_time=$seconds"
+  prefix="FUZZ_SECONDS=$seconds "
+fi
 for t in $targets; do
   log="target/fuzz-$t.log"
   mkdir -p target
   start=$(date +%s)
   (cd fuzzing/fuzz && cargo +nightly fuzz run -s none "$t" -- -runs="$runs" -max_len=256 \
-     -rss_limit_mb=4096 -timeout=300 -print_final_stats=1) >"$log" 2>&1
+     -rss_limit_mb=4096 -timeout=300 -print_final_stats=1 $limit) >"$log" 2>&1
   rc=$?
   wall=$(( $(date +%s) - start ))
   done_line=$(grep -E '^Done [0-9]+ runs' "$log" | tail -1)
@@ -29,7 +37,7 @@ for t in $targets; do
   crash=$(grep -cE 'panicked|deadly signal|ERROR: libFuzzer' "$log" || true)
   verdict=$([ "$rc" -eq 0 ] && echo "0 findings" || echo "**finding** (exit $rc; see $log and fuzzing/fuzz/artifacts/$t)")
   echo "$t: ${execs:-?} cases, $verdict, ${wall} s"
-  echo "| \`$t\` | ${execs:-?} | $verdict | ${wall} s | ${done_line:-—} | \`scripts/fuzz_long.sh $runs $t\` |" \
+  echo "| \`$t\` | ${execs:-?} | $verdict | ${wall} s | ${done_line:-—} | \`${prefix}scripts/fuzz_long.sh $runs $t\` |" \
     >"target/fuzz-$t.row"
 done
 # The table holds the last run of every target (targets may run in separate invocations).
