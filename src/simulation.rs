@@ -569,9 +569,8 @@ impl Simulation {
         // The models' events are contacts and spall boundaries. 50 steps in a row ending in one,
         // within 10 ns, is chatter (as a contact damping far beyond critical, before contact.c_br
         // was bounded, opened and closed a contact every step or two), not physics: the fastest
-        // contact vibration of a preset's
-        // ball lasts microseconds, and the envelope's busiest runs (balls rattling in a spall
-        // under light load) take more than 1e-4 s for such a run.
+        // contact vibration of a preset's ball lasts microseconds, and the envelope's busiest
+        // runs (balls rattling in a spall under light load) take more than 1e-4 s for such a run.
         o.chatter_events = 50;
         o.chatter_span = 1e-8;
         o
@@ -1554,5 +1553,29 @@ mod tests {
             "{bad} of {} values changed in the round trip",
             values.len()
         );
+    }
+
+    #[test]
+    fn every_simulation_integrates_with_the_zeno_guard_on() {
+        // The guard is off in the solver by default; the simulation turns it on for every level
+        // (docs/research/step-control.md): 50 events in a row, each within 3 steps, within 10 ns.
+        for level in ["kinematic", "lumped", "reduced", "full"] {
+            let text = crate::DEFAULT_SCENE
+                .replace("fidelity = \"lumped\"", &format!("fidelity = \"{level}\""));
+            assert!(text.contains(&format!("fidelity = \"{level}\"")));
+            let scene = crate::Scene::from_toml_str(&text, "test", None).unwrap();
+            let sim = super::Simulation::new(&scene).unwrap();
+            let o = super::Simulation::options(&scene, sim.model.as_ref());
+            assert_eq!(o.chatter_events, 50, "{level}");
+            assert_eq!(o.chatter_steps, 3, "{level}");
+            assert_eq!(o.chatter_span, 1e-8, "{level}");
+        }
+    }
+
+    #[test]
+    fn the_lumped_models_events_are_named_by_ball_from_one() {
+        let sim = super::Simulation::new(&crate::Scene::default_scene()).unwrap();
+        assert_eq!(sim.model.event_name(0), "the contact of ball 1");
+        assert_eq!(sim.model.event_name(13), "the contact of ball 14");
     }
 }
