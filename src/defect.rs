@@ -58,20 +58,143 @@ pub fn wrap(x: f64) -> f64 {
     y
 }
 
-/// A spall as a scene gives it: ring, width and depth \[m\], and centre angle θ_d0 \[rad\]
-/// (C1 (docs/model.md#c1) convention; for the inner ring at shaft angle φ = 0).
+/// Where a spall is: on a raceway, or on a ball (docs/model.md#ball-spall).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Site {
+    /// The inner raceway.
+    Inner,
+    /// The outer raceway.
+    Outer,
+    /// Ball k, numbered from 1 (ball 1 is the first ball of the layout, at azimuth θ_start).
+    Ball(usize),
+}
+
+impl Site {
+    /// The raceway, or None for a ball.
+    pub fn race(self) -> Option<Race> {
+        match self {
+            Site::Inner => Some(Race::Inner),
+            Site::Outer => Some(Race::Outer),
+            Site::Ball(_) => None,
+        }
+    }
+
+    /// The `ring` key's word: `inner`, `outer` or `ball`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Site::Inner => "inner",
+            Site::Outer => "outer",
+            Site::Ball(_) => "ball",
+        }
+    }
+}
+
+impl From<Race> for Site {
+    fn from(r: Race) -> Self {
+        match r {
+            Race::Inner => Site::Inner,
+            Race::Outer => Site::Outer,
+        }
+    }
+}
+
+/// A spall as a scene gives it: where, width and depth \[m\], and its angle θ_d0 \[rad\]. On a
+/// race, θ_d0 is the centre's azimuth (C1 (docs/model.md#c1) convention; for the inner ring at
+/// shaft angle φ = 0). On a ball, it is the centre's angle on the ball's rolling circle at
+/// t = 0, from the point midway between the ball's two contacts in the direction of its spin
+/// (0: a quarter turn before it meets the outer race; docs/model.md#ball-spall).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "RawSpec", into = "RawSpec")]
 pub struct DefectSpec {
-    /// The defective ring.
-    pub ring: Race,
+    /// The defective ring or ball (`ring = "inner" | "outer" | "ball"`, with `ball = k` for a
+    /// ball).
+    pub ring: Site,
     /// Width w_d along the track \[m\].
     pub width: f64,
     /// Depth h_d of the floor's deepest point \[m\].
     pub depth: f64,
-    /// Angular position θ_d0 of the defect centre on the ring \[rad\] (default 0).
-    #[serde(default)]
+    /// Angle θ_d0 of the defect centre \[rad\] (default 0; see [`DefectSpec`]).
     pub theta0: f64,
+}
+
+/// The `ring` key's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum RingWord {
+    Inner,
+    Outer,
+    Ball,
+}
+
+/// A `[defect]` table as written: `ring` a word, `ball` only with `ring = "ball"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSpec {
+    ring: RingWord,
+    width: f64,
+    depth: f64,
+    #[serde(default)]
+    theta0: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    ball: Option<i64>,
+}
+
+/// The site of a `ring` word and a `ball` number; the error names the field.
+pub(crate) fn site_of(ring: RingWord, ball: Option<i64>) -> Result<Site, ConfigError> {
+    match (ring, ball) {
+        (RingWord::Ball, Some(k)) if k >= 1 => Ok(Site::Ball(k as usize)),
+        (RingWord::Ball, Some(k)) => Err(ConfigError::new(
+            "defect.ball",
+            format!("{k} is not a ball number (balls are numbered from 1)"),
+        )),
+        (RingWord::Ball, None) => Err(ConfigError::new(
+            "defect.ball",
+            "ring = \"ball\" needs the ball's number, e.g. ball = 1",
+        )),
+        (RingWord::Inner, None) => Ok(Site::Inner),
+        (RingWord::Outer, None) => Ok(Site::Outer),
+        (r, Some(k)) => Err(ConfigError::new(
+            "defect.ball",
+            format!(
+                "ball = {k} is only for a spall on a ball (ring = \"ball\"), not with ring = \"{}\"",
+                if r == RingWord::Inner { "inner" } else { "outer" }
+            ),
+        )),
+    }
+}
+
+/// The `ring` word and `ball` number of a site.
+pub(crate) fn words_of(site: Site) -> (RingWord, Option<i64>) {
+    match site {
+        Site::Inner => (RingWord::Inner, None),
+        Site::Outer => (RingWord::Outer, None),
+        Site::Ball(k) => (RingWord::Ball, Some(k as i64)),
+    }
+}
+
+impl TryFrom<RawSpec> for DefectSpec {
+    type Error = String;
+    fn try_from(r: RawSpec) -> Result<Self, String> {
+        Ok(DefectSpec {
+            ring: site_of(r.ring, r.ball).map_err(|e| e.to_string())?,
+            width: r.width,
+            depth: r.depth,
+            theta0: r.theta0,
+        })
+    }
+}
+
+impl From<DefectSpec> for RawSpec {
+    fn from(d: DefectSpec) -> Self {
+        let (ring, ball) = words_of(d.ring);
+        RawSpec {
+            ring,
+            width: d.width,
+            depth: d.depth,
+            theta0: d.theta0,
+            ball,
+        }
+    }
 }
 
 impl DefectSpec {
@@ -120,34 +243,64 @@ pub fn indexed_error(e: ConfigError, k: usize, several: bool) -> ConfigError {
 /// [`crate::Scene::spalls`]; errors named `defect[k].field` when there are several) and
 /// refuses two on the same ring whose angular extents
 /// [θ_d0 − θ_e, θ_d0 + θ_e] intersect (the ball-level and lumped models let each ball meet
-/// one spall per race at a time), with a message naming both.
+/// one spall per race at a time), with a message naming both. A spall on a ball is refused
+/// (the levels that carry it build it with [`build_races`] and `crate::ball_spall`).
 pub fn build_all<'a>(
     specs: impl IntoIterator<Item = (&'a DefectSpec, Option<DefectMode>)>,
     bearing: &Bearing,
     reference_load: f64,
 ) -> Result<Vec<Defect>, ConfigError> {
     let specs: Vec<(&DefectSpec, Option<DefectMode>)> = specs.into_iter().collect();
+    if let Some(k) = specs.iter().position(|(s, _)| s.ring.race().is_none()) {
+        return Err(indexed_error(
+            ConfigError::new(
+                "defect.ring",
+                "a spall on a ball is simulated at the lumped level (fidelity = \"lumped\")",
+            ),
+            k,
+            specs.len() > 1,
+        ));
+    }
+    build_races(&specs, bearing, reference_load)
+}
+
+/// [`build_all`] for the raceway spalls of a list that may also hold spalls on balls (skipped);
+/// errors name each spall by its place `k` in the whole list.
+pub fn build_races(
+    specs: &[(&DefectSpec, Option<DefectMode>)],
+    bearing: &Bearing,
+    reference_load: f64,
+) -> Result<Vec<Defect>, ConfigError> {
     let several = specs.len() > 1;
-    let all = specs
-        .iter()
-        .enumerate()
-        .map(|(k, &(s, mode))| {
+    let mut all = Vec::new();
+    let mut places = Vec::new();
+    for (k, &(s, mode)) in specs.iter().enumerate() {
+        if s.ring.race().is_none() {
+            continue;
+        }
+        all.push(
             Defect::with_mode(s, bearing, reference_load, mode)
-                .map_err(|e| indexed_error(e, k, several))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    check_overlaps(all.iter().map(|d| (d.ring(), d.theta0(), d.half_angle())))?;
+                .map_err(|e| indexed_error(e, k, several))?,
+        );
+        places.push(k);
+    }
+    check_overlaps(
+        all.iter()
+            .zip(&places)
+            .map(|(d, &k)| (k, d.ring(), d.theta0(), d.half_angle())),
+    )?;
     Ok(all)
 }
 
-/// Refuses two spalls `(ring, θ_d0, θ_e)` on the same ring whose angular extents intersect
-/// (|wrap(θ_a − θ_b)| < θ_ea + θ_eb); the error names both entries, `defect[a]` and `defect[b]`.
+/// Refuses two spalls `(k, ring, θ_d0, θ_e)` on the same ring whose angular extents intersect
+/// (|wrap(θ_a − θ_b)| < θ_ea + θ_eb); the error names both entries, `defect[a]` and `defect[b]`
+/// (`k`, the entry's place in the scene's list).
 pub fn check_overlaps(
-    spalls: impl IntoIterator<Item = (Race, f64, f64)>,
+    spalls: impl IntoIterator<Item = (usize, Race, f64, f64)>,
 ) -> Result<(), ConfigError> {
-    let spalls: Vec<(Race, f64, f64)> = spalls.into_iter().collect();
-    for (b, &(rb, tb, eb)) in spalls.iter().enumerate() {
-        for (a, &(ra, ta, ea)) in spalls[..b].iter().enumerate() {
+    let spalls: Vec<(usize, Race, f64, f64)> = spalls.into_iter().collect();
+    for (i, &(b, rb, tb, eb)) in spalls.iter().enumerate() {
+        for &(a, ra, ta, ea) in &spalls[..i] {
             let gap = wrap(ta - tb).abs();
             if ra == rb && gap < ea + eb {
                 return Err(ConfigError::new(
@@ -363,6 +516,12 @@ impl Defect {
         mode: Option<DefectMode>,
     ) -> Result<Defect, ConfigError> {
         spec.validate()?;
+        let Some(race) = spec.ring.race() else {
+            return Err(ConfigError::new(
+                "defect.ring",
+                "a spall on a ball is not a raceway spall (crate::ball_spall builds it)",
+            ));
+        };
         let d_ball = bearing.d;
         let r = 0.5 * d_ball;
         if !(d_ball.is_finite() && d_ball > 0.0 && bearing.dm.is_finite() && bearing.dm > d_ball) {
@@ -401,7 +560,7 @@ impl Defect {
                         ),
                     ));
                 }
-                bearing.hertz(spec.ring).semi_axes(reference_load).1
+                bearing.hertz(race).semi_axes(reference_load).1
             }
             BlendLength::Metres(l) => {
                 if !(l.is_finite() && l >= 0.0) {
@@ -413,10 +572,10 @@ impl Defect {
                 l
             }
         };
-        let k_groove = bearing.k(spec.ring);
+        let k_groove = bearing.k(race);
         if !(k_groove.is_finite() && k_groove > 0.0) {
             return Err(ConfigError::new(
-                format!("contact.K_{}", spec.ring.name()),
+                format!("contact.K_{}", race.name()),
                 format!("groove Hertz constant {k_groove} must be finite and > 0"),
             ));
         }
@@ -428,7 +587,7 @@ impl Defect {
 
         // docs/model.md#spall-half-angle: half angle on the track (eq. 15); upper sign outer, lower sign inner.
         let cos_b = bearing.alpha0.cos();
-        let sign = match spec.ring {
+        let sign = match race {
             Race::Outer => 1.0,
             Race::Inner => -1.0,
         };
@@ -524,7 +683,7 @@ impl Defect {
             }
         };
         Ok(Defect {
-            ring: spec.ring,
+            ring: race,
             width: spec.width,
             depth: spec.depth,
             theta0: wrap(spec.theta0),
@@ -1012,7 +1171,7 @@ mod tests {
         let b = Bearing::load("niu2014-table1").unwrap();
         for (width, depth) in [(4.0e-3, 0.05e-3), (1.0e-3, 0.2e-3)] {
             let spec = DefectSpec {
-                ring: Race::Outer,
+                ring: Race::Outer.into(),
                 width,
                 depth,
                 theta0: 0.0,
@@ -1061,7 +1220,7 @@ mod tests {
                     (8.0e-3, 0.5e-3),
                 ] {
                     let spec = DefectSpec {
-                        ring,
+                        ring: ring.into(),
                         width,
                         depth,
                         theta0: 1.0,
@@ -1082,7 +1241,7 @@ mod tests {
             }
         }
         let bad = DefectSpec {
-            ring: Race::Outer,
+            ring: Race::Outer.into(),
             width: 20e-3,
             depth: 0.1e-3,
             theta0: 0.0,
@@ -1100,7 +1259,7 @@ mod tests {
             crate::config::BlendLength::Named(crate::config::BlendName::SemiMinorAxis);
         let b = Bearing::new(&f).unwrap();
         let spec = DefectSpec {
-            ring: Race::Outer,
+            ring: Race::Outer.into(),
             width: 2.0e-3,
             depth: 0.5e-3,
             theta0: 0.0,

@@ -212,6 +212,13 @@ impl Bearing {
         self.d * alpha.cos() / self.dm
     }
 
+    /// Ball spin angle per orbital angle of a ball in pure rolling on the fixed outer race at
+    /// the nominal contact angle, (dm/D)(1 + γ_0): the spin of the kinematic balls (ball
+    /// waviness, spalls on balls).
+    pub fn kinematic_spin_per_orbit(&self) -> f64 {
+        self.dm / self.d * (1.0 + self.gamma(self.alpha0))
+    }
+
     /// Groove curvature factor of a race.
     pub fn f(&self, race: Race) -> f64 {
         match race {

@@ -26,6 +26,7 @@
 
 #![warn(missing_docs)]
 
+mod ball_spall;
 mod config;
 mod defect;
 mod geometry;
@@ -62,7 +63,7 @@ pub use config::{
     Material, Pedestal, StripRule, TractionLaw, TractionSection, DEFAULT_PRESET, MAX_STRIPS,
     PRESETS,
 };
-pub use defect::DefectSpec;
+pub use defect::{DefectSpec, Site};
 pub use geometry::{
     critical_contact_damping, race_curvatures, Bearing, Race, MAX_CONTACT_DAMPING_RATIO,
 };

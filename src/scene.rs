@@ -539,11 +539,14 @@ enum Spalls {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SpallEntry {
-    ring: crate::geometry::Race,
+    ring: crate::defect::RingWord,
     width: f64,
     depth: f64,
     #[serde(default)]
     theta0: f64,
+    /// The ball's number with `ring = "ball"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    ball: Option<i64>,
     /// `"finite"` or `"point"`; absent: the bearing's `[defect] mode`.
     #[serde(default)]
     mode: Option<DefectMode>,
@@ -719,12 +722,19 @@ impl Scene {
                 } else {
                     Vec::new()
                 };
-                let mut specs = all.into_iter().map(|e| DefectSpec {
-                    ring: e.ring,
-                    width: e.width,
-                    depth: e.depth,
-                    theta0: e.theta0,
-                });
+                let several = all.len() > 1;
+                let mut specs = Vec::with_capacity(all.len());
+                for (k, e) in all.into_iter().enumerate() {
+                    let ring = crate::defect::site_of(e.ring, e.ball)
+                        .map_err(|err| crate::defect::indexed_error(err, k, several))?;
+                    specs.push(DefectSpec {
+                        ring,
+                        width: e.width,
+                        depth: e.depth,
+                        theta0: e.theta0,
+                    });
+                }
+                let mut specs = specs.into_iter();
                 let first = specs.next();
                 (first, specs.collect(), modes)
             }

@@ -184,7 +184,7 @@ impl Waviness {
             } else {
                 dev.clone()
             },
-            spin_per_orbit: bearing.dm / bearing.d * (1.0 + bearing.gamma(bearing.alpha0)),
+            spin_per_orbit: bearing.kinematic_spin_per_orbit(),
         }))
     }
 

@@ -139,7 +139,7 @@ fn separation_flag_is_set_exactly_while_a_ball_flies_through_a_spall() {
     for level in [Fidelity::Reduced, Fidelity::Lumped] {
         let mut sc = scene(level, 10_000.0, 3000.0, 0.0);
         sc.defect = Some(DefectSpec {
-            ring: Race::Outer,
+            ring: Race::Outer.into(),
             width: 2.0e-3,
             depth: 0.5e-3,
             theta0: 0.0,
@@ -198,7 +198,7 @@ fn spalled(level: Fidelity) -> Scene {
     let mut d = Scene::default_scene()
         .defect
         .expect("the default scene has a spall");
-    d.ring = Race::Outer;
+    d.ring = Race::Outer.into();
     s.defect = Some(d);
     s
 }

@@ -32,7 +32,7 @@ fn blended_defect(ring: Race, width: f64, depth: f64) -> Defect {
 
 fn spec(ring: Race, width: f64, depth: f64) -> DefectSpec {
     DefectSpec {
-        ring,
+        ring: ring.into(),
         width,
         depth,
         theta0: 0.0,
@@ -122,7 +122,7 @@ fn ball_to_defect_angle_outer_fixed_inner_spinning() {
     let o = Defect::new(&s, &b, Q_REF).unwrap();
     assert!((o.theta_bd(PI + 0.01, 123.0) - 0.01).abs() < 1e-12);
     assert!((o.theta_bd(-PI + 0.01, 0.0) - 0.01).abs() < 1e-12, "wraps");
-    s.ring = Race::Inner;
+    s.ring = Race::Inner.into();
     s.theta0 = 0.5;
     let i = Defect::new(&s, &b, Q_REF).unwrap();
     // φ = Ω t after many revolutions.
@@ -482,7 +482,7 @@ fn invalid_defects_name_the_field() {
     assert_eq!(e.field, "defect.blend_length", "{e}");
     // Serde: unknown keys refused, theta0 defaults to 0.
     let s: DefectSpec = toml::from_str("ring = \"inner\"\nwidth = 1e-3\ndepth = 2e-4\n").unwrap();
-    assert_eq!(s.ring, Race::Inner);
+    assert_eq!(s.ring, Race::Inner.into());
     assert_eq!(s.theta0, 0.0);
     assert!(toml::from_str::<DefectSpec>(
         "ring = \"outer\"\nwidth = 1e-3\ndepth = 2e-4\nlength = 1\n"

@@ -13,7 +13,7 @@ fn sec31_scene(ring: Race, theta0: f64) -> Scene {
     let mut s = Scene::healthy(file, OperatingPoint::from_rpm(10_000.0, 3000.0, 0.0));
     s.fidelity = Fidelity::Full;
     s.defect = Some(DefectSpec {
-        ring,
+        ring: ring.into(),
         width: 2.0e-3,
         depth: 0.5e-3,
         theta0,
@@ -238,7 +238,7 @@ fn a_ball_pass_over_the_spall_conserves_energy() {
     let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(10_000.0, 0.0, 1000.0));
     scene.fidelity = Fidelity::Full;
     scene.defect = Some(DefectSpec {
-        ring: Race::Outer,
+        ring: Race::Outer.into(),
         width: 2.0e-3,
         depth: 0.2e-3,
         theta0: 0.0,

@@ -18,7 +18,7 @@ fn scene(level: Fidelity, ring: Option<Race>) -> Scene {
         None => s.defect = None,
         Some(r) => {
             let d = s.defect.as_mut().unwrap();
-            d.ring = r;
+            d.ring = r.into();
             if r == Race::Inner {
                 d.theta0 = 0.0;
             }

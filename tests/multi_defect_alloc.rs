@@ -10,7 +10,7 @@ use alloc_counter::allocations_during;
 
 fn spall(ring: Race, theta0: f64) -> DefectSpec {
     DefectSpec {
-        ring,
+        ring: ring.into(),
         width: 1.0e-3,
         depth: 0.2e-3,
         theta0,

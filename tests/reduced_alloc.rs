@@ -15,7 +15,7 @@ fn rhs_and_events_do_not_allocate() {
     scene.fidelity = Fidelity::Reduced;
     for defect in [None, Some(Race::Outer), Some(Race::Inner)] {
         scene.defect = defect.map(|ring| DefectSpec {
-            ring,
+            ring: ring.into(),
             width: 1.0e-3,
             depth: 0.2e-3,
             theta0: 0.0,

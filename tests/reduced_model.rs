@@ -289,7 +289,7 @@ fn sec31_ball_flies_through_the_spall_and_hits_the_trailing_edge() {
     // Q_o = 417.6 N (docs/model.md#ref-quasi-static).
     let mut sc = scene(10_000.0, 3000.0, 0.0);
     sc.defect = Some(DefectSpec {
-        ring: Race::Outer,
+        ring: Race::Outer.into(),
         width: 2.0e-3,
         depth: 0.5e-3,
         theta0: 0.0,
@@ -372,7 +372,7 @@ fn inner_spall_turns_with_the_shaft_and_is_hit() {
     // (368.3 N, docs/model.md#ref-quasi-static), while its outer contact is not the spalled one.
     let mut sc = scene(10_000.0, 3000.0, 0.0);
     sc.defect = Some(DefectSpec {
-        ring: Race::Inner,
+        ring: Race::Inner.into(),
         width: 2.0e-3,
         depth: 0.5e-3,
         theta0: 0.0,

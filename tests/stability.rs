@@ -206,7 +206,7 @@ fn t3_tight_tolerances_across_spall_edges_finish_or_fail_fast() {
         for rtol in [1e-10, 1e-12] {
             let mut s = default_scene();
             if let Some(d) = s.defect.as_mut() {
-                d.ring = ring;
+                d.ring = ring.into();
                 d.theta0 = if ring == Race::Inner { 0.0 } else { d.theta0 };
             }
             s.solver.rtol = rtol;
@@ -250,7 +250,7 @@ fn t4_spall_sweep_down_to_a_tenth_of_a_millimetre() {
             for depth in [0.05e-3, 0.2e-3] {
                 let mut s = default_scene();
                 if let Some(d) = s.defect.as_mut() {
-                    d.ring = ring;
+                    d.ring = ring.into();
                     d.width = width;
                     d.depth = depth;
                     d.theta0 = if ring == Race::Inner { 0.0 } else { d.theta0 };

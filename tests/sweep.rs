@@ -82,7 +82,7 @@ base = "../scenes/default.toml"
     assert_eq!(scene.operating.speed_rpm(), 9000.0);
     let d = scene.defect.unwrap();
     assert_eq!(d.width, 2e-3);
-    assert_eq!(d.ring, raceway::Race::Inner);
+    assert_eq!(d.ring, raceway::Site::Inner);
     assert_eq!(noise, 0.0);
 }
 
@@ -482,4 +482,41 @@ fn merged_task_tables_equal_one_sweep_and_another_studys_rows_are_refused() {
     let _ = std::fs::remove_dir_all(&od);
     let _ = std::fs::remove_dir_all(&d);
     let _ = std::fs::remove_dir_all(&whole);
+}
+
+#[test]
+fn a_ring_axis_mixes_race_and_ball_spalls_and_defect_ball_picks_the_ball() {
+    let sw = parse(
+        r#"
+base = "../scenes/default.toml"
+[set]
+"defect.ball" = 5
+[axes]
+"defect.ring" = ["none", "outer", "inner", 3]
+"#,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let rings: Vec<String> = runs.iter().map(|r| r.params[0].1.canonical()).collect();
+    assert_eq!(rings, ["none", "outer", "inner", "ball"]);
+    let site = |i: usize| sw.scene_for(&runs[i]).unwrap().0.defect.map(|d| d.ring);
+    assert_eq!(site(0), None);
+    assert_eq!(site(1), Some(raceway::Site::Outer));
+    assert_eq!(site(2), Some(raceway::Site::Inner));
+    assert_eq!(site(3), Some(raceway::Site::Ball(5)));
+    // Without defect.ball, ball 1.
+    let sw =
+        parse("base = \"../scenes/default.toml\"\n[axes]\n\"defect.ring\" = [\"ball\"]\n").unwrap();
+    let scene = sw.scene_for(&sw.runs()[0]).unwrap().0;
+    assert_eq!(scene.defect.unwrap().ring, raceway::Site::Ball(1));
+    // Not a ball number.
+    let sw = parse(
+        "base = \"../scenes/default.toml\"\n[set]\n\"defect.ball\" = 0\n[axes]\n\"defect.ring\" = [\"ball\"]\n",
+    )
+    .unwrap();
+    let e = sw.scene_for(&sw.runs()[0]).unwrap_err();
+    assert!(
+        e.contains("defect.ball = 0") && e.contains("integer ≥ 1"),
+        "{e}"
+    );
 }

@@ -100,7 +100,7 @@ fn scene_of(name: &str, level: Fidelity) -> Result<Scene, String> {
         "S2" | "S4" => {}
         "S3" => {
             if let Some(d) = s.defect.as_mut() {
-                d.ring = raceway::Race::Inner;
+                d.ring = raceway::Site::Inner;
                 d.theta0 = 0.0;
             }
         }
@@ -121,7 +121,7 @@ fn has_lines(scene: &str) -> bool {
 fn is_outer(scene: &Scene) -> bool {
     !matches!(
         scene.defect.as_ref().map(|d| d.ring),
-        Some(raceway::Race::Inner)
+        Some(raceway::Site::Inner)
     )
 }
 

@@ -178,13 +178,14 @@ pub fn run(args: Args) -> Result<(), String> {
         "skip": scene.output.skip,
         "shaft_hz": fs,
         // What the model implies: cage-based FTF/BPFO/BPFI from the cage speed the model
-        // uses; BSF and 2·BSF are kinematic at α0 (the lumped level has no ball spin).
+        // uses; BSF and 2·BSF the spin of pure rolling on the outer race at α0 at that cage
+        // speed, (dm/D)(1 + γ0)·FTF: the kinematic balls' spin (ball spalls, ball waviness).
         "fault_frequencies": {
             "ftf": ftf,
             "bpfo": z * ftf,
             "bpfi": z * (fs - ftf),
-            "bsf": kin.bsf,
-            "two_bsf": kin.two_bsf,
+            "bsf": bearing.kinematic_spin_per_orbit() * ftf,
+            "two_bsf": 2.0 * bearing.kinematic_spin_per_orbit() * ftf,
         },
         "kinematic_frequencies": kin,
         "solver": {

@@ -18,7 +18,7 @@ use fmi2::{
 use raceway::models::LEVELS;
 use raceway::{
     output_table_with_cage, AxialMount, BearingFile, CageSpeed, CouplingMode, DefectMode,
-    DefectSpec, Fidelity, Journal, MethodName, Mounting, OperatingPoint, Race, Scene, WorkStats,
+    DefectSpec, Fidelity, Journal, MethodName, Mounting, OperatingPoint, Scene, Site, WorkStats,
 };
 use Causality::{Input as In, Output as Out, Parameter};
 use VarType::{Enumeration, Integer, Real};
@@ -414,7 +414,7 @@ pub const ROWS: &[VarRow] = &[
         102,
         "defect.ring",
         "DefectRing",
-        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race",
+        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race, 3 a ball (defect.ball; lumped level)",
         |c| c.defect.ring as f64,
         |c, v| {
             c.defect.ring = v as i32;
@@ -782,6 +782,19 @@ pub const ROWS: &[VarRow] = &[
             Ok(())
         },
     ),
+    param(
+        129,
+        "defect.ball",
+        Integer,
+        None,
+        (Some(1.0), Some(IMAX)),
+        "The spalled ball's number (from 1, at most the bearing's ball count) when defect.ring = 3 (ball)",
+        |c| f64::from(c.defect.ball),
+        |c, v| {
+            c.defect.ball = v as i32;
+            Ok(())
+        },
+    ),
     stat(900, "solver.steps", "Accepted integrator steps since the start", |s| s.steps),
     stat(901, "solver.rejected", "Rejected integrator steps since the start", |s| s.rejected),
     stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
@@ -819,8 +832,10 @@ pub fn journal_set(j: &mut Journal, k: usize, v: f64) {
 /// The defect as the FMU's parameters describe it (kept even while `defect.ring = 0`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DefectParams {
-    /// 0 none, 1 outer, 2 inner.
+    /// 0 none, 1 outer, 2 inner, 3 a ball.
     pub ring: i32,
+    /// The ball's number (from 1) with `ring` = 3.
+    pub ball: i32,
     pub width: f64,
     pub depth: f64,
     pub theta0: f64,
@@ -837,13 +852,15 @@ impl DefectParams {
             .map_or((1e-3, 0.2e-3, std::f64::consts::PI), |d| {
                 (d.width, d.depth, d.theta0)
             });
-        let ring = match scene.defect.as_ref().map(|d| d.ring) {
-            None => 0,
-            Some(Race::Outer) => 1,
-            Some(Race::Inner) => 2,
+        let (ring, ball) = match scene.defect.as_ref().map(|d| d.ring) {
+            None => (0, 1),
+            Some(Site::Outer) => (1, 1),
+            Some(Site::Inner) => (2, 1),
+            Some(Site::Ball(k)) => (3, i32::try_from(k).unwrap_or(i32::MAX)),
         };
         Self {
             ring,
+            ball,
             width,
             depth,
             theta0,
@@ -853,8 +870,10 @@ impl DefectParams {
     /// The scene's defect.
     pub fn spec(&self) -> Option<DefectSpec> {
         let ring = match self.ring {
-            1 => Race::Outer,
-            2 => Race::Inner,
+            1 => Site::Outer,
+            2 => Site::Inner,
+            // A number below 1 stays as given for the scene's check to refuse (defect.ball).
+            3 => Site::Ball(usize::try_from(self.ball).unwrap_or(0)),
             _ => return None,
         };
         Some(DefectSpec {
@@ -1005,6 +1024,7 @@ pub fn enumerations() -> Vec<EnumerationType> {
                 (0, "none", "No spall (healthy bearing)"),
                 (1, "outer", "Spall on the outer race"),
                 (2, "inner", "Spall on the inner race"),
+                (3, "ball", "Spall on a ball (defect.ball; lumped level)"),
             ],
         ),
         ty(
@@ -1200,7 +1220,7 @@ mod tests {
             t.len(),
             ROWS.len() + output_table_with_cage(z).len() + 2 * nx
         );
-        assert_eq!(params().count(), 29);
+        assert_eq!(params().count(), 30);
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);

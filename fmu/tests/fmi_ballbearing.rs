@@ -1782,3 +1782,49 @@ fn a_contact_damping_far_beyond_critical_is_refused_at_initialization() {
     );
     steps_once_then_frees(&h, c, s, 1e-4);
 }
+
+/// A spall on a ball: `defect.ring = 3` with `defect.ball`; the ball must exist and the level
+/// must carry it (the lumped level), or fmi2ExitInitializationMode fails naming why.
+#[test]
+fn a_spall_on_a_ball_runs_at_the_lumped_level_and_is_refused_where_it_cannot() {
+    let b = BearingFile::default_preset();
+    let h = H::new();
+    let (c, s) = configured(
+        &h,
+        &b,
+        &[("fidelity", 2), ("defect.ring", 3), ("defect.ball", 2)],
+        &[],
+    );
+    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
+    // SAFETY: c is a live instance.
+    unsafe {
+        assert_eq!(
+            sh::do_step::<BallBearing>(c, 0.0, 2e-3, 1),
+            Fmi2Status::Ok,
+            "{}",
+            h.last()
+        );
+    }
+    assert!(real(c, &b, "pedestal.a.z").is_finite());
+    // SAFETY: c is a live instance, freed once.
+    unsafe { sh::free_instance::<BallBearing>(c) };
+    for (ints, words) in [
+        (
+            vec![("fidelity", 2), ("defect.ring", 3), ("defect.ball", 15)],
+            ["defect.ball", "balls 1 to 14"],
+        ),
+        (
+            vec![("fidelity", 4), ("defect.ring", 3), ("defect.ball", 1)],
+            ["spall on a ball", "levels that do: lumped"],
+        ),
+    ] {
+        let h = H::new();
+        let (c, s) = configured(&h, &b, &ints, &[]);
+        let (logged, message) = h.last_entry();
+        assert_eq!(s, Fmi2Status::Error, "{message}");
+        assert_eq!(logged, Fmi2Status::Error, "{message}");
+        assert!(words.iter().all(|w| message.contains(w)), "{message}");
+        // SAFETY: c is a live instance.
+        unsafe { sh::free_instance::<BallBearing>(c) };
+    }
+}

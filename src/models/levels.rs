@@ -32,6 +32,9 @@ pub struct Level {
     /// Whether the level carries the distributed defects (scene tables `[waviness]` and
     /// `[roughness]`, docs/model.md#distributed); the others refuse a scene that has them.
     pub distributed: bool,
+    /// Whether the level carries spalls on balls (`ring = "ball"`, docs/model.md#ball-spall);
+    /// the others refuse a scene that has one.
+    pub ball_spalls: bool,
     /// Builds the level's model.
     pub build: Constructor,
 }
@@ -47,6 +50,7 @@ pub const LEVELS: &[Level] = &[
                   traction's cage speed (L1 with the balls' steady spin, the caged balance of \
                   their orbital torques); no dynamics",
         distributed: false,
+        ball_spalls: false,
         build: |s, b, i| Ok(Box::new(kinematic::KinematicModel::new(s, b, i)?)),
     },
     Level {
@@ -57,6 +61,7 @@ pub const LEVELS: &[Level] = &[
         summary: "Quasi-static Jones–Harris load distribution and bearing stiffness at the \
                   current inputs; no dynamics",
         distributed: false,
+        ball_spalls: false,
         build: |s, b, i| Ok(Box::new(quasi_static::QuasiStaticModel::new(s, b, i)?)),
     },
     Level {
@@ -67,6 +72,7 @@ pub const LEVELS: &[Level] = &[
         summary: "Lumped dynamics: inner ring and pedestal (outer ring) with kinematic balls, \
                   Hertz contacts and the spall; the default",
         distributed: true,
+        ball_spalls: true,
         build: |s, b, i| Ok(Box::new(lumped::LumpedModel::new(s, b, i)?)),
     },
     Level {
@@ -79,6 +85,7 @@ pub const LEVELS: &[Level] = &[
                   full model's Hertz contacts, spall and strip traction (4 strips); ball flight \
                   and impacts with a fixed spin axis",
         distributed: true,
+        ball_spalls: false,
         build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
     },
     Level {
@@ -88,6 +95,7 @@ pub const LEVELS: &[Level] = &[
         label: "L4",
         summary: "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
         distributed: true,
+        ball_spalls: false,
         build: |s, b, i| {
             let options = full::FullOptions {
                 traction: s.full.traction,
@@ -140,6 +148,27 @@ pub fn build(
             row.label,
             carriers.join(", ")
         )));
+    }
+    if !row.ball_spalls {
+        if let Some(k) = scene.defects().position(|d| d.ring.race().is_none()) {
+            let carriers: Vec<&str> = LEVELS
+                .iter()
+                .filter(|l| l.ball_spalls)
+                .map(|l| l.name)
+                .collect();
+            let entry = if scene.n_defects() > 1 {
+                format!("defect[{k}]")
+            } else {
+                "defect".into()
+            };
+            return Err(SimError::Unsupported(format!(
+                "the {} level ({}) does not carry a spall on a ball ({entry}, ring = \"ball\"); \
+                 levels that do: {}",
+                row.name,
+                row.label,
+                carriers.join(", ")
+            )));
+        }
     }
     (row.build)(scene, bearing, inputs)
 }

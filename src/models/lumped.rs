@@ -16,8 +16,9 @@
 //! with the half of the spall each ball is in frozen in between.
 
 use super::Model;
+use crate::ball_spall::BallSpall;
 use crate::contact::FilmContact;
-use crate::defect::Defect;
+use crate::defect::{Defect, DefectContact};
 use crate::geometry::{Bearing, Race};
 use crate::load_distribution;
 use crate::models::{out, SimError};
@@ -143,8 +144,10 @@ pub struct LumpedModel {
     c_pz: f64,
     resonator: Option<(f64, f64, f64)>, // (m_r, k_r, c_r)
     pulse: Option<Pulse>,
-    /// The spalls (docs/model.md#several-spalls): each ball checks each.
+    /// The raceway spalls (docs/model.md#several-spalls): each ball checks each.
     defects: Vec<Defect>,
+    /// The spalls on balls (docs/model.md#ball-spall): their ball checks them at both contacts.
+    ball_spalls: Vec<BallSpall>,
     /// Harmonic waviness and off-size balls (docs/model.md#waviness).
     waviness: Option<Waviness>,
     /// Random track roughness (docs/model.md#roughness).
@@ -163,8 +166,10 @@ pub struct LumpedModel {
     /// Static ring displacement relative to the outer ring from L1 at rest (for the initial
     /// state: this model has no centrifugal ball forces, see [`LumpedModel::new`]).
     ring_offset: [f64; 3],
-    /// Spall zone of ball j for spall k at `k * z + j` (z entries without a spall).
+    /// Spall zone of ball j for raceway spall k at `k * z + j` (z entries without one), then
+    /// of ball spall s at its (outer, inner) contact at `ball_zones + 2 s + (0, 1)`.
     zones: Vec<Zone>,
+    ball_zones: usize,
     /// Groove compliances K^(−2/3) of the (inner, outer) race without a spall.
     c_groove: [f64; 2],
     /// (sin, cos) of each ball's offset 2πj/z from ball 0.
@@ -207,8 +212,11 @@ impl LumpedModel {
             (r.mass, r.mass * w * w, 2.0 * r.damping_ratio * r.mass * w)
         });
         let reference_load = reference_ball_load(bearing, inputs);
-        let defects = crate::defect::build_all(scene.spalls(), bearing, reference_load)?;
-        let n_zones = bearing.z * defects.len().max(1);
+        let specs: Vec<_> = scene.spalls().collect();
+        let defects = crate::defect::build_races(&specs, bearing, reference_load)?;
+        let ball_spalls = crate::ball_spall::build_all(&specs, bearing, reference_load)?;
+        let ball_zones = bearing.z * defects.len().max(1);
+        let n_zones = ball_zones + 2 * ball_spalls.len();
         let mut m = Self {
             bearing: bearing.clone(),
             z: bearing.z,
@@ -242,6 +250,7 @@ impl LumpedModel {
             resonator,
             pulse: scene.pulse.clone(),
             defects,
+            ball_spalls,
             waviness: match &scene.waviness {
                 Some(w) => Waviness::new(w, bearing)?,
                 None => None,
@@ -259,6 +268,7 @@ impl LumpedModel {
             l1_inputs: *inputs,
             ring_offset: [0.0; 3],
             zones: vec![Zone::Outside; n_zones],
+            ball_zones,
             c_groove: [
                 bearing.k_inner.powf(-2.0 / 3.0),
                 bearing.k_outer.powf(-2.0 / 3.0),
@@ -421,8 +431,7 @@ impl LumpedModel {
 
     /// Zone of a ball from its defect angle, looking in the direction of motion at boundaries
     /// (`tol` from [`Self::angle_tol`]).
-    fn zone_of(d: &Defect, theta_bd: f64, rate: f64, tol: f64) -> Zone {
-        let te = d.half_angle();
+    fn zone_of(te: f64, theta_bd: f64, rate: f64, tol: f64) -> Zone {
         // Position a hair ahead along the motion decides on which side of a boundary we are.
         let eps = tol * rate.signum();
         let a = theta_bd + if rate == 0.0 { 0.0 } else { eps };
@@ -554,24 +563,40 @@ impl LumpedModel {
                             (theta[i], theta_rate[i])
                         };
                         let (tbd, tbd_rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                        let mut y_b = d.along_track(tbd);
+                        let y_b = d.along_track(tbd);
                         let y_rate = d.along_track_rate(tbd, tbd_rate);
-                        // The frozen half decides the branch at the kink y_b = 0: the first half
-                        // lies behind the centre along the motion, the second ahead of it.
-                        let ahead = if tbd_rate >= 0.0 { 1.0 } else { -1.0 };
-                        let side = if zone == Zone::FirstHalf {
-                            -ahead
-                        } else {
-                            ahead
-                        };
-                        if y_b * side <= 0.0 {
-                            y_b = side * 1e-15;
-                        }
-                        if let Some(c) = d.contact_at(y_b) {
+                        if let Some(c) = Self::frozen_contact(d, zone, y_b, tbd_rate) {
                             delta -= c.g;
                             delta_rate -= c.dg_dy * y_rate;
                             c_race[usize::from(d.ring() == Race::Outer)] =
                                 c.k_edge.powf(-2.0 / 3.0);
+                            hit = true;
+                        }
+                    }
+                }
+                // A spall on this ball, at the contact it is over (its drop adds to a raceway
+                // spall's there; the edge constant is the later one's).
+                for (s, bs) in self.ball_spalls.iter().enumerate() {
+                    if bs.ball() != j {
+                        continue;
+                    }
+                    for (r, race) in [Race::Outer, Race::Inner].into_iter().enumerate() {
+                        let zone = self.zones[self.ball_zones + 2 * s + r];
+                        if zone == Zone::Outside {
+                            continue;
+                        }
+                        let (theta, theta_rate) = if equal_spacing {
+                            self.ball_angle(j, y[CAGE], cage_rate)
+                        } else {
+                            (theta[i], theta_rate[i])
+                        };
+                        let (psi, psi_rate) = bs.spin(self.orbit(j, theta), theta_rate);
+                        let y_b = bs.along_track(bs.offset(race, psi));
+                        let y_rate = bs.along_track(psi_rate);
+                        if let Some(c) = Self::frozen_contact(bs.at(race), zone, y_b, psi_rate) {
+                            delta -= c.g;
+                            delta_rate -= c.dg_dy * y_rate;
+                            c_race[usize::from(race == Race::Outer)] = c.k_edge.powf(-2.0 / 3.0);
                             hit = true;
                         }
                     }
@@ -591,7 +616,7 @@ impl LumpedModel {
                     };
                     let shaft_rate = self.inputs.shaft_speed;
                     if let Some(w) = &self.waviness {
-                        let orbit = theta - self.theta_start - TAU * j as f64 / self.z as f64;
+                        let orbit = self.orbit(j, theta);
                         let (dd, dr) = w.added(j, theta, theta_rate, orbit, y[SHAFT], shaft_rate);
                         delta += dd;
                         delta_rate += dr;
@@ -647,9 +672,43 @@ impl LumpedModel {
                 let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
                 let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
                 self.zones[k * self.z + j] =
-                    Self::zone_of(d, tbd, rate, Self::angle_tol(t, y, rate));
+                    Self::zone_of(d.half_angle(), tbd, rate, Self::angle_tol(t, y, rate));
             }
         }
+        for (s, bs) in self.ball_spalls.iter().enumerate() {
+            let j = bs.ball();
+            let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
+            let (psi, psi_rate) = bs.spin(self.orbit(j, theta), theta_rate);
+            let tol = Self::angle_tol(t, y, psi_rate) * bs.spin_per_orbit();
+            for (r, race) in [Race::Outer, Race::Inner].into_iter().enumerate() {
+                self.zones[self.ball_zones + 2 * s + r] =
+                    Self::zone_of(bs.half_angle(), bs.offset(race, psi), psi_rate, tol);
+            }
+        }
+    }
+
+    /// Orbital angle ball j at azimuth `theta` has travelled since the start [rad].
+    #[inline(always)]
+    fn orbit(&self, j: usize, theta: f64) -> f64 {
+        theta - self.theta_start - TAU * j as f64 / self.z as f64
+    }
+
+    /// The contact of a ball over a spall in the frozen half `zone`, at along-track position
+    /// `y_b` moving at `rate` (its sign: the direction of motion); the frozen half decides the
+    /// branch at the kink y_b = 0: the first half lies behind the centre along the motion, the
+    /// second ahead of it.
+    #[inline(always)]
+    fn frozen_contact(d: &Defect, zone: Zone, mut y_b: f64, rate: f64) -> Option<DefectContact> {
+        let ahead = if rate >= 0.0 { 1.0 } else { -1.0 };
+        let side = if zone == Zone::FirstHalf {
+            -ahead
+        } else {
+            ahead
+        };
+        if y_b * side <= 0.0 {
+            y_b = side * 1e-15;
+        }
+        d.contact_at(y_b)
     }
 
     /// Static equilibrium of the inner ring at t = 0 against the pedestal at its static deflection,
@@ -923,6 +982,28 @@ impl Model for LumpedModel {
                         gap += TAU;
                     }
                     // A stop that rounds to `t` would end the search (None): skip it instead.
+                    let stop = t + gap / rate.abs();
+                    if stop > t {
+                        best = best.min(stop);
+                    }
+                }
+            }
+        }
+        for bs in &self.ball_spalls {
+            let j = bs.ball();
+            let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
+            let (psi, rate) = bs.spin(self.orbit(j, theta), theta_rate);
+            if rate == 0.0 {
+                continue;
+            }
+            let tol = Self::angle_tol(t, y, rate) * bs.spin_per_orbit();
+            for race in [Race::Outer, Race::Inner] {
+                let x = bs.offset(race, psi);
+                for &b in bs.stop_offsets().iter().flatten() {
+                    let mut gap = (b - x) * rate.signum();
+                    if gap <= tol {
+                        gap += TAU;
+                    }
                     let stop = t + gap / rate.abs();
                     if stop > t {
                         best = best.min(stop);

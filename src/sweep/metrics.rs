@@ -111,9 +111,9 @@ pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<M
     let mut times = Vec::new();
     let mut x = Vec::new();
     let (mut q_in, mut q_out) = (0.0_f64, 0.0_f64);
-    // Largest contact force on the defective race (outer if healthy) at each sample.
+    // Largest contact force on the defective race (outer if healthy or a ball) at each sample.
     let race_offset = match scene.defect.as_ref().map(|d| d.ring) {
-        Some(crate::geometry::Race::Inner) => 0,
+        Some(crate::defect::Site::Inner) => 0,
         _ => z,
     };
     let mut q_race = Vec::new();

@@ -1,8 +1,7 @@
 //! The sweep file: base scene, axes, what to keep, and the expansion into runs.
 
 use super::SweepError;
-use crate::defect::DefectSpec;
-use crate::geometry::Race;
+use crate::defect::{DefectSpec, Site};
 use crate::scene::{Fidelity, Scene};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -33,7 +32,7 @@ impl AxisValue {
 enum KeyKind {
     /// A number.
     Number,
-    /// `defect.ring`: none/outer/inner or the FMU codes 0/1/2.
+    /// `defect.ring`: none/outer/inner/ball or the FMU codes 0/1/2/3.
     Ring,
     /// `fidelity`: a level name or its code 0..4.
     Fidelity,
@@ -49,6 +48,7 @@ enum KeyKind {
 /// The keys an axis may sweep, with what they accept.
 const KEYS: &[(&str, KeyKind)] = &[
     ("defect.ring", KeyKind::Ring),
+    ("defect.ball", KeyKind::Number),
     ("defect.width", KeyKind::Number),
     ("defect.depth", KeyKind::Number),
     ("defect.theta0", KeyKind::Number),
@@ -80,7 +80,7 @@ pub fn indexed_defect_key(key: &str) -> Option<(usize, &str)> {
     let rest = key.strip_prefix("defect[")?;
     let (k, field) = rest.split_once("].")?;
     let k = k.parse().ok()?;
-    ["ring", "width", "depth", "theta0"]
+    ["ring", "ball", "width", "depth", "theta0"]
         .contains(&field)
         .then_some((k, field))
 }
@@ -105,18 +105,31 @@ fn key_kind(key: &str) -> Result<KeyKind, SweepError> {
 }
 
 /// The defect a ring value asks for: `None` = healthy.
-fn parse_ring(key: &str, v: &AxisValue) -> Result<Option<Race>, String> {
+fn parse_ring(key: &str, v: &AxisValue) -> Result<Option<Site>, String> {
     match v {
         AxisValue::Text(s) if s == "none" || s == "healthy" => Ok(None),
-        AxisValue::Text(s) if s == "outer" => Ok(Some(Race::Outer)),
-        AxisValue::Text(s) if s == "inner" => Ok(Some(Race::Inner)),
+        AxisValue::Text(s) if s == "outer" => Ok(Some(Site::Outer)),
+        AxisValue::Text(s) if s == "inner" => Ok(Some(Site::Inner)),
+        AxisValue::Text(s) if s == "ball" => Ok(Some(Site::Ball(1))),
         AxisValue::Num(c) if *c == 0.0 => Ok(None),
-        AxisValue::Num(c) if *c == 1.0 => Ok(Some(Race::Outer)),
-        AxisValue::Num(c) if *c == 2.0 => Ok(Some(Race::Inner)),
+        AxisValue::Num(c) if *c == 1.0 => Ok(Some(Site::Outer)),
+        AxisValue::Num(c) if *c == 2.0 => Ok(Some(Site::Inner)),
+        AxisValue::Num(c) if *c == 3.0 => Ok(Some(Site::Ball(1))),
         other => Err(format!(
-            "{key} = {}: expected none, outer, inner (or the codes 0, 1, 2)",
+            "{key} = {}: expected none, outer, inner, ball (or the codes 0, 1, 2, 3)",
             other.canonical()
         )),
+    }
+}
+
+/// A ball number (`defect.ball`): an integer ≥ 1.
+fn parse_ball(key: &str, x: f64) -> Result<usize, String> {
+    if x >= 1.0 && x.fract() == 0.0 && x < 1e6 {
+        Ok(x as usize)
+    } else {
+        Err(format!(
+            "{key} = {x}: expected a ball number (an integer ≥ 1)"
+        ))
     }
 }
 
@@ -596,7 +609,7 @@ impl Sweep {
         // The defect is assembled from the base (or the defaults of the default scene) and
         // created or removed by defect.ring.
         let template = self.base.defect.clone().unwrap_or(DefectSpec {
-            ring: Race::Outer,
+            ring: Site::Outer,
             width: 1.0e-3,
             depth: 0.2e-3,
             theta0: std::f64::consts::PI,
@@ -605,6 +618,9 @@ impl Sweep {
         let mut present = self.base.defect.is_some();
         // The second and later spalls of a [[defect]] base scene (keys defect[k].field).
         let mut more = self.base.more_defects.clone();
+        // Ball numbers (`defect.ball`, `defect[k].ball`) apply once the rings are set: to a
+        // spall on a ball only (a ring axis may mix raceway and ball spalls).
+        let mut balls: Vec<(usize, usize)> = Vec::new();
         for (key, v) in self.set.iter().chain(run.params.iter()) {
             let num = || match v {
                 AxisValue::Num(x) => Ok(*x),
@@ -632,6 +648,7 @@ impl Sweep {
                             ))
                         }
                     },
+                    "ball" => balls.push((k, parse_ball(key, num()?)?)),
                     "width" => spec.width = num()?,
                     "depth" => spec.depth = num()?,
                     _ => spec.theta0 = num()?,
@@ -646,6 +663,7 @@ impl Sweep {
                     }
                     None => present = false,
                 },
+                "defect.ball" => balls.push((0, parse_ball(key, num()?)?)),
                 "defect.width" => defect.width = num()?,
                 "defect.depth" => defect.depth = num()?,
                 "defect.theta0" => defect.theta0 = num()?,
@@ -691,6 +709,18 @@ impl Sweep {
                 "solver.rtol" => scene.solver.rtol = num()?,
                 "solver.pi_beta" => scene.solver.pi_beta = num()?,
                 other => return Err(format!("unknown sweep key '{other}'")),
+            }
+        }
+        for (k, n) in balls {
+            let spec = if k == 0 {
+                Some(&mut defect)
+            } else {
+                more.get_mut(k - 1)
+            };
+            if let Some(spec) = spec {
+                if let Site::Ball(_) = spec.ring {
+                    spec.ring = Site::Ball(n);
+                }
             }
         }
         scene.defect = present.then_some(defect);

@@ -230,7 +230,7 @@ pub fn scene_of(p: &PointSpec) -> Result<Scene, String> {
     }
     if p.spall {
         scene.defect = Some(DefectSpec {
-            ring: Race::Outer,
+            ring: Race::Outer.into(),
             width: grid::SPALL_WIDTH_OVER_D * d,
             depth: grid::SPALL_DEPTH_OVER_D * d,
             theta0: std::f64::consts::PI,
