@@ -9,7 +9,7 @@ from conftest import fmu_path
 # Switch -> (declared type, item names in value order 0, 1, ...), as the model descriptions list them.
 BEARING = {
     "fidelity": ("Fidelity", ["kinematic", "quasi_static", "lumped", "reduced", "full"]),
-    "defect.ring": ("DefectRing", ["none", "outer", "inner"]),
+    "defect.ring": ("DefectRing", ["none", "outer", "inner", "ball"]),
     "defect.mode": ("DefectMode", ["finite", "point"]),
     "solver.method": ("IntegrationMethod", ["rkf45", "dopri5", "dop853"]),
     "lumped.cage_speed": ("CageSpeed", ["traction", "outer_race_control"]),
