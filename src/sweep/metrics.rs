@@ -6,12 +6,13 @@ use crate::simulation::{out, Simulation};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The fault frequencies whose envelope peaks are recorded, in column order.
-pub const FAULTS: [&str; 3] = ["ftf", "bpfo", "bpfi"];
+/// The fault frequencies whose envelope peaks are recorded, in column order: the cage, the
+/// outer- and inner-race ball passes, and twice the ball spin (a spall on a ball).
+pub const FAULTS: [&str; 4] = ["ftf", "bpfo", "bpfi", "two_bsf"];
 
 /// The metric columns of a sweep (after the parameter columns), in order.
 pub fn metric_columns(keep: &Keep) -> Vec<String> {
-    let mut c: Vec<String> = vec!["ftf_hz".into(), "bpfo_hz".into(), "bpfi_hz".into()];
+    let mut c: Vec<String> = FAULTS.iter().map(|f| format!("{f}_hz")).collect();
     if keep.rms {
         c.push("rms".into());
     }
@@ -175,7 +176,9 @@ pub fn evaluate(sweep: &Sweep, run: &Run, signal_dir: Option<&Path>) -> Result<M
 
     let shaft_hz = scene.operating.shaft_speed / std::f64::consts::TAU;
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
-    let freqs = [ftf, z as f64 * ftf, z as f64 * (shaft_hz - ftf)];
+    // 2·BSF: the kinematic balls' spin at the model's cage speed (docs/model.md#ball-spall).
+    let two_bsf = 2.0 * sim.bearing().kinematic_spin_per_orbit() * ftf;
+    let freqs = [ftf, z as f64 * ftf, z as f64 * (shaft_hz - ftf), two_bsf];
     let mut row: MetricRow = freqs.iter().map(|f| num(*f)).collect();
 
     let mean = x.iter().sum::<f64>() / x.len() as f64;
