@@ -6,7 +6,8 @@ Usage:
     python examples/dask_sweep.py STUDY.toml --out DIR --workers 4 --raceway target/release/raceway
 
 Each task is one run of the grid: the worker calls
-`raceway sweep STUDY.toml --runs INDEX --jobs 1 --out TMP` and returns TMP's results.csv, so a
+`raceway sweep STUDY.toml --runs INDEX --jobs 1 --out TMP` and returns TMP's results.csv (and the
+raw signal of a study that keeps one, written to DIR/signals/ before the row is merged), so a
 row is computed by exactly the code of the rayon sweep (same run index, run id, run key, seeded
 noise and metrics). The table is read and written only by the CLI, with the reader of the rayon
 sweep: `--pending` lists the runs DIR/results.csv does not have yet (it drops a last line cut
@@ -59,10 +60,24 @@ def pending_runs(raceway: str, sweep: str, out: Path, new_table=False):
 
 
 def run_one(raceway: str, sweep: str, index: int):
-    """One task: run one grid point with the CLI and return its results.csv as text."""
+    """One task: run one grid point with the CLI; its results.csv as text and the files its
+    row points to (the raw signal of a study that keeps it) as {path in the folder: bytes}."""
     with tempfile.TemporaryDirectory(prefix="raceway-dask-") as tmp:
         cli(raceway, "sweep", sweep, "--runs", str(index), "--jobs", "1", "--quiet", "--out", tmp)
-        return (Path(tmp) / "results.csv").read_text()
+        files = {str(p.relative_to(tmp)): p.read_bytes()
+                 for p in (Path(tmp) / "signals").glob("*") if p.is_file()}
+        return (Path(tmp) / "results.csv").read_text(), files
+
+
+def save_files(out: Path, files):
+    """Writes a task's files under out (each to a temporary name, then renamed into place), so a
+    row merged after them never points to a missing or partial file."""
+    for rel, data in files.items():
+        dest = out / rel
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        part = dest.with_name(dest.name + ".part")
+        part.write_bytes(data)
+        os.replace(part, dest)
 
 
 def run_study(client, sweep, out, raceway=None, progress=True, new_table=False):
@@ -82,8 +97,10 @@ def run_study(client, sweep, out, raceway=None, progress=True, new_table=False):
     n = 0
     with tempfile.TemporaryDirectory(prefix="raceway-dask-merge-") as tmp:
         for fut in as_completed(futures):
+            table, files = fut.result()
+            save_files(out, files)
             task = Path(tmp) / f"task-{n}.csv"
-            task.write_text(fut.result())
+            task.write_text(table)
             cli(raceway, "sweep", sweep, "--out", str(out), "--merge", str(task), "--quiet")
             n += 1
             if progress:

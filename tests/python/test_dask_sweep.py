@@ -1,6 +1,6 @@
 """examples/dask_sweep.py on a LocalCluster with 2 workers gives the rayon sweep's table.
 
-A 6-run study (3 spall widths x 2 noise levels, 0.05 s simulated each) is run once by
+A 6-run study (3 spall widths x 2 noise levels, 0.05 s simulated each, raw signals kept) is run once by
 `raceway sweep --jobs 2` and once through dask; the tables, sorted by run index and without the
 wall_s and check columns, must be equal; resuming after dropped rows or a last line cut short by
 a kill gives the same table, and another study into the same folder is refused. The raceway binary is conftest.py's ($RACEWAY_BIN, or built with
@@ -29,6 +29,7 @@ base = "{base}"
 "noise.rms" = [0.0, 15.0]
 [keep]
 harmonics = 2
+raw_signal = true
 """
 
 
@@ -89,3 +90,9 @@ def test_dask_table_equals_rayon_table(tmp_path, raceway):
     assert all(r[h1.index("status")] == "ok" for r in r1)
     assert r1 == r2
     assert canonical(tmp_path / "dask" / "results.sorted.csv") == (h2, r2)
+    # The raw signals come back from the workers: the same files, byte for byte.
+    names = [r[h1.index("signal_file")] for r in r1]
+    assert all(n.startswith("signals/") for n in names)
+    for n in names:
+        assert (tmp_path / "dask" / n).read_bytes() == (tmp_path / "rayon" / n).read_bytes(), n
+    assert not list((tmp_path / "dask" / "signals").glob("*.part"))
