@@ -200,3 +200,112 @@ pub fn check_overlaps(spalls: &[(usize, &BallSpall)]) -> Result<(), ConfigError>
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{BearingFile, BlendLength};
+    use std::f64::consts::{PI, TAU};
+
+    /// The Table-1 bearing (D = 12.7 mm, dm = 70 mm, α0 = 30°, 14 balls) and a 1.0 × 0.2 mm
+    /// spall on `ball` at θ0, with the bearing's blend length `blend` [m].
+    fn spall(ball: usize, theta0: f64, blend: f64) -> Result<BallSpall, ConfigError> {
+        let mut file = BearingFile::default_preset();
+        file.defect.blend_length = BlendLength::Metres(blend);
+        let b = Bearing::new(&file).unwrap();
+        let spec = DefectSpec {
+            ring: Site::Ball(ball),
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0,
+        };
+        BallSpall::new(&spec, &b, 500.0, None)
+    }
+
+    #[test]
+    fn geometry_on_the_rolling_circle() {
+        let s = spall(3, 0.25, 0.0).unwrap();
+        assert_eq!(s.ball(), 2);
+        // Half extent (w/2)/(D/2) = 1.0/12.7 rad; along the track (D/2)·x.
+        assert!((s.half_angle() - 1.0 / 12.7).abs() < 1e-12);
+        assert!((s.along_track(0.01) - 6.35e-5).abs() < 1e-15);
+        assert!((s.along_track(-0.02) + 1.27e-4).abs() < 1e-15);
+        // Spin per orbit of pure rolling on the outer race: (dm/D)(1 + D cos α0/dm).
+        let k = 70.0 / 12.7 * (1.0 + 12.7 * (PI / 6.0).cos() / 70.0);
+        assert!(
+            (s.spin_per_orbit() - k).abs() < 1e-12,
+            "{}",
+            s.spin_per_orbit()
+        );
+        let (psi, rate) = s.spin(2.0, 10.0);
+        assert!((psi - (0.25 + 2.0 * k)).abs() < 1e-12 && (rate - 10.0 * k).abs() < 1e-12);
+        // The outer contact at ψ = π/2, the inner at −π/2, wrapped to (−π, π].
+        assert!((s.offset(Race::Outer, PI / 2.0 + 0.01) - 0.01).abs() < 1e-12);
+        assert!((s.offset(Race::Outer, PI / 2.0 + 0.01 + 3.0 * TAU) - 0.01).abs() < 1e-9);
+        assert!((s.offset(Race::Inner, -PI / 2.0 - 0.02) + 0.02).abs() < 1e-12);
+        assert!((s.offset(Race::Inner, PI / 2.0) - PI).abs() < 1e-12);
+        assert!((s.offset(Race::Outer, 0.0) + PI / 2.0).abs() < 1e-12);
+        // The drop at the centre: the ball's circle over a spall narrower than its reach,
+        // R − √(R² − w²/4) with R = D/2 (the floor at 0.2 mm is far below).
+        let r: f64 = 6.35e-3;
+        let g = r - (r * r - 0.25e-6).sqrt();
+        for race in [Race::Outer, Race::Inner] {
+            let c = s.at(race).contact_at(1e-12).unwrap();
+            assert!((c.g - g).abs() < 1e-3 * g, "{race:?}: {} vs {g}", c.g);
+            assert!(s.at(race).contact_at(0.51e-3).is_none());
+        }
+    }
+
+    #[test]
+    fn stops_at_the_edges_the_centre_and_the_blend_ends() {
+        let h = 1.0 / 12.7;
+        let s = spall(1, 0.0, 0.0).unwrap();
+        assert_eq!(s.stop_offsets(), [Some(-h), None, Some(0.0), None, Some(h)]);
+        let s = spall(1, 0.0, 0.1e-3).unwrap();
+        let xb = 0.4e-3 / 6.35e-3;
+        let got = s.stop_offsets();
+        assert_eq!((got[0], got[2], got[4]), (Some(-h), Some(0.0), Some(h)));
+        assert!((got[1].unwrap() + xb).abs() < 1e-12 && (got[3].unwrap() - xb).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_ball_outside_the_bearing_or_a_raceway_site_is_refused() {
+        let e = spall(15, 0.0, 0.0).unwrap_err();
+        assert_eq!(e.field, "defect.ball");
+        assert!(e.message.contains("balls 1 to 14"), "{e}");
+        assert!(spall(14, 0.0, 0.0).is_ok());
+        let file = BearingFile::default_preset();
+        let b = Bearing::new(&file).unwrap();
+        let spec = DefectSpec {
+            ring: Site::Outer,
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: 0.0,
+        };
+        assert_eq!(
+            BallSpall::new(&spec, &b, 500.0, None).unwrap_err().field,
+            "defect.ring"
+        );
+    }
+
+    #[test]
+    fn two_spalls_on_one_ball_must_not_overlap() {
+        let h = 1.0 / 12.7;
+        let a = spall(2, 0.0, 0.0).unwrap();
+        let near = spall(2, 1.99 * h, 0.0).unwrap();
+        let apart = spall(2, 2.01 * h, 0.0).unwrap();
+        let other = spall(3, 0.0, 0.0).unwrap();
+        let e = check_overlaps(&[(0, &a), (4, &near)]).unwrap_err();
+        assert_eq!(e.field, "defect[4]");
+        assert!(
+            e.message.contains("defect[0]") && e.message.contains("ball 2"),
+            "{e}"
+        );
+        assert!(check_overlaps(&[(0, &a), (4, &apart)]).is_ok());
+        assert!(check_overlaps(&[(0, &a), (1, &other)]).is_ok());
+        // Across ±π: θ0 = π − 0.5h and −π + 0.5h are h apart.
+        let p = spall(2, PI - 0.5 * h, 0.0).unwrap();
+        let q = spall(2, -PI + 0.5 * h, 0.0).unwrap();
+        assert!(check_overlaps(&[(0, &p), (1, &q)]).is_err());
+    }
+}
