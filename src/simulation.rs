@@ -292,6 +292,9 @@ impl EventSystem for ModelSystem<'_> {
     fn suspect(&mut self, t_old: f64, t_new: f64) -> Option<f64> {
         self.0.suspect(t_old, t_new)
     }
+    fn mode_sign(&self, index: usize) -> Option<f64> {
+        self.0.mode_sign(index)
+    }
 }
 
 /// The versioned, pointer-free snapshot of a simulation.

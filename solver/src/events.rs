@@ -12,12 +12,23 @@
 //! on the far side by round-off (a bouncing ball's height) does not fire again; a function that
 //! is exactly 0 at a step start takes its reference sign from a probe just inside the step
 //! (`t_old + max(1e-3 h, 100 event_tol)`), so leaving zero is not an event but coming back is.
+//! A function whose event only switches a mode ([`EventSystem::mode_sign`]) restarts instead
+//! with the sign of its new mode: coming back to the old side is an event even before the probe
+//! (a function that touches 0 and returns within the probe's distance would otherwise leave the
+//! mode switched against its sign until some other event).
 //! Like every sign-change detector, two roots of one function inside one step are not seen.
 
 use super::dense::{DenseOutput, StepView};
 use super::error::SolverError;
 use super::integrator::{AdvanceOutcome, Integrator};
 use super::system::{EventAction, EventSystem};
+
+/// The reference value of event function `i` at a restart after it fired: the smallest
+/// number of the sign of its mode ([`EventSystem::mode_sign`]), or 0 (see the module notes).
+fn restart_value<S: EventSystem + ?Sized>(sys: &S, i: usize) -> f64 {
+    sys.mode_sign(i)
+        .map_or(0.0, |s| f64::MIN_POSITIVE.copysign(s))
+}
 
 /// A sign change from `a` to `b` counts as an event (`a == 0` never does).
 pub fn crosses(a: f64, b: f64) -> bool {
@@ -156,9 +167,9 @@ impl Integrator {
         self.prepare_events(m);
         sys.events(self.t, &self.y, &mut self.g_old);
         if self.event_mask.len() == m {
-            for (g, &fired) in self.g_old.iter_mut().zip(&self.event_mask) {
+            for (i, (g, &fired)) in self.g_old.iter_mut().zip(&self.event_mask).enumerate() {
                 if fired {
-                    *g = 0.0;
+                    *g = restart_value(sys, i);
                 }
             }
         }
@@ -290,9 +301,9 @@ impl Integrator {
             sys.events(self.t, &self.y, &mut self.g_old);
             self.event_mask.clear();
             self.event_mask.extend_from_slice(&self.fired);
-            for (g, &fired) in self.g_old.iter_mut().zip(&self.fired) {
+            for (i, (g, &fired)) in self.g_old.iter_mut().zip(&self.fired).enumerate() {
                 if fired {
-                    *g = 0.0;
+                    *g = restart_value(sys, i);
                 }
             }
             if let Some(index) = stop {

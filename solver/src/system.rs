@@ -31,6 +31,16 @@ pub trait EventSystem: System {
     fn suspect(&mut self, _t_old: f64, _t_new: f64) -> Option<f64> {
         None
     }
+    /// For a function whose event only switches the system's mode (the state is not moved):
+    /// the sign it has in the current mode (±1). After it fires, the integrator restarts with
+    /// that sign as its reference, so a return to the other side, however soon, is an event
+    /// (a function that touches 0 and comes back switches the mode back). `None` (the default,
+    /// e.g. for a bounce that moves the state): the function counts as 0 at the restart and its
+    /// reference sign comes from a probe just inside the next step, so leaving zero is not an
+    /// event. Must not allocate.
+    fn mode_sign(&self, _index: usize) -> Option<f64> {
+        None
+    }
 }
 
 /// What the integrator does after an event was handled.

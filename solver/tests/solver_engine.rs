@@ -1077,3 +1077,69 @@ fn a_collapsed_step_names_the_limiting_component() {
         assert!(e.to_string().contains("non-finite"), "{m}: {e}");
     }
 }
+
+/// A mode that follows the sign of g(t) = (t − 1)² − ε²: on while g > 0. The function touches 0
+/// and comes back 2ε later, much sooner than the probe the integrator takes inside the first
+/// step after the event. `with_sign` reports the mode's sign ([`EventSystem::mode_sign`]).
+struct Touch {
+    on: bool,
+    switches: Vec<f64>,
+    with_sign: bool,
+}
+const TOUCH_EPS: f64 = 2e-12;
+impl System for Touch {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&mut self, _t: f64, _y: &[f64], d: &mut [f64]) {
+        d[0] = 1.0;
+    }
+}
+impl EventSystem for Touch {
+    fn n_events(&self) -> usize {
+        1
+    }
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        g[0] = (y[0] - 1.0).powi(2) - TOUCH_EPS * TOUCH_EPS;
+    }
+    fn handle_event(&mut self, _i: usize, t: f64, _y: &mut [f64]) -> EventAction {
+        self.switches.push(t);
+        self.on = !self.on;
+        // As the simulation does: return at the event, switch, call again.
+        EventAction::Stop
+    }
+    fn mode_sign(&self, _i: usize) -> Option<f64> {
+        self.with_sign.then_some(if self.on { 1.0 } else { -1.0 })
+    }
+}
+
+#[test]
+fn a_mode_switch_that_touches_zero_and_returns_switches_back() {
+    for m in [Method::Rkf45, Method::Dopri5, Method::Dop853] {
+        for with_sign in [true, false] {
+            let mut sys = Touch {
+                on: true,
+                switches: Vec::new(),
+                with_sign,
+            };
+            let mut it = Integrator::new(Options::new(m, 1e-8, vec![1e-8]), 0.0, &[0.0]).unwrap();
+            // A step ends at t = 1, inside the dip: the first root is seen there.
+            it.advance_with_events(&mut sys, 1.0, None).unwrap();
+            while it.advance_with_events(&mut sys, 2.0, None).unwrap() != AdvanceOutcome::Reached {}
+            let first = sys.switches[0];
+            assert!((first - (1.0 - TOUCH_EPS)).abs() < 5e-13, "{m}: {first}");
+            if with_sign {
+                // The return is an event: the mode is back on, with g > 0.
+                assert_eq!(sys.switches.len(), 2, "{m}: {:?}", sys.switches);
+                let second = sys.switches[1];
+                assert!((second - (1.0 + TOUCH_EPS)).abs() < 5e-13, "{m}: {second}");
+                assert!(sys.on, "{m}");
+            } else {
+                // Without the mode's sign the return hides inside the probe: the mode stays off
+                // while g > 0 (what mode_sign exists for).
+                assert_eq!(sys.switches.len(), 1, "{m}: {:?}", sys.switches);
+                assert!(!sys.on, "{m}");
+            }
+        }
+    }
+}

@@ -1061,6 +1061,12 @@ impl Model for LumpedModel {
         format!("the contact of ball {}", i + 1)
     }
 
+    /// The contact events only switch a ball's mode: in contact the function is positive.
+    fn mode_sign(&self, i: usize) -> Option<f64> {
+        let on = *self.in_contact.get(i)?;
+        self.modes_set.then_some(if on { 1.0 } else { -1.0 })
+    }
+
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         self.approaches(t, y, |j, a| {
             g[j] = Self::contact_event(a);

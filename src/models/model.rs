@@ -199,6 +199,12 @@ pub trait Model: Send + CloneModel {
         None
     }
 
+    /// The sign event `index` has in the current mode, for an event that only switches a mode
+    /// (see [`crate::solver::EventSystem::mode_sign`]); default none.
+    fn mode_sign(&self, _index: usize) -> Option<f64> {
+        None
+    }
+
     /// Event `index` fired at the located time (called before [`Model::update_mode`]). At the
     /// located state the function sits within the location tolerance of 0, on either side by
     /// round-off, so a model whose mode follows the sign of g can use this to switch reliably.
