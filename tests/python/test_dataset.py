@@ -65,11 +65,12 @@ def test_the_cwru_recipe_separates_healthy_outer_inner_and_ball_faults(raceway, 
         # Its own line is its largest of the three.
         for other in {"env_bpfo", "env_bpfi", "env_two_bsf"} - {line}:
             assert median(cls, line) > median(cls, other), (cls, line, other)
-    # The healthy signals are mostly the 1 m/s^2 noise (RMS 1, Gaussian kurtosis 3; at 500 N a
-    # healthy run can carry a short burst of some m/s^2, which lifts its kurtosis to about 4).
-    assert abs(median("none", "rms") - 1.0) < 0.1
-    assert 2.8 < median("none", "kurtosis") < 5.0
-    assert median("none", "kurtosis") < min(median(c, "kurtosis") for c in ["inner", "ball"])
+    # The healthy signals are the 1 m/s^2 noise: RMS 1, Gaussian kurtosis 3, every one of them
+    # (the bearing's own vibration is 3e-4 m/s^2; a lubricated ball re-entering the load zone
+    # once switched in at 48 N, a burst that lifted a healthy run's kurtosis to 4, tests/film.rs).
+    for r in table:
+        if r["class"] == "none":
+            assert abs(r["rms"] - 1.0) < 0.05 and abs(r["kurtosis"] - 3.0) < 0.2, r
     assert f.separation(table) == 1.0
     # The script's command line writes the table and the figure.
     done = subprocess.run(
