@@ -520,3 +520,33 @@ base = "../scenes/default.toml"
         "{e}"
     );
 }
+
+#[test]
+fn a_ring_axis_over_a_ball_spall_base_keeps_its_ball() {
+    let sw = parse(
+        "base = \"../scenes/ball-spall.toml\"\n[axes]\n\"defect.ring\" = [\"outer\", \"ball\"]\n",
+    )
+    .unwrap();
+    let runs = sw.runs();
+    let site = |i: usize| sw.scene_for(&runs[i]).unwrap().0.defect.map(|d| d.ring);
+    assert_eq!(site(0), Some(raceway::Site::Outer));
+    // The base's ball 1 stays: change it to see that it is kept, not reset.
+    let text = std::fs::read_to_string(scenes_dir().join("../scenes/ball-spall.toml"))
+        .unwrap()
+        .replace("ball = 1\n", "ball = 7\n");
+    let dir = tmp("keep-ball");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("base.toml"), text).unwrap();
+    let sw = Sweep::from_toml_str(
+        "base = \"base.toml\"\n[axes]\n\"defect.ring\" = [\"none\", 3]\n",
+        "test",
+        &dir,
+    )
+    .unwrap();
+    let runs = sw.runs();
+    assert!(sw.scene_for(&runs[0]).unwrap().0.defect.is_none());
+    assert_eq!(
+        sw.scene_for(&runs[1]).unwrap().0.defect.unwrap().ring,
+        raceway::Site::Ball(7)
+    );
+}

@@ -122,6 +122,15 @@ fn parse_ring(key: &str, v: &AxisValue) -> Result<Option<Site>, String> {
     }
 }
 
+/// The site a ring value gives a spall now at `old`: a ball spall keeps its ball's number (the
+/// ring value `ball` says ball 1 only for a spall that was not on a ball).
+fn keep_ball(old: Site, new: Site) -> Site {
+    match (old, new) {
+        (Site::Ball(n), Site::Ball(_)) => Site::Ball(n),
+        _ => new,
+    }
+}
+
 /// A ball number (`defect.ball`): an integer ≥ 1.
 fn parse_ball(key: &str, x: f64) -> Result<usize, String> {
     if x >= 1.0 && x.fract() == 0.0 && x < 1e6 {
@@ -640,7 +649,7 @@ impl Sweep {
                 };
                 match field {
                     "ring" => match parse_ring(key, v)? {
-                        Some(r) => spec.ring = r,
+                        Some(r) => spec.ring = keep_ball(spec.ring, r),
                         None => {
                             return Err(format!(
                                 "{key} = none: one spall of several cannot be removed (sweep \
@@ -658,7 +667,7 @@ impl Sweep {
             match key.as_str() {
                 "defect.ring" => match parse_ring(key, v)? {
                     Some(r) => {
-                        defect.ring = r;
+                        defect.ring = keep_ball(defect.ring, r);
                         present = true;
                     }
                     None => present = false,
