@@ -266,6 +266,9 @@ mod tests {
         let got = s.stop_offsets();
         assert_eq!((got[0], got[2], got[4]), (Some(-h), Some(0.0), Some(h)));
         assert!((got[1].unwrap() + xb).abs() < 1e-12 && (got[3].unwrap() - xb).abs() < 1e-12);
+        // A blend over the whole half width ends at the centre: no stop of its own.
+        let s = spall(1, 0.0, 0.5e-3).unwrap();
+        assert_eq!(s.stop_offsets(), [Some(-h), None, Some(0.0), None, Some(h)]);
     }
 
     #[test]

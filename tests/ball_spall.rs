@@ -232,13 +232,16 @@ fn spalls_on_balls_and_races_mix_in_one_scene_and_two_on_one_ball_must_not_overl
         zero3 > 0 && zero1 == 0,
         "samples without contact: ball 1 {zero1}, ball 3 {zero3}"
     );
-    // An error in the second entry names it.
-    let e = scene(
-        &TWO.replace("THETA", "0.0")
-            .replace("ball = 3\n", "ball = -2\n"),
-    )
-    .unwrap_err();
+    // An error in the second entry names it, when the file is read and when the model is built.
+    let second = |from: &str, to: &str| TWO.replace("THETA", "0.0").replace(from, to);
+    let e = scene(&second("ball = 3\n", "ball = -2\n")).unwrap_err();
     assert!(e.contains("defect[1].ball"), "{e}");
+    let beyond = scene(&second("ball = 3\n", "ball = 15\n")).unwrap();
+    let e = Simulation::new(&beyond).err().unwrap().to_string();
+    assert!(
+        e.contains("defect[1].ball") && e.contains("balls 1 to 14"),
+        "{e}"
+    );
     // A second spall on ball 3 overlapping the first (1 mm wide on a 12.7 mm ball: half angle
     // 0.0787 rad each).
     let three = format!(
