@@ -3,7 +3,7 @@
 # targets (fuzzing/src/lib.rs), driven by fuzzing/tests/fuzz.rs on stable in a release build,
 # without coverage guidance or instrumentation, RUNS cases per target from seed SEED. A
 # complement to scripts/fuzz_long.sh where libFuzzer is too slow for 1e6 cases here (fmi_calls:
-# ~50 cases/s instrumented, most of it the operating-point solve of each initialization).
+# 15-30 cases/s instrumented, 86 % of it the traction cage-speed solve of every lumped build).
 # Writes docs/research/fuzz-driver.md with what each run printed.
 # Usage: scripts/fuzz_driver_long.sh [RUNS, default 1000000] [TARGETS, default "fmi_calls"] [SEED, default 1]
 set -uo pipefail
