@@ -687,6 +687,25 @@ impl LumpedModel {
         }
     }
 
+    /// When an angle `x` moving at `rate` (≠ 0) next reaches one of `bounds` ahead in its
+    /// direction of motion, not the one it is on (within `tol`): the time, or ∞ (angles wrap
+    /// at 2π).
+    fn next_boundary(t: f64, x: f64, rate: f64, tol: f64, bounds: &[Option<f64>]) -> f64 {
+        let mut best = f64::INFINITY;
+        for &b in bounds.iter().flatten() {
+            let mut gap = (b - x) * rate.signum();
+            if gap <= tol {
+                gap += TAU;
+            }
+            // A stop that rounds to `t` would end the search (None): skip it instead.
+            let stop = t + gap / rate.abs();
+            if stop > t {
+                best = best.min(stop);
+            }
+        }
+        best
+    }
+
     /// Orbital angle ball j at azimuth `theta` has travelled since the start [rad].
     #[inline(always)]
     fn orbit(&self, j: usize, theta: f64) -> f64 {
@@ -971,21 +990,9 @@ impl Model for LumpedModel {
             for j in 0..self.z {
                 let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
                 let (tbd, rate) = self.theta_bd(d, theta, theta_rate, y[SHAFT]);
-                if rate == 0.0 {
-                    continue;
-                }
-                // The next boundary ahead in the direction of motion (not the one the ball is on).
-                let tol = Self::angle_tol(t, y, rate);
-                for &b in bounds.iter().flatten() {
-                    let mut gap = (b - tbd) * rate.signum();
-                    if gap <= tol {
-                        gap += TAU;
-                    }
-                    // A stop that rounds to `t` would end the search (None): skip it instead.
-                    let stop = t + gap / rate.abs();
-                    if stop > t {
-                        best = best.min(stop);
-                    }
+                if rate != 0.0 {
+                    let tol = Self::angle_tol(t, y, rate);
+                    best = best.min(Self::next_boundary(t, tbd, rate, tol, &bounds));
                 }
             }
         }
@@ -993,21 +1000,12 @@ impl Model for LumpedModel {
             let j = bs.ball();
             let (theta, theta_rate) = self.ball_angle(j, y[CAGE], cage_rate);
             let (psi, rate) = bs.spin(self.orbit(j, theta), theta_rate);
-            if rate == 0.0 {
-                continue;
-            }
-            let tol = Self::angle_tol(t, y, rate) * bs.spin_per_orbit();
-            for race in [Race::Outer, Race::Inner] {
-                let x = bs.offset(race, psi);
-                for &b in bs.stop_offsets().iter().flatten() {
-                    let mut gap = (b - x) * rate.signum();
-                    if gap <= tol {
-                        gap += TAU;
-                    }
-                    let stop = t + gap / rate.abs();
-                    if stop > t {
-                        best = best.min(stop);
-                    }
+            if rate != 0.0 {
+                let tol = Self::angle_tol(t, y, rate) * bs.spin_per_orbit();
+                let bounds = bs.stop_offsets();
+                for race in [Race::Outer, Race::Inner] {
+                    let x = bs.offset(race, psi);
+                    best = best.min(Self::next_boundary(t, x, rate, tol, &bounds));
                 }
             }
         }
