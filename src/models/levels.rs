@@ -118,7 +118,12 @@ pub fn level(f: Fidelity) -> &'static Level {
 
 /// The levels' names in ladder order, comma-separated (for messages that list the choices).
 pub fn level_names() -> String {
-    let names: Vec<&str> = LEVELS.iter().map(|l| l.name).collect();
+    names_of(|_| true)
+}
+
+/// The names of the levels that have `what`, in ladder order, comma-separated.
+fn names_of(what: impl Fn(&Level) -> bool) -> String {
+    let names: Vec<&str> = LEVELS.iter().filter(|l| what(l)).map(|l| l.name).collect();
     names.join(", ")
 }
 
@@ -137,25 +142,15 @@ pub fn build(
             (true, false) => "[waviness]",
             _ => "[roughness]",
         };
-        let carriers: Vec<&str> = LEVELS
-            .iter()
-            .filter(|l| l.distributed)
-            .map(|l| l.name)
-            .collect();
         return Err(SimError::Unsupported(format!(
             "the {} level ({}) does not carry the scene's {what}; levels that do: {}",
             row.name,
             row.label,
-            carriers.join(", ")
+            names_of(|l| l.distributed)
         )));
     }
     if !row.ball_spalls {
         if let Some(k) = scene.defects().position(|d| d.ring.race().is_none()) {
-            let carriers: Vec<&str> = LEVELS
-                .iter()
-                .filter(|l| l.ball_spalls)
-                .map(|l| l.name)
-                .collect();
             let entry = if scene.n_defects() > 1 {
                 format!("defect[{k}]")
             } else {
@@ -166,7 +161,7 @@ pub fn build(
                  levels that do: {}",
                 row.name,
                 row.label,
-                carriers.join(", ")
+                names_of(|l| l.ball_spalls)
             )));
         }
     }
