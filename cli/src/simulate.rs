@@ -166,6 +166,7 @@ pub fn run(args: Args) -> Result<(), String> {
     let fs = scene.operating.speed_rpm() / 60.0;
     let kin = fault_frequencies::fault_frequencies(bearing, fs, bearing.alpha0);
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
+    let bsf = bearing.kinematic_spin_per_orbit() * ftf;
     let z = bearing.z as f64;
     let stats = sim.stats();
     let meta = serde_json::json!({
@@ -184,8 +185,8 @@ pub fn run(args: Args) -> Result<(), String> {
             "ftf": ftf,
             "bpfo": z * ftf,
             "bpfi": z * (fs - ftf),
-            "bsf": bearing.kinematic_spin_per_orbit() * ftf,
-            "two_bsf": 2.0 * bearing.kinematic_spin_per_orbit() * ftf,
+            "bsf": bsf,
+            "two_bsf": 2.0 * bsf,
         },
         "kinematic_frequencies": kin,
         "solver": {
