@@ -14,6 +14,10 @@
 //! depends on the two surfaces only through the ball radius bridging the spall, as it does for
 //! a raceway spall, so the same approximation holds (docs/model.md#ball-spall says what it
 //! leaves out).
+//!
+//! The ball-level models (reduced, full) turn it with the ball's simulated rotation instead:
+//! they integrate its direction on the ball and place it at each contact themselves
+//! (`models::balls::core`), asking this spall only for its ball, θ0 and the drop tables.
 
 use crate::config::{ConfigError, DefectMode};
 use crate::defect::{wrap, Defect, DefectSpec, Site};
@@ -89,6 +93,11 @@ impl BallSpall {
     /// The spalled ball's index (from 0).
     pub fn ball(&self) -> usize {
         self.ball
+    }
+
+    /// Spin angle of the spall centre at t = 0, θ0 wrapped to (−π, π] \[rad\].
+    pub fn theta0(&self) -> f64 {
+        self.psi0
     }
 
     /// Spin angle of the spall centre and its rate after the ball has orbited `orbit` \[rad\]

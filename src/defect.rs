@@ -239,33 +239,12 @@ pub fn indexed_error(e: ConfigError, k: usize, several: bool) -> ConfigError {
     }
 }
 
-/// Precomputes every spall of a scene with its mode ([`Defect::with_mode`] each, see
-/// [`crate::Scene::spalls`]; errors named `defect[k].field` when there are several) and
-/// refuses two on the same ring whose angular extents
-/// [θ_d0 − θ_e, θ_d0 + θ_e] intersect (the ball-level and lumped models let each ball meet
-/// one spall per race at a time), with a message naming both. A spall on a ball is refused
-/// (the levels that carry it build it with [`build_races`] and `crate::ball_spall`).
-pub fn build_all<'a>(
-    specs: impl IntoIterator<Item = (&'a DefectSpec, Option<DefectMode>)>,
-    bearing: &Bearing,
-    reference_load: f64,
-) -> Result<Vec<Defect>, ConfigError> {
-    let specs: Vec<(&DefectSpec, Option<DefectMode>)> = specs.into_iter().collect();
-    if let Some(k) = specs.iter().position(|(s, _)| s.ring.race().is_none()) {
-        return Err(indexed_error(
-            ConfigError::new(
-                "defect.ring",
-                "a spall on a ball is simulated at the lumped level (fidelity = \"lumped\")",
-            ),
-            k,
-            specs.len() > 1,
-        ));
-    }
-    build_races(&specs, bearing, reference_load)
-}
-
-/// [`build_all`] for the raceway spalls of a list that may also hold spalls on balls (skipped);
-/// errors name each spall by its place `k` in the whole list.
+/// Precomputes the raceway spalls of a scene's list with their modes ([`Defect::with_mode`]
+/// each, see [`crate::Scene::spalls`]; spalls on balls are skipped, `crate::ball_spall` builds
+/// them); errors name each spall by its place `k` in the whole list (`defect[k].field` when
+/// there are several). Two on the same ring whose angular extents [θ_d0 − θ_e, θ_d0 + θ_e]
+/// intersect are refused with a message naming both (the ball-level and lumped models let
+/// each ball meet one spall per race at a time).
 pub fn build_races(
     specs: &[(&DefectSpec, Option<DefectMode>)],
     bearing: &Bearing,
@@ -828,6 +807,13 @@ impl Defect {
     #[inline]
     pub fn along_track_rate(&self, theta_bd: f64, theta_bd_dot: f64) -> f64 {
         self.r_d2 * (theta_bd * self.r_d2 / self.r_d1).cos() * theta_bd_dot
+    }
+
+    /// The θ_bd whose along-track coordinate is `y` \[rad\] (the inverse of
+    /// [`Defect::along_track`] for |y| < r_d1; clamped to the track's quarter turn beyond).
+    #[inline]
+    pub fn theta_at_track(&self, y: f64) -> f64 {
+        self.r_d1 / self.r_d2 * (y / self.r_d1).clamp(-1.0, 1.0).asin()
     }
 
     /// Signed distance to the zone boundary in angle, θ_e − |θ_bd| \[rad\]: positive inside the

@@ -1581,4 +1581,64 @@ mod tests {
         assert_eq!(sim.model.event_name(0), "the contact of ball 1");
         assert_eq!(sim.model.event_name(13), "the contact of ball 14");
     }
+
+    #[test]
+    fn a_spall_on_a_ball_at_the_ball_levels_has_named_direction_states_and_events() {
+        // An outer-race spall and a spall on ball 3: at the full level (14 balls, cage) the
+        // states are the 148 of docs/model.md#state and 3 for the spall's direction; the events
+        // 2·14 contacts, then 3·14 per spall slot: the raceway spall's, then the ball spall's
+        // at its outer and at its inner contact.
+        let text = r#"
+name = "mixed"
+bearing = "niu2014-table1"
+fidelity = "full"
+[operating]
+speed_rpm = 9900.0
+fa = 4000.0
+fr = 1000.0
+[[defect]]
+ring = "outer"
+width = 1.0e-3
+depth = 0.2e-3
+theta0 = 3.1416
+[[defect]]
+ring = "ball"
+ball = 3
+width = 1.0e-3
+depth = 0.2e-3
+"#;
+        let sc = crate::Scene::from_toml_str(text, "mixed", None).unwrap();
+        let sim = super::Simulation::new(&sc).unwrap();
+        let m = &sim.model;
+        assert_eq!(m.dim(), 148 + 3);
+        assert_eq!(
+            m.state_name(148),
+            "direction of spall 1 on ball 3 (x component)"
+        );
+        assert_eq!(
+            m.state_name(150),
+            "direction of spall 1 on ball 3 (z component)"
+        );
+        assert_eq!(m.n_events(), 28 + 3 * 42);
+        assert_eq!(m.event_name(28), "ball 1 at the edge of spall 1");
+        assert_eq!(
+            m.event_name(28 + 42 + 2 * 2),
+            "the edge of ball spall 1 (on ball 3) at its outer contact"
+        );
+        assert_eq!(
+            m.event_name(28 + 84 + 2 * 2 + 1),
+            "the centre of ball spall 1 (on ball 3) at its inner contact"
+        );
+        assert_eq!(
+            m.event_name(28 + 84 + 28 + 2),
+            "the blend of ball spall 1 (on ball 3) at its inner contact"
+        );
+        // The direction starts as a unit vector.
+        let y = sim.state();
+        let u = &y[148..151];
+        assert!(
+            (u.iter().map(|v| v * v).sum::<f64>() - 1.0).abs() < 1e-12,
+            "{u:?}"
+        );
+    }
 }

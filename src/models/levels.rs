@@ -85,7 +85,7 @@ pub const LEVELS: &[Level] = &[
                   full model's Hertz contacts, spall and strip traction (4 strips); ball flight \
                   and impacts with a fixed spin axis",
         distributed: true,
-        ball_spalls: false,
+        ball_spalls: true,
         build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
     },
     Level {
@@ -95,7 +95,7 @@ pub const LEVELS: &[Level] = &[
         label: "L4",
         summary: "The paper's full model (ball, cage and ring dynamics with lubricant traction)",
         distributed: true,
-        ball_spalls: false,
+        ball_spalls: true,
         build: |s, b, i| {
             let options = full::FullOptions {
                 traction: s.full.traction,

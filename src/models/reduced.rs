@@ -197,6 +197,7 @@ impl ReducedModel {
             BallSpin::Fixed { cos: 1.0, sin: 0.0 },
             false,
             full.defects().to_vec(),
+            full.core().ball_spalls.clone(),
             scene.pulse.clone(),
             full.held_axial(),
         );
@@ -213,6 +214,7 @@ impl ReducedModel {
             ring_moment_x: 0.0,
         };
         m.reduce_initial_state(&full, bearing);
+        m.core.init_ball_spalls();
         Ok(m)
     }
 
@@ -370,10 +372,13 @@ impl Model for ReducedModel {
             _ if i < lay.psi() => pedestal_state_name(i - pedestal),
             _ if i == lay.psi() => "reference cage angle ψ".into(),
             _ if i == lay.phi() => "shaft angle φ".into(),
-            _ if lay.cage && i >= lay.cage_block() && i < lay.dim() => {
+            _ if lay.cage && i >= lay.cage_block() && i < lay.spall_dir(0) => {
                 cage_state_name(i - lay.cage_block())
             }
-            _ => format!("state component {i}"),
+            _ => self
+                .core
+                .ball_spall_state_name(i)
+                .unwrap_or_else(|| format!("state component {i}")),
         }
     }
 
@@ -404,6 +409,7 @@ impl Model for ReducedModel {
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
         self.core.cage_nominal(out);
+        self.core.ball_spall_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -507,5 +513,6 @@ impl Model for ReducedModel {
         c.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
         self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
+        self.core.ball_spall_rates(y, dydt);
     }
 }

@@ -215,6 +215,11 @@ pub struct DefectView<'a> {
     /// Frozen side of the edge-constant blend (see [`Defect::contact_with_blend`]); `None`
     /// decides by the position.
     pub blend: Option<bool>,
+    /// A spall on the ball (docs/model.md#ball-spall): the θ_bd of `defect`'s drop table at
+    /// which its along-track coordinate is the ball's over the spall, and its rate (then
+    /// `phi` and `theta_bd_rate` are not used). None: a raceway spall, placed by the ball's
+    /// azimuth.
+    pub on_ball: Option<(f64, f64)>,
 }
 
 impl ContactOut {
@@ -513,16 +518,25 @@ pub fn evaluate_normal_at(
     let (mut track_gain, mut dk_dy) = (0.0, 0.0);
     let c2_track = c2;
     if let Some(dv) = defect {
-        let theta_br = (-rr[1]).atan2(rr[2]);
-        let tbd = dv.defect.theta_bd(theta_br, dv.phi);
+        let (tbd, tbd_rate) = match dv.on_ball {
+            Some(at) => at,
+            None => {
+                let theta_br = (-rr[1]).atan2(rr[2]);
+                (dv.defect.theta_bd(theta_br, dv.phi), dv.theta_bd_rate)
+            }
+        };
         let mut y_b = dv.defect.along_track(tbd);
         if y_b * dv.side <= 0.0 {
             y_b = dv.side * 1e-15;
         }
         if let Some(c) = dv.defect.contact_with_blend(y_b, dv.blend) {
-            let y_rate = dv.defect.along_track_rate(tbd, dv.theta_bd_rate);
-            // dy_b per metre of ball-centre travel along the track direction c2.
-            track_gain = dv.defect.along_track_rate(tbd, 1.0) / rho;
+            let y_rate = dv.defect.along_track_rate(tbd, tbd_rate);
+            // dy_b per metre of ball-centre travel along the track direction c2 (a spall on
+            // the ball moves with its spin, not with the centre: its blend's along-track
+            // force is not applied, docs/model.md#ball-spall).
+            if dv.on_ball.is_none() {
+                track_gain = dv.defect.along_track_rate(tbd, 1.0) / rho;
+            }
             dk_dy = c.dk_dy;
             delta = c.deflection(delta);
             ddelta = c.deflection_rate(ddelta, y_rate);

@@ -16,6 +16,7 @@ use super::layout::{
 };
 use super::pass::{BallFrame, ContactPass, Loaded, Normal};
 use super::switches::{contact_event, Switches};
+use crate::ball_spall::BallSpall;
 use crate::config::DefectMode;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
@@ -24,7 +25,7 @@ use crate::operating::{OperatingPoint, RingLoad};
 use crate::roughness::Roughness;
 use crate::scene::{Pulse, Scene};
 use crate::waviness::Waviness;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// How a ball's angular velocity follows from its states.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,7 +121,13 @@ pub struct BallCore {
     pub(crate) waviness: Option<Waviness>,
     /// Track roughness (docs/model.md#roughness).
     pub(crate) roughness: Option<Roughness>,
-    /// Semi-major-axis factor of each spall's edge contact.
+    /// The spalls on balls (docs/model.md#ball-spall). Spall s's frozen modes are the
+    /// switches' spall slots `defects.len() + 2s` (at its ball's outer contact) and
+    /// `defects.len() + 2s + 1` (inner); its direction on the ball, the states from
+    /// [`Layout::spall_dir`].
+    pub(crate) ball_spalls: Vec<BallSpall>,
+    /// Semi-major-axis factor of each spall slot's edge contact (the raceway spalls', then
+    /// each spall on a ball's at the outer and the inner contact).
     pub(crate) defect_a_star: Vec<f64>,
     pub(crate) inputs: OperatingPoint,
     /// A force law on the inner ring added to `inputs`' load (force coupling).
@@ -174,17 +181,17 @@ impl BallCore {
         pulse: Option<Pulse>,
         held_axial: Option<f64>,
     ) -> Result<Self, SimError> {
-        let defects = crate::defect::build_all(
-            defects.iter().map(|(d, m)| (d, *m)),
-            bearing,
-            reference_ball_load(bearing, inputs),
-        )?;
+        let specs: Vec<_> = defects.iter().map(|(d, m)| (d, *m)).collect();
+        let load = reference_ball_load(bearing, inputs);
+        let races = crate::defect::build_races(&specs, bearing, load)?;
+        let balls = crate::ball_spall::build_all(&specs, bearing, load)?;
         Ok(Self::with_defect(
-            bearing, inputs, lay, spin, tilt, defects, pulse, held_axial,
+            bearing, inputs, lay, spin, tilt, races, balls, pulse, held_axial,
         ))
     }
 
-    /// [`BallCore::new`] with the spalls already built.
+    /// [`BallCore::new`] with the spalls already built: those on the races and those on balls
+    /// (the layout gets the latter's direction states).
     #[allow(clippy::too_many_arguments)]
     pub fn with_defect(
         bearing: &Bearing,
@@ -193,17 +200,24 @@ impl BallCore {
         spin: BallSpin,
         tilt: bool,
         defects: Vec<Defect>,
+        ball_spalls: Vec<BallSpall>,
         pulse: Option<Pulse>,
         held_axial: Option<f64>,
     ) -> Self {
         let file = &bearing.file;
         let z = bearing.z;
+        let lay = lay.with_ball_spalls(ball_spalls.len());
         let defect_a_star = defects
             .iter()
+            .chain(
+                ball_spalls
+                    .iter()
+                    .flat_map(|b| [b.at(Race::Outer), b.at(Race::Inner)]),
+            )
             .map(|d| d.corner_hertz().semi_axis_factors().0)
             .collect();
         let theta_start = choose_theta_start_all(z, &defects);
-        let sw = Switches::with_spalls(z, defects.len());
+        let sw = Switches::with_spalls(z, defects.len() + 2 * ball_spalls.len());
         Self {
             lay,
             z,
@@ -224,6 +238,7 @@ impl BallCore {
             c_pz: file.pedestal.c_z,
             pulse,
             defects,
+            ball_spalls,
             waviness: None,
             roughness: None,
             defect_a_star,
@@ -352,13 +367,18 @@ impl BallCore {
 
     /// The spall on `race` ball j is over in the frozen interval (orbital rate `w`), as it
     /// sees it (spalls on one race do not overlap: at most one).
+    /// A spall on the ball over that contact takes the place of a raceway spall only when
+    /// there is none (docs/model.md#ball-spall).
     #[inline(always)]
     pub fn spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
-        let (k, d) = self
+        let Some((k, d)) = self
             .defects
             .iter()
             .enumerate()
-            .find(|(k, d)| d.ring() == race && self.sw.side_of(*k, j) != 0.0)?;
+            .find(|(k, d)| d.ring() == race && self.sw.side_of(*k, j) != 0.0)
+        else {
+            return self.ball_spall_view(y, j, race, w);
+        };
         // θ_bd turns with the ball, less the shaft for an inner-race spall.
         let rate = match race {
             Race::Inner => w - self.inputs.shaft_speed,
@@ -371,6 +391,152 @@ impl BallCore {
             theta_bd_rate: rate,
             a_star: self.defect_a_star[k],
             blend: self.sw.blend_of(k, j),
+            on_ball: None,
+        })
+    }
+
+    /// The spall slot of spall `s` on a ball at its contact with `race`.
+    #[inline(always)]
+    fn ball_slot(&self, s: usize, race: Race) -> usize {
+        self.defects.len() + 2 * s + usize::from(race == Race::Inner)
+    }
+
+    /// A spall on ball j over its contact with `race` in the frozen interval (spalls on one
+    /// ball do not overlap: at most one), placed by its direction states.
+    #[inline(always)]
+    fn ball_spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+        let (s, bs) =
+            self.ball_spalls.iter().enumerate().find(|(s, b)| {
+                b.ball() == j && self.sw.side_of(self.ball_slot(*s, race), j) != 0.0
+            })?;
+        let k = self.ball_slot(s, race);
+        let kin = self.ball_kin(y, j).0;
+        let (pose, rc) = match race {
+            Race::Inner => (self.inner_pose(y), &self.inner),
+            Race::Outer => (self.outer_pose(y), &self.outer),
+        };
+        Some(DefectView {
+            defect: bs.at(race),
+            side: self.sw.side_of(k, j),
+            phi: 0.0,
+            theta_bd_rate: 0.0,
+            a_star: self.defect_a_star[k],
+            blend: self.sw.blend_of(k, j),
+            on_ball: Some(self.ball_spall_angle(y, s, race, &kin, &pose, rc, w)),
+        })
+    }
+
+    /// Where spall `s` on a ball stands at the ball's contact with `race`
+    /// (docs/model.md#ball-spall): the θ_bd of the race's drop table whose along-track
+    /// coordinate is the ball's over the spall, y_b = −(D/2)·φ with φ the spall centre's angle
+    /// from the contact normal n towards the track direction c2 (in the plane of n and c2),
+    /// and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and c2 turn
+    /// with the orbit). Direction states not set yet (the start's solves): far from the
+    /// contact.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub fn ball_spall_angle(
+        &self,
+        y: &[f64],
+        s: usize,
+        race: Race,
+        kin: &BallKin,
+        pose: &RingPose,
+        rc: &RaceConst,
+        w: f64,
+    ) -> (f64, f64) {
+        let i = self.lay.spall_dir(s);
+        let dir = [y[i], y[i + 1], y[i + 2]];
+        let norm = dot(dir, dir).sqrt();
+        if norm.is_nan() || norm < 0.5 {
+            return (3.0, 0.0);
+        }
+        let u = ball_contact::scale(dir, 1.0 / norm);
+        let g = ball_contact::groove_pos(kin.p, pose, rc);
+        let n = pose.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
+        let c2 = pose.to_inertial([0.0, -g.ez, g.ey]);
+        let (a, b) = (dot(u, n), dot(u, c2));
+        let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
+        let du = ball_contact::cross(w_rel, u);
+        let phi = b.atan2(a).clamp(-FRAC_PI_2, FRAC_PI_2);
+        let den = a * a + b * b;
+        // (Zero only for a spall on the spin axis, far from both contacts.)
+        let phi_rate = if den > 1e-12 {
+            (a * dot(du, c2) - b * dot(du, n)) / den
+        } else {
+            0.0
+        };
+        let d = self.ball_spalls[s].at(race);
+        let tbd = d.theta_at_track(-self.ball_radius * phi);
+        let rate = -self.ball_radius * phi_rate / d.along_track_rate(tbd, 1.0);
+        (tbd, rate)
+    }
+
+    /// The spalls on balls: their direction states' rates u̇ = ω × u (ω the ball's angular
+    /// velocity, inertial), written into `dydt`.
+    #[inline]
+    pub fn ball_spall_rates(&self, y: &[f64], dydt: &mut [f64]) {
+        for (s, bs) in self.ball_spalls.iter().enumerate() {
+            let i = self.lay.spall_dir(s);
+            let omega = self.ball_kin(y, bs.ball()).0.omega;
+            let du = ball_contact::cross(omega, [y[i], y[i + 1], y[i + 2]]);
+            dydt[i..i + 3].copy_from_slice(&du);
+        }
+    }
+
+    /// Sets the spalls on balls' direction states in the initial state `y0`
+    /// (docs/model.md#ball-spall): on the circle the ball turns, about its spin relative to
+    /// its orbit at the start (the rolling circle's axis e_θ × n_o when it has none or it
+    /// points elsewhere), at spin angle θ0 from its point midway between the contacts, ahead
+    /// of the outer contact n_o by a quarter turn (the outer contact at θ0 = π/2).
+    pub fn init_ball_spalls(&mut self) {
+        let y = std::mem::take(&mut self.y0);
+        let mut y0 = y.clone();
+        let outer = self.outer_pose(&y);
+        for (s, bs) in self.ball_spalls.iter().enumerate() {
+            let (kin, _, et, _, w) = self.ball_kin(&y, bs.ball());
+            let g = ball_contact::groove_pos(kin.p, &outer, &self.outer);
+            let n_o = outer.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
+            let unit = |v: V3| ball_contact::scale(v, 1.0 / dot(v, v).sqrt());
+            let rolling = unit(ball_contact::cross(et, n_o));
+            let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
+            let spin = dot(w_rel, w_rel).sqrt();
+            let axis = if spin > 0.0 && dot(w_rel, rolling) > 0.5 * spin {
+                ball_contact::scale(w_rel, 1.0 / spin)
+            } else {
+                rolling
+            };
+            let v = unit(ball_contact::sub(
+                n_o,
+                ball_contact::scale(axis, dot(n_o, axis)),
+            ));
+            let u = ball_contact::cross(v, axis);
+            let (sp, cp) = bs.theta0().sin_cos();
+            let i = self.lay.spall_dir(s);
+            for k in 0..3 {
+                y0[i + k] = cp * u[k] + sp * v[k];
+            }
+        }
+        self.y0 = y0;
+    }
+
+    /// Nominal values of the spalls on balls' direction states (unit vectors): 1.
+    pub fn ball_spall_nominal(&self, out: &mut [f64]) {
+        let start = self.lay.spall_dir(0);
+        out[start..self.lay.dim()].iter_mut().for_each(|v| *v = 1.0);
+    }
+
+    /// Name of state `i` of the spalls on balls' direction block, if it is one.
+    pub fn ball_spall_state_name(&self, i: usize) -> Option<String> {
+        let start = self.lay.spall_dir(0);
+        (i >= start && i < self.lay.dim()).then(|| {
+            let (s, k) = ((i - start) / 3, (i - start) % 3);
+            format!(
+                "direction of spall {} on ball {} ({} component)",
+                s + 1,
+                self.ball_spalls[s].ball() + 1,
+                ["x", "y", "z"][k]
+            )
         })
     }
 
@@ -549,6 +715,19 @@ impl BallCore {
             self.sw.update_spall(t, k, d);
         }
         self.defects = defects;
+        for s in 0..self.ball_spalls.len() {
+            for race in [Race::Outer, Race::Inner] {
+                let k = self.ball_slot(s, race);
+                let mut angles = std::mem::take(&mut self.sw.angles);
+                for (j, a) in angles[k * z..(k + 1) * z].iter_mut().enumerate() {
+                    *a = self.ball_spall_angle_of(y, s, race, j);
+                }
+                self.sw.angles = angles;
+                let spalls = std::mem::take(&mut self.ball_spalls);
+                self.sw.update_spall(t, k, spalls[s].at(race));
+                self.ball_spalls = spalls;
+            }
+        }
         let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
         let mut events = std::mem::take(&mut self.sw.contact_events);
         for (j, e) in events.iter_mut().enumerate().take(z) {
@@ -572,11 +751,61 @@ impl BallCore {
                 self.sw.spall_events(d, k, j, tbd, g);
             }
         }
+        for (s, bs) in self.ball_spalls.iter().enumerate() {
+            for race in [Race::Outer, Race::Inner] {
+                let k = self.ball_slot(s, race);
+                for j in 0..self.z {
+                    let (tbd, _) = self.ball_spall_angle_of(y, s, race, j);
+                    self.sw.spall_events(bs.at(race), k, j, tbd, g);
+                }
+            }
+        }
+    }
+
+    /// [`BallCore::ball_spall_angle`] of spall `s` on a ball as ball j sees it at `race`: the
+    /// spalled ball's, and far from every contact (a constant) for the other balls.
+    fn ball_spall_angle_of(&self, y: &[f64], s: usize, race: Race, j: usize) -> (f64, f64) {
+        if self.ball_spalls[s].ball() != j {
+            return (3.0, 0.0);
+        }
+        let (kin, _, _, _, w) = self.ball_kin(y, j);
+        let (pose, rc) = match race {
+            Race::Inner => (self.inner_pose(y), &self.inner),
+            Race::Outer => (self.outer_pose(y), &self.outer),
+        };
+        self.ball_spall_angle(y, s, race, &kin, &pose, rc, w)
     }
 
     /// Number of event functions.
     pub fn n_events(&self) -> usize {
-        self.sw.n_events(self.defects.len())
+        self.sw
+            .n_events(self.defects.len() + 2 * self.ball_spalls.len())
+    }
+
+    /// What event function `i` watches: the switches' names, with a spall on a ball's slots
+    /// named by its ball and contact.
+    pub fn event_name(&self, i: usize) -> String {
+        let name = self.sw.event_name(i);
+        let z = self.z;
+        let races = self.defects.len();
+        let Some(slot) = (i >= 2 * z).then(|| (i - 2 * z) / (3 * z)) else {
+            return name;
+        };
+        if slot < races || slot >= races + 2 * self.ball_spalls.len() {
+            return name;
+        }
+        let (s, r) = ((slot - races) / 2, (slot - races) % 2);
+        let what = match (i - 2 * z) % (3 * z) {
+            x if x >= 2 * z => "blend",
+            x if x % 2 == 0 => "edge",
+            _ => "centre",
+        };
+        format!(
+            "the {what} of ball spall {} (on ball {}) at its {} contact",
+            s + 1,
+            self.ball_spalls[s].ball() + 1,
+            ["outer", "inner"][r]
+        )
     }
 
     /// The next kink of the pulse after t, if not after `t_max` (a stop).
@@ -968,7 +1197,7 @@ macro_rules! forward_to_ball_core {
         }
 
         fn event_name(&self, i: usize) -> String {
-            self.core.sw.event_name(i)
+            self.core.event_name(i)
         }
 
         fn outputs(&mut self, t: f64, y: &[f64], o: &mut [f64]) {

@@ -8,7 +8,9 @@
 //! y_p, z_p, ẏ_p, ż_p; and two angles: the reference cage angle ψ and the shaft angle φ
 //! (integrated from the inputs so that a speed change keeps them continuous). A model with a
 //! cage (docs/model.md#cage) has 6 more at the end: the cage angle's deviation χ from ψ, the
-//! cage centre's y and z, the cage's angular rate ω_c and the centre's ẏ, ż.
+//! cage centre's y and z, the cage's angular rate ω_c and the centre's ẏ, ż. A scene with spalls
+//! on balls (docs/model.md#ball-spall) has 3 more per such spall after those: the unit vector
+//! from the ball's centre to the spall's centre, inertial components x, y, z.
 
 /// States per ball.
 pub const PER_BALL: usize = 9;
@@ -85,6 +87,8 @@ pub struct Layout {
     pub ring_len: usize,
     /// The model has a cage (the cage block at the end).
     pub cage: bool,
+    /// Number of spalls on balls (3 direction states each, after the cage block).
+    pub ball_spalls: usize,
 }
 
 impl Layout {
@@ -95,6 +99,7 @@ impl Layout {
             per_ball: PER_BALL,
             ring_len: RING_STATES,
             cage: false,
+            ball_spalls: 0,
         }
     }
     /// The reduced model's layout: per ball j (7 states from `7 j`) x, r, θ, ẋ, ṙ, θ̇, ω_s;
@@ -106,11 +111,25 @@ impl Layout {
             per_ball: REDUCED_PER_BALL,
             ring_len: REDUCED_RING_STATES,
             cage: false,
+            ball_spalls: 0,
         }
     }
     /// This layout with (or without) the cage block.
     pub fn with_cage(self, cage: bool) -> Self {
         Self { cage, ..self }
+    }
+    /// This layout with the direction states of `n` spalls on balls.
+    pub fn with_ball_spalls(self, n: usize) -> Self {
+        Self {
+            ball_spalls: n,
+            ..self
+        }
+    }
+    /// First of the three direction states of spall `s` on a ball (meaningful when
+    /// `s` < [`Layout::ball_spalls`]).
+    #[inline(always)]
+    pub fn spall_dir(&self, s: usize) -> usize {
+        self.pedestal() + 6 + if self.cage { CAGE_STATES } else { 0 } + 3 * s
     }
     /// First state of ball j.
     #[inline(always)]
@@ -145,7 +164,7 @@ impl Layout {
     /// Number of states.
     #[inline(always)]
     pub fn dim(&self) -> usize {
-        self.pedestal() + 6 + if self.cage { CAGE_STATES } else { 0 }
+        self.spall_dir(self.ball_spalls)
     }
 }
 

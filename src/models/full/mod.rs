@@ -234,6 +234,7 @@ impl FullModel {
             m.core.cage_ratio = r.cage_speed / inputs.shaft_speed;
             m.settle = Some(r);
         }
+        m.core.init_ball_spalls();
         Ok(m)
     }
 
@@ -251,6 +252,7 @@ impl FullModel {
         l1: Option<&QuasiStatic>,
     ) -> Result<(), SimError> {
         self.l1_orbit = init::initial_state(&mut self.core, self.centred, bearing, l1)?;
+        self.core.init_ball_spalls();
         Ok(())
     }
 
@@ -430,10 +432,13 @@ impl Model for FullModel {
             _ if i < lay.psi() => pedestal_state_name(i - pedestal),
             _ if i == lay.psi() => "reference cage angle ψ".into(),
             _ if i == lay.phi() => "shaft angle φ".into(),
-            _ if lay.cage && i >= lay.cage_block() && i < lay.dim() => {
+            _ if lay.cage && i >= lay.cage_block() && i < lay.spall_dir(0) => {
                 cage_state_name(i - lay.cage_block())
             }
-            _ => format!("state component {i}"),
+            _ => self
+                .core
+                .ball_spall_state_name(i)
+                .unwrap_or_else(|| format!("state component {i}")),
         }
     }
 
@@ -470,6 +475,7 @@ impl Model for FullModel {
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
         self.core.cage_nominal(out);
+        self.core.ball_spall_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -564,6 +570,7 @@ impl Model for FullModel {
             dydt[r + RWY] = 0.0;
             dydt[r + RWZ] = 0.0;
         }
+        c.ball_spall_rates(y, dydt);
     }
 
     /// Analytic for frictionless contacts (`ring_translation_jacobian` of `models/balls/ball_contact.rs` per intact
