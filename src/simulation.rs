@@ -1640,5 +1640,33 @@ depth = 0.2e-3
             (u.iter().map(|v| v * v).sum::<f64>() - 1.0).abs() < 1e-12,
             "{u:?}"
         );
+        // Ball waviness adds a reference direction per ball after the spall's, at the reduced
+        // level too (its 110 + 6 states with the cage, docs/model.md#l3).
+        let mut sc = sc;
+        sc.waviness = Some(crate::WavinessSpec {
+            ball: vec![crate::Harmonic(2.0, 1e-7, 0.0)],
+            ..Default::default()
+        });
+        for (fidelity, base) in [
+            (crate::Fidelity::Full, 148 + 3),
+            (crate::Fidelity::Reduced, 116 + 3),
+        ] {
+            sc.fidelity = fidelity;
+            let sim = super::Simulation::new(&sc).unwrap();
+            let m = &sim.model;
+            assert_eq!(m.dim(), base + 3 * 14);
+            assert_eq!(
+                m.state_name(base + 3),
+                "reference direction on ball 2 (x component)"
+            );
+            assert_eq!(
+                m.state_name(base - 1),
+                "direction of spall 1 on ball 3 (z component)"
+            );
+            for j in 0..14 {
+                let u = &sim.state()[base + 3 * j..base + 3 * j + 3];
+                assert!((u.iter().map(|v| v * v).sum::<f64>() - 1.0).abs() < 1e-12);
+            }
+        }
     }
 }

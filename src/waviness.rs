@@ -112,6 +112,8 @@ pub struct Waviness {
     outer: Vec<Harmonic>,
     /// Ball harmonics with the two contacts' sum folded in: even orders at 2A, odd ones dropped.
     ball: Vec<Harmonic>,
+    /// Ball harmonics as given (one contact's).
+    ball_each: Vec<Harmonic>,
     /// Each ball's spin angle at the start \[rad\].
     ball_phase: Vec<f64>,
     /// ΔD per ball (zeros when none given) \[m\].
@@ -173,6 +175,7 @@ impl Waviness {
             inner: spec.inner.clone(),
             outer: spec.outer.clone(),
             ball,
+            ball_each: spec.ball.clone(),
             ball_phase: (0..z)
                 .map(|j| match spec.ball_phase_seed {
                     Some(seed) => TAU * unit(seed, j as u64),
@@ -225,6 +228,15 @@ impl Waviness {
     pub fn ball(&self, j: usize, orbit: f64, orbit_rate: f64) -> (f64, f64) {
         let (v, d) = series(&self.ball, self.ball_phase[j] + self.spin_per_orbit * orbit);
         (v, d * self.spin_per_orbit * orbit_rate)
+    }
+
+    /// Ball j's waviness at one contact, at spin angle `psi` from its start angle ψ_j0 (in the
+    /// convention of [`Waviness::ball`]: the outer contact at ψ, the inner at ψ + π), every
+    /// order as given, and its derivative in ψ \[m, m/rad\]: the ball levels' (they take ψ
+    /// from the ball's own rotation, one contact at a time).
+    #[inline]
+    pub fn ball_at(&self, j: usize, psi: f64) -> (f64, f64) {
+        series(&self.ball_each, self.ball_phase[j] + psi)
     }
 
     /// Whether the balls have waviness (a harmonic of even order).

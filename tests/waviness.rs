@@ -1,5 +1,7 @@
-//! Distributed defects at the lumped level (docs/model.md#distributed): race waviness of order
-//! n = kZ ± 1 gives the radial lines Wardle (1988) and Yhland (1992) predict, roughness raises
+//! Distributed defects at the lumped, reduced and full levels (docs/model.md#distributed): race
+//! waviness of order
+//! n = kZ ± 1 gives the radial lines Wardle (1988) and Yhland (1992) predict, ball waviness the
+//! lines of the balls' spin, roughness raises
 //! the broadband floor as its RMS² and leaves a spall's lines where they were, the roughness
 //! field has the statistics it was asked for, and the scene tables refuse bad values by name.
 
@@ -161,18 +163,56 @@ fn outer_race_waviness_at(level: Fidelity) {
     }
 }
 
+/// The balls' spin frequency relative to the cage f_b \[Hz\]: at the lumped level the
+/// kinematic one, (dm/D)(1 + γ0) f_c; at the ball levels the mean over the balls and over
+/// 0.02–0.07 s (states at 1 ms intervals) of each ball's simulated spin relative to its orbit,
+/// |ω − θ̇ e_x| (the full level's ball block x, r, θ, ẋ, ṙ, θ̇, ω_x, ω_y, ω_z; the reduced
+/// level's x, r, θ, ẋ, ṙ, θ̇, ω_s).
+fn ball_spin_hz(sc: &Scene) -> f64 {
+    let b = Bearing::new(&sc.bearing).unwrap();
+    let mut sim = Simulation::new(sc).unwrap();
+    if sc.fidelity == Fidelity::Lumped {
+        return b.dm / b.d * (1.0 + b.gamma(b.alpha0)) * sim.cage_speed() / TAU;
+    }
+    let spin = |y: &[f64], j: usize| match sc.fidelity {
+        Fidelity::Full => (y[9 * j + 6] - y[9 * j + 5])
+            .hypot(y[9 * j + 7])
+            .hypot(y[9 * j + 8]),
+        _ => y[7 * j + 6].abs(),
+    };
+    let (mut sum, mut n) = (0.0, 0);
+    for k in 0..=50 {
+        sim.advance(0.02 + k as f64 * 1e-3).unwrap();
+        for j in 0..b.z {
+            sum += spin(sim.state(), j);
+            n += 1;
+        }
+    }
+    sum / n as f64 / TAU
+}
+
 #[test]
 fn even_order_ball_waviness_gives_lines_at_its_order_times_the_ball_spin() {
     // A ball of order n touches both races at opposite points: even orders show at n·f_b
-    // (f_b = (dm/D)(1 + γ0) f_c, the kinematic ball spin relative to the cage), odd ones
-    // cancel. One wavy ball's approach modulates at 2·f_b (n = 2), every ball alike here.
-    let healthy = healthy_axial();
+    // (f_b the ball spin relative to the cage: the kinematic one at the lumped level, the
+    // simulated one at the ball levels), odd ones cancel. One wavy ball's approach modulates
+    // at 2·f_b (n = 2), every ball alike here.
+    for level in LEVELS {
+        ball_waviness_lines(level);
+    }
+}
+
+fn ball_waviness_lines(level: Fidelity) {
+    let healthy = at(level, &healthy_axial());
     let (f_s, f_c) = shaft_cage_hz(&healthy);
     let b = Bearing::new(&healthy.bearing).unwrap();
-    let f_b = b.dm / b.d * (1.0 + b.gamma(b.alpha0)) * f_c;
+    let f_b = ball_spin_hz(&healthy);
     // The textbook BSF at the free angle (fault_frequencies) is the same number at pure rolling.
     let bsf = raceway::fault_frequencies::fault_frequencies(&b, f_s, b.alpha0).bsf;
-    println!("f_b {f_b:.2} Hz (model cage), BSF {bsf:.2} Hz (pure rolling)");
+    println!(
+        "{}: f_b {f_b:.3} Hz (f_c {f_c:.3} Hz), BSF {bsf:.2} Hz (pure rolling)",
+        level.name()
+    );
     let even = with_waviness(
         &healthy,
         WavinessSpec {
@@ -200,9 +240,25 @@ fn even_order_ball_waviness_gives_lines_at_its_order_times_the_ball_spin() {
     );
     let odd_line = signal::dominant_peak(&s_odd, 0.6 * 3.0 * f_b, 1.4 * 3.0 * f_b).unwrap();
     let even_line = signal::dominant_peak(&s_even, 0.6 * 2.0 * f_b, 1.4 * 2.0 * f_b).unwrap();
+    println!(
+        "{}: odd order {:.3e} at {:.1} Hz against the even line {:.3e}",
+        level.name(),
+        odd_line.value,
+        odd_line.freq,
+        even_line.value
+    );
+    // At the lumped level the two contacts are exactly opposite and an odd order cancels to
+    // round-off; at the ball levels they are not (the inner and outer contact angles differ
+    // under the balls' centrifugal force), and it cancels to first order only.
+    let cancel = if level == Fidelity::Lumped {
+        1e-3
+    } else {
+        1e-2
+    };
     assert!(
-        odd_line.value < 1e-3 * even_line.value,
-        "odd order: {:.3e} at {:.1} Hz",
+        odd_line.value < cancel * even_line.value,
+        "{}: odd order: {:.3e} at {:.1} Hz",
+        level.name(),
         odd_line.value,
         odd_line.freq
     );
@@ -213,10 +269,15 @@ fn ball_waviness_with_random_phases_gives_radial_lines_at_2_fb_pm_fc() {
     // Balls of order 2 out of phase with one another (Wardle 1988): the radial force of ball j,
     // 2A cos(2 ψ_j + φ_j) e_r(θ_j), carries 2·f_b ± f_c; in phase (the previous test) the
     // balls' radial parts cancel.
-    let healthy = healthy_axial();
+    for level in LEVELS {
+        random_phase_ball_waviness(level);
+    }
+}
+
+fn random_phase_ball_waviness(level: Fidelity) {
+    let healthy = at(level, &healthy_axial());
     let (_, f_c) = shaft_cage_hz(&healthy);
-    let b = Bearing::new(&healthy.bearing).unwrap();
-    let f_b = b.dm / b.d * (1.0 + b.gamma(b.alpha0)) * f_c;
+    let f_b = ball_spin_hz(&healthy);
     let wavy = with_waviness(
         &healthy,
         WavinessSpec {
@@ -556,20 +617,6 @@ fn levels_without_distributed_defects_refuse_them() {
         let mut s = at(level, &healthy_axial());
         s.waviness = Some(WavinessSpec::default());
         assert!(Simulation::new(&s).is_ok(), "{}", level.name());
-    }
-    // The ball-level models have no ball spin angle: ball waviness is refused there.
-    for level in [Fidelity::Reduced, Fidelity::Full] {
-        let s = with_waviness(
-            &at(level, &healthy_axial()),
-            WavinessSpec {
-                ball: vec![Harmonic(2.0, 1e-7, 0.0)],
-                ..Default::default()
-            },
-        );
-        match Simulation::new(&s) {
-            Err(SimError::Unsupported(m)) => assert!(m.contains("ball waviness"), "{m}"),
-            other => panic!("{}: {:?}", level.name(), other.err()),
-        }
     }
 }
 

@@ -214,7 +214,7 @@ impl ReducedModel {
             ring_moment_x: 0.0,
         };
         m.reduce_initial_state(&full, bearing);
-        m.core.init_ball_spalls();
+        m.core.init_ball_directions();
         Ok(m)
     }
 

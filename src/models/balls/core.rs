@@ -426,13 +426,49 @@ impl BallCore {
         })
     }
 
+    /// The angle φ of a direction on ball j (states from `i`, a unit vector but for the
+    /// integration error) from the ball's contact with `race`: from the contact normal n (from
+    /// the ball's centre towards the contact) towards the track direction c2, in their plane,
+    /// in (−π, π]; and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and
+    /// c2 turn with the orbit). None while the states are not set (the start's solves).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn contact_angle(
+        &self,
+        y: &[f64],
+        i: usize,
+        kin: &BallKin,
+        pose: &RingPose,
+        rc: &RaceConst,
+        w: f64,
+    ) -> Option<(f64, f64)> {
+        let dir = [y[i], y[i + 1], y[i + 2]];
+        let norm = dot(dir, dir).sqrt();
+        if norm.is_nan() || norm < 0.5 {
+            return None;
+        }
+        let u = ball_contact::scale(dir, 1.0 / norm);
+        let g = ball_contact::groove_pos(kin.p, pose, rc);
+        let n = pose.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
+        let c2 = pose.to_inertial([0.0, -g.ez, g.ey]);
+        let (a, b) = (dot(u, n), dot(u, c2));
+        let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
+        let du = ball_contact::cross(w_rel, u);
+        let den = a * a + b * b;
+        // (Zero only for a direction along the spin axis, far from both contacts.)
+        let rate = if den > 1e-12 {
+            (a * dot(du, c2) - b * dot(du, n)) / den
+        } else {
+            0.0
+        };
+        Some((b.atan2(a), rate))
+    }
+
     /// Where spall `s` on a ball stands at the ball's contact with `race`
     /// (docs/model.md#ball-spall): the θ_bd of the race's drop table whose along-track
-    /// coordinate is the ball's over the spall, y_b = −(D/2)·φ with φ the spall centre's angle
-    /// from the contact normal n towards the track direction c2 (in the plane of n and c2),
-    /// and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and c2 turn
-    /// with the orbit). Direction states not set yet (the start's solves): far from the
-    /// contact.
+    /// coordinate is the ball's over the spall, y_b = −(D/2)·φ with φ the spall centre's
+    /// [`BallCore::contact_angle`] (clipped to ±π/2), and its rate. Direction states not set
+    /// yet: far from the contact.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     pub fn ball_spall_angle(
@@ -445,31 +481,53 @@ impl BallCore {
         rc: &RaceConst,
         w: f64,
     ) -> (f64, f64) {
-        let i = self.lay.spall_dir(s);
-        let dir = [y[i], y[i + 1], y[i + 2]];
-        let norm = dot(dir, dir).sqrt();
-        if norm.is_nan() || norm < 0.5 {
+        let Some((phi, phi_rate)) = self.contact_angle(y, self.lay.spall_dir(s), kin, pose, rc, w)
+        else {
             return (3.0, 0.0);
-        }
-        let u = ball_contact::scale(dir, 1.0 / norm);
-        let g = ball_contact::groove_pos(kin.p, pose, rc);
-        let n = pose.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
-        let c2 = pose.to_inertial([0.0, -g.ez, g.ey]);
-        let (a, b) = (dot(u, n), dot(u, c2));
-        let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
-        let du = ball_contact::cross(w_rel, u);
-        let phi = b.atan2(a).clamp(-FRAC_PI_2, FRAC_PI_2);
-        let den = a * a + b * b;
-        // (Zero only for a spall on the spin axis, far from both contacts.)
-        let phi_rate = if den > 1e-12 {
-            (a * dot(du, c2) - b * dot(du, n)) / den
+        };
+        let (phi, phi_rate) = if phi.abs() > FRAC_PI_2 {
+            (FRAC_PI_2.copysign(phi), 0.0)
         } else {
-            0.0
+            (phi, phi_rate)
         };
         let d = self.ball_spalls[s].at(race);
         let tbd = d.theta_at_track(-self.ball_radius * phi);
         let rate = -self.ball_radius * phi_rate / d.along_track_rate(tbd, 1.0);
         (tbd, rate)
+    }
+
+    /// Ball j's waviness at its contact with `race` and its rate \[m, m/s\]
+    /// (docs/model.md#waviness): the harmonics at spin angle ψ_j0 + π/2 ∓ φ (outer −, inner +),
+    /// φ the [`BallCore::contact_angle`] of the ball's reference direction, which starts
+    /// midway between the contacts: the outer contact sees r(ψ) and the inner r(ψ + π), ψ the
+    /// spin angle turned since the start plus ψ_j0, as at the lumped level. Zero while the
+    /// states are not set.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn ball_waviness(
+        &self,
+        wv: &Waviness,
+        y: &[f64],
+        j: usize,
+        race: Race,
+        kin: &BallKin,
+        pose: &RingPose,
+        w: f64,
+    ) -> (f64, f64) {
+        let rc = match race {
+            Race::Inner => &self.inner,
+            Race::Outer => &self.outer,
+        };
+        let Some((phi, rate)) = self.contact_angle(y, self.lay.ball_ref(j), kin, pose, rc, w)
+        else {
+            return (0.0, 0.0);
+        };
+        let sign = match race {
+            Race::Outer => -1.0,
+            Race::Inner => 1.0,
+        };
+        let (v, d) = wv.ball_at(j, FRAC_PI_2 + sign * phi);
+        (v, d * sign * rate)
     }
 
     /// The spalls on balls: their direction states' rates u̇ = ω × u (ω the ball's angular
@@ -482,54 +540,83 @@ impl BallCore {
             let du = ball_contact::cross(omega, [y[i], y[i + 1], y[i + 2]]);
             dydt[i..i + 3].copy_from_slice(&du);
         }
+        if self.lay.ball_refs {
+            for j in 0..self.z {
+                let i = self.lay.ball_ref(j);
+                let omega = self.ball_kin(y, j).0.omega;
+                let du = ball_contact::cross(omega, [y[i], y[i + 1], y[i + 2]]);
+                dydt[i..i + 3].copy_from_slice(&du);
+            }
+        }
     }
 
-    /// Sets the spalls on balls' direction states in the initial state `y0`
-    /// (docs/model.md#ball-spall): on the circle the ball turns, about its spin relative to
-    /// its orbit at the start (the rolling circle's axis e_θ × n_o when it has none or it
-    /// points elsewhere), at spin angle θ0 from its point midway between the contacts, ahead
-    /// of the outer contact n_o by a quarter turn (the outer contact at θ0 = π/2).
-    pub fn init_ball_spalls(&mut self) {
-        let y = std::mem::take(&mut self.y0);
-        let mut y0 = y.clone();
-        let outer = self.outer_pose(&y);
+    /// Sets the direction states in the initial state `y0`: each spall on a ball's, and each
+    /// ball's reference direction when the balls have waviness (docs/model.md#ball-spall):
+    /// on the circle the ball turns, about its spin relative to its orbit at the start (the
+    /// rolling circle's axis e_θ × n_o when it has none or it points elsewhere), at spin angle
+    /// θ0 (the reference: 0) from its point midway between the contacts, a quarter turn ahead
+    /// of the outer contact n_o (the outer contact at θ0 = π/2).
+    pub fn init_ball_directions(&mut self) {
+        let mut y0 = std::mem::take(&mut self.y0);
         for (s, bs) in self.ball_spalls.iter().enumerate() {
-            let (kin, _, et, _, w) = self.ball_kin(&y, bs.ball());
-            let g = ball_contact::groove_pos(kin.p, &outer, &self.outer);
-            let n_o = outer.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
-            let unit = |v: V3| ball_contact::scale(v, 1.0 / dot(v, v).sqrt());
-            let rolling = unit(ball_contact::cross(et, n_o));
-            let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
-            let spin = dot(w_rel, w_rel).sqrt();
-            let axis = if spin > 0.0 && dot(w_rel, rolling) > 0.5 * spin {
-                ball_contact::scale(w_rel, 1.0 / spin)
-            } else {
-                rolling
-            };
-            let v = unit(ball_contact::sub(
-                n_o,
-                ball_contact::scale(axis, dot(n_o, axis)),
-            ));
-            let u = ball_contact::cross(v, axis);
-            let (sp, cp) = bs.theta0().sin_cos();
+            let u = self.circle_point(&y0, bs.ball(), bs.theta0());
             let i = self.lay.spall_dir(s);
-            for k in 0..3 {
-                y0[i + k] = cp * u[k] + sp * v[k];
+            y0[i..i + 3].copy_from_slice(&u);
+        }
+        if self.lay.ball_refs {
+            for j in 0..self.z {
+                let u = self.circle_point(&y0, j, 0.0);
+                let i = self.lay.ball_ref(j);
+                y0[i..i + 3].copy_from_slice(&u);
             }
         }
         self.y0 = y0;
     }
 
-    /// Nominal values of the spalls on balls' direction states (unit vectors): 1.
+    /// The point at spin angle `psi` on the circle ball j turns at state y (see
+    /// [`BallCore::init_ball_directions`]), a unit vector.
+    fn circle_point(&self, y: &[f64], j: usize, psi: f64) -> V3 {
+        let outer = self.outer_pose(y);
+        let (kin, _, et, _, w) = self.ball_kin(y, j);
+        let g = ball_contact::groove_pos(kin.p, &outer, &self.outer);
+        let n_o = outer.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
+        let unit = |v: V3| ball_contact::scale(v, 1.0 / dot(v, v).sqrt());
+        let rolling = unit(ball_contact::cross(et, n_o));
+        let w_rel = [kin.omega[0] - w, kin.omega[1], kin.omega[2]];
+        let spin = dot(w_rel, w_rel).sqrt();
+        let axis = if spin > 0.0 && dot(w_rel, rolling) > 0.5 * spin {
+            ball_contact::scale(w_rel, 1.0 / spin)
+        } else {
+            rolling
+        };
+        let v = unit(ball_contact::sub(
+            n_o,
+            ball_contact::scale(axis, dot(n_o, axis)),
+        ));
+        let u = ball_contact::cross(v, axis);
+        let (sp, cp) = psi.sin_cos();
+        ball_contact::add(ball_contact::scale(u, cp), ball_contact::scale(v, sp))
+    }
+
+    /// Nominal values of the direction states (unit vectors): 1.
     pub fn ball_spall_nominal(&self, out: &mut [f64]) {
         let start = self.lay.spall_dir(0);
         out[start..self.lay.dim()].iter_mut().for_each(|v| *v = 1.0);
     }
 
-    /// Name of state `i` of the spalls on balls' direction block, if it is one.
+    /// Name of state `i` of the direction blocks, if it is one.
     pub fn ball_spall_state_name(&self, i: usize) -> Option<String> {
         let start = self.lay.spall_dir(0);
-        (i >= start && i < self.lay.dim()).then(|| {
+        let refs = self.lay.ball_ref(0);
+        if self.lay.ball_refs && i >= refs && i < self.lay.dim() {
+            let (j, k) = ((i - refs) / 3, (i - refs) % 3);
+            return Some(format!(
+                "reference direction on ball {} ({} component)",
+                j + 1,
+                ["x", "y", "z"][k]
+            ));
+        }
+        (i >= start && i < refs).then(|| {
             let (s, k) = ((i - start) / 3, (i - start) % 3);
             format!(
                 "direction of spall {} on ball {} ({} component)",
@@ -568,6 +655,11 @@ impl BallCore {
             let (v, d) = wv.race(race, x, rate);
             a += v + 0.5 * wv.deviation(j);
             r += d;
+            if self.lay.ball_refs {
+                let (v, d) = self.ball_waviness(wv, y, j, race, kin, pose, w);
+                a += v;
+                r += d;
+            }
         }
         if let Some(rg) = &self.roughness {
             let (v, d) = rg.race(race, x, rate);
@@ -578,19 +670,17 @@ impl BallCore {
     }
 
     /// Sets the distributed defects of a scene (docs/model.md#distributed): race waviness,
-    /// off-size balls and roughness. Ball waviness needs the ball's spin angle, which these
-    /// levels do not integrate (C2): refused.
+    /// off-size balls, ball waviness and roughness. Ball waviness adds each ball's reference
+    /// direction to the layout (before the initial state is filled).
     pub fn set_distributed(&mut self, scene: &Scene, bearing: &Bearing) -> Result<(), SimError> {
         let waviness = match &scene.waviness {
             Some(w) => Waviness::new(w, bearing)?,
             None => None,
         };
-        if waviness.as_ref().is_some_and(|w| w.has_ball_harmonics()) {
-            return Err(SimError::Unsupported(
-                "ball waviness ([waviness] ball) needs the ball's spin angle, which the reduced \
-                 and full levels do not integrate (docs/model.md#c2); the lumped level carries it"
-                    .into(),
-            ));
+        if waviness.is_some() && scene.waviness.as_ref().is_some_and(|w| !w.ball.is_empty()) {
+            self.lay = self.lay.with_ball_refs(true);
+            self.y0.resize(self.lay.dim(), 0.0);
+            self.scratch.resize(self.lay.dim(), 0.0);
         }
         self.waviness = waviness;
         self.roughness = match &scene.roughness {

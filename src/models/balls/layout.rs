@@ -10,7 +10,8 @@
 //! cage (docs/model.md#cage) has 6 more at the end: the cage angle's deviation χ from ψ, the
 //! cage centre's y and z, the cage's angular rate ω_c and the centre's ẏ, ż. A scene with spalls
 //! on balls (docs/model.md#ball-spall) has 3 more per such spall after those: the unit vector
-//! from the ball's centre to the spall's centre, inertial components x, y, z.
+//! from the ball's centre to the spall's centre, inertial components x, y, z; one with ball
+//! waviness 3 more per ball after those: a reference direction fixed on the ball.
 
 /// States per ball.
 pub const PER_BALL: usize = 9;
@@ -89,6 +90,9 @@ pub struct Layout {
     pub cage: bool,
     /// Number of spalls on balls (3 direction states each, after the cage block).
     pub ball_spalls: usize,
+    /// Each ball has a reference direction on its surface (3 states each, after the spalls'),
+    /// for ball waviness.
+    pub ball_refs: bool,
 }
 
 impl Layout {
@@ -100,6 +104,7 @@ impl Layout {
             ring_len: RING_STATES,
             cage: false,
             ball_spalls: 0,
+            ball_refs: false,
         }
     }
     /// The reduced model's layout: per ball j (7 states from `7 j`) x, r, θ, ẋ, ṙ, θ̇, ω_s;
@@ -112,6 +117,7 @@ impl Layout {
             ring_len: REDUCED_RING_STATES,
             cage: false,
             ball_spalls: 0,
+            ball_refs: false,
         }
     }
     /// This layout with (or without) the cage block.
@@ -130,6 +136,19 @@ impl Layout {
     #[inline(always)]
     pub fn spall_dir(&self, s: usize) -> usize {
         self.pedestal() + 6 + if self.cage { CAGE_STATES } else { 0 } + 3 * s
+    }
+    /// This layout with (or without) each ball's reference direction.
+    pub fn with_ball_refs(self, on: bool) -> Self {
+        Self {
+            ball_refs: on,
+            ..self
+        }
+    }
+    /// First of the three reference-direction states of ball j (meaningful when
+    /// [`Layout::ball_refs`]).
+    #[inline(always)]
+    pub fn ball_ref(&self, j: usize) -> usize {
+        self.spall_dir(self.ball_spalls) + 3 * j
     }
     /// First state of ball j.
     #[inline(always)]
@@ -164,7 +183,7 @@ impl Layout {
     /// Number of states.
     #[inline(always)]
     pub fn dim(&self) -> usize {
-        self.spall_dir(self.ball_spalls)
+        self.ball_ref(if self.ball_refs { self.z } else { 0 })
     }
 }
 

@@ -234,7 +234,7 @@ impl FullModel {
             m.core.cage_ratio = r.cage_speed / inputs.shaft_speed;
             m.settle = Some(r);
         }
-        m.core.init_ball_spalls();
+        m.core.init_ball_directions();
         Ok(m)
     }
 
@@ -252,7 +252,7 @@ impl FullModel {
         l1: Option<&QuasiStatic>,
     ) -> Result<(), SimError> {
         self.l1_orbit = init::initial_state(&mut self.core, self.centred, bearing, l1)?;
-        self.core.init_ball_spalls();
+        self.core.init_ball_directions();
         Ok(())
     }
 
