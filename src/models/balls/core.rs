@@ -1266,6 +1266,10 @@ macro_rules! forward_to_ball_core {
             self.core.sw.event_fired(index);
         }
 
+        fn mode_sign(&self, index: usize) -> Option<f64> {
+            self.core.sw.mode_sign(index)
+        }
+
         fn diagnose(&mut self, _t: f64, y: &[f64]) -> Option<String> {
             self.core.diagnose(y)
         }

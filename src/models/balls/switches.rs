@@ -260,6 +260,36 @@ impl Switches {
         Ok(())
     }
 
+    /// The sign event function `index` has in the frozen modes (±1; None before the first
+    /// mode update): a closed contact's min(δ′, Q/S) is positive, an open one's negative; a
+    /// spall's zone margin is positive while the ball is in its zone, its centre function has
+    /// the sign of the ball's half there (1 outside), its blend margin is negative inside the
+    /// blend. After such an event fires, the integrator restarts with this sign as its
+    /// reference, so a function that touches 0 and comes back is an event (see
+    /// `raceway_solver::EventSystem::mode_sign`).
+    pub fn mode_sign(&self, index: usize) -> Option<f64> {
+        if !self.modes_set || index >= self.fired.len() {
+            return None;
+        }
+        let z = self.z;
+        let sign = |on: bool| if on { 1.0 } else { -1.0 };
+        if index < 2 * z {
+            return Some(sign(self.closed[index / 2][index % 2]));
+        }
+        let (k, r) = ((index - 2 * z) / (3 * z), (index - 2 * z) % (3 * z));
+        let at = k * z;
+        Some(if r >= 2 * z {
+            sign(!self.in_blend[at + r - 2 * z])
+        } else if r % 2 == 0 {
+            sign(self.sides[at + r / 2] != 0.0)
+        } else {
+            match self.sides[at + r / 2] {
+                0.0 => 1.0,
+                side => side,
+            }
+        })
+    }
+
     /// Event `index` fired at the located time.
     pub fn event_fired(&mut self, index: usize) {
         if let Some(f) = self.fired.get_mut(index) {
@@ -383,6 +413,37 @@ impl Switches {
 #[cfg(test)]
 mod tests {
     use super::Switches;
+
+    #[test]
+    fn mode_signs_follow_the_frozen_modes() {
+        // 3 balls, 2 spall slots: contacts 0..6, then per slot edges/centres 2z and blends z.
+        let mut sw = Switches::with_spalls(3, 2);
+        assert_eq!(sw.mode_sign(0), None, "before the first mode update");
+        sw.modes_set = true;
+        sw.closed[1] = [true, false];
+        sw.closed[2] = [false, true];
+        let contacts: Vec<_> = (0..6).map(|i| sw.mode_sign(i).unwrap()).collect();
+        assert_eq!(contacts, [1.0, 1.0, 1.0, -1.0, -1.0, 1.0]);
+        // Ball 2 in slot 1's zone on the − half, ball 3 in its blend.
+        sw.sides[3 + 1] = -1.0;
+        sw.in_blend[3 + 2] = true;
+        let b = 6 + 9;
+        assert_eq!(sw.mode_sign(b), Some(-1.0), "ball 1 outside: edge");
+        assert_eq!(sw.mode_sign(b + 1), Some(1.0), "ball 1 outside: centre");
+        assert_eq!(sw.mode_sign(b + 2), Some(1.0), "ball 2 inside: edge");
+        assert_eq!(
+            sw.mode_sign(b + 3),
+            Some(-1.0),
+            "ball 2 on the − half: centre"
+        );
+        assert_eq!(sw.mode_sign(b + 6), Some(1.0), "ball 1 out of the blend");
+        assert_eq!(sw.mode_sign(b + 8), Some(-1.0), "ball 3 in the blend");
+        // Slot 0 untouched: every ball outside, no blend.
+        assert_eq!(sw.mode_sign(6 + 2), Some(-1.0));
+        assert_eq!(sw.mode_sign(6 + 3), Some(1.0));
+        assert_eq!(sw.mode_sign(6 + 6 + 1), Some(1.0));
+        assert_eq!(sw.mode_sign(6 + 18), None, "beyond the functions");
+    }
 
     #[test]
     fn event_names_follow_the_layout() {
