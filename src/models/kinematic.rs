@@ -33,18 +33,27 @@
 //! responses ring out with the new modes. The optional `[lumped] resonator` is not modelled at
 //! this level. A healthy scene has no events.
 //!
+//! A spall on a ball (docs/model.md#ball-spall) turns with the kinematic spin of pure rolling on
+//! the outer race, ψ = θ0 + (dm/D)(1 + γ0)·θ_c, and meets the outer race at ψ ≡ π/2 and the inner
+//! at ψ ≡ −π/2: its fault phase counts those meetings, ψ_f = (ψ − π/2)/π (even passes at the outer
+//! race, odd ones at the inner), at 2 × BSF, with the half-width (w_d/D)/π and the largest drop of
+//! a raceway spall of its size on the race it meets. The load lost is the load zone's at the
+//! spalled ball's azimuth (modulated at the cage rate), and the force step acts along that
+//! azimuth.
+//!
 //! Static outputs (see [`super::quasi_static`]): everything except `pedestal.a.z`,
 //! `pedestal.v.z`, `pedestal.z` (static deflection + modal response) and the contact force of the
 //! ball inside the spall (reduced by ΔQ) is L1's static value.
 
 use super::quasi_static::{static_outputs, L1Table};
 use super::Model;
+use crate::ball_spall::BallSpall;
 use crate::defect::{Defect, SpallSummary};
 use crate::geometry::{Bearing, Race};
 use crate::models::{out, SimError};
 use crate::operating::OperatingPoint;
 use crate::scene::Scene;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 const CAGE: usize = 0;
 const SHAFT: usize = 1;
@@ -63,6 +72,21 @@ struct Mode {
     gain: f64,
 }
 
+/// A spall on a ball as the generator sees it (the module documentation).
+#[derive(Debug, Clone, Copy)]
+struct BallFault {
+    /// The ball's index from 0.
+    ball: usize,
+    /// Spin angle at the start, from midway between the contacts \[rad\].
+    theta0: f64,
+    /// Spin angle per cage angle, (dm/D)(1 + γ0).
+    spin_per_orbit: f64,
+    /// Half the spall's extent in spin angle \[rad\].
+    half: f64,
+    /// Largest drop at the (outer, inner) race \[m\].
+    drop: [f64; 2],
+}
+
 /// The kinematic model.
 #[derive(Clone)]
 pub struct KinematicModel {
@@ -70,6 +94,8 @@ pub struct KinematicModel {
     table: L1Table,
     inputs: OperatingPoint,
     defect: Option<SpallSummary>,
+    /// A spall on a ball instead (at most one of the two).
+    ball_fault: Option<BallFault>,
     theta_start: f64,
     /// Series Hertz constant of a ball [N/m^1.5].
     k_series: f64,
@@ -136,13 +162,25 @@ impl KinematicModel {
                 scene.n_defects()
             )));
         }
-        let defect = match &scene.defect {
-            Some(spec) => {
-                let q_ref = table.q_max.max(10.0);
-                let mode = scene.spalls().next().and_then(|(_, m)| m);
-                Some(Defect::summary_with_mode(spec, bearing, q_ref, mode)?)
+        let q_ref = table.q_max.max(10.0);
+        let mode = scene.spalls().next().and_then(|(_, m)| m);
+        let (defect, ball_fault) = match &scene.defect {
+            Some(spec) if spec.ring.race().is_none() => {
+                let b = BallSpall::new(spec, bearing, q_ref, mode)?;
+                let fault = BallFault {
+                    ball: b.ball(),
+                    theta0: b.theta0(),
+                    spin_per_orbit: b.spin_per_orbit(),
+                    half: b.half_angle(),
+                    drop: [b.at(Race::Outer).max_drop(), b.at(Race::Inner).max_drop()],
+                };
+                (None, Some(fault))
             }
-            None => None,
+            Some(spec) => (
+                Some(Defect::summary_with_mode(spec, bearing, q_ref, mode)?),
+                None,
+            ),
+            None => (None, None),
         };
         let mut m = Self {
             bearing: bearing.clone(),
@@ -155,6 +193,7 @@ impl KinematicModel {
             table,
             inputs: *inputs,
             defect,
+            ball_fault,
             theta_start: 0.0,
             k_series: bearing.k_series(),
             jitter: scene.lumped.slip_jitter.abs(),
@@ -256,8 +295,12 @@ impl KinematicModel {
         modes
     }
 
-    /// Fault phase ψ [ball passes] from the state.
+    /// Fault phase ψ [ball passes; for a spall on a ball, its meetings with a race] from the
+    /// state.
     fn phase(&self, y: &[f64]) -> f64 {
+        if let Some(b) = &self.ball_fault {
+            return (b.theta0 + b.spin_per_orbit * y[CAGE] - FRAC_PI_2) / PI;
+        }
         let Some(d) = &self.defect else { return 0.0 };
         let z = self.bearing.z as f64;
         match d.ring() {
@@ -268,6 +311,9 @@ impl KinematicModel {
 
     /// dψ/dt [passes/s].
     fn phase_rate(&self) -> f64 {
+        if let Some(b) = &self.ball_fault {
+            return b.spin_per_orbit * self.cage_speed() / PI;
+        }
         let Some(d) = &self.defect else { return 0.0 };
         let z = self.bearing.z as f64;
         match d.ring() {
@@ -276,8 +322,11 @@ impl KinematicModel {
         }
     }
 
-    /// Half-width of the spall in ball spacings.
+    /// Half-width of the spall in ball spacings (of a spall on a ball: in half spin turns).
     fn half_width(&self) -> f64 {
+        if let Some(b) = &self.ball_fault {
+            return b.half / PI;
+        }
         self.defect
             .as_ref()
             .map_or(0.0, |d| d.half_angle() * self.bearing.z as f64 / TAU)
@@ -337,8 +386,9 @@ impl KinematicModel {
         }
     }
 
-    /// Load lost by a ball over the spall at spall azimuth θ [N] (≥ 0).
-    fn load_loss(&self, d: &SpallSummary, theta: f64) -> f64 {
+    /// Load lost by a ball over a spall of largest drop `max_drop` \[m\] at azimuth θ \[N\]
+    /// (≥ 0).
+    fn load_loss(&self, max_drop: f64, theta: f64) -> f64 {
         let q = Self::load_zone(
             self.table.q_max,
             self.table.epsilon,
@@ -348,7 +398,7 @@ impl KinematicModel {
             return 0.0;
         }
         let delta = (q / self.k_series).powf(2.0 / 3.0);
-        let rest = (1.0 - d.max_drop() / delta).max(0.0);
+        let rest = (1.0 - max_drop / delta).max(0.0);
         q * (1.0 - rest * rest.sqrt())
     }
 
@@ -365,7 +415,12 @@ impl KinematicModel {
         limit: u64,
         register: bool,
     ) -> Result<u64, String> {
-        let Some(d) = &self.defect else { return Ok(0) };
+        // The spalled ring's, or the spalled ball's (its index from 0).
+        let site = match (&self.defect, &self.ball_fault) {
+            (Some(d), _) => Ok((d.ring(), d.theta0())),
+            (None, Some(b)) => Err(b.ball),
+            (None, None) => return Ok(0),
+        };
         let rate = self.phase_rate();
         if rate <= 0.0 {
             return Ok(0);
@@ -381,11 +436,10 @@ impl KinematicModel {
         if psi < next {
             return Ok(0);
         }
-        let (ring_inner, theta0) = (d.ring() == Race::Inner, d.theta0());
-        let race = if ring_inner {
-            "inner-race"
-        } else {
-            "outer-race"
+        let race = match site {
+            Ok((Race::Inner, _)) => "inner-race".to_string(),
+            Ok((Race::Outer, _)) => "outer-race".to_string(),
+            Err(j) => format!("ball-{}", j + 1),
         };
         // Consecutive thresholds lie 1 ± 0.9 apart (jitter within ±0.45), so about ψ − ψ_next + 1
         // passes are due: far more than allowed is refused before any work.
@@ -427,10 +481,14 @@ impl KinematicModel {
             }
             let back = (psi - thr) / rate;
             let tk = t - back;
-            let theta = if ring_inner {
-                theta0 + y[SHAFT] - self.inputs.shaft_speed * back
-            } else {
-                theta0
+            let theta = match site {
+                Ok((Race::Inner, theta0)) => theta0 + y[SHAFT] - self.inputs.shaft_speed * back,
+                Ok((Race::Outer, theta0)) => theta0,
+                // The spalled ball's azimuth then.
+                Err(j) => {
+                    self.theta_start + y[CAGE] - self.cage_speed() * back
+                        + TAU * j as f64 / self.bearing.z as f64
+                }
             };
             // cos α here, where a threshold is crossed, not per call (this runs at every sample).
             let e_rz = self.table.alpha.cos() * theta.cos();
@@ -455,8 +513,13 @@ impl KinematicModel {
                 }
                 passes += 1;
                 // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
-                let Some(d) = &self.defect else { break };
-                self.dip = self.load_loss(d, theta);
+                let max_drop = match (&self.defect, &self.ball_fault) {
+                    (Some(d), _) => d.max_drop(),
+                    // Even passes at the outer race, odd ones at the inner.
+                    (None, Some(b)) => b.drop[usize::from(self.next_entry.rem_euclid(2) == 1)],
+                    (None, None) => break,
+                };
+                self.dip = self.load_loss(max_drop, theta);
                 self.push_event(tk, -self.dip * e_rz);
                 self.next_entry += 1;
                 self.entry_thr = self.entry_threshold(self.next_entry);
@@ -657,14 +720,20 @@ impl Model for KinematicModel {
         if !out::has_ball_block(o, self.bearing.z) {
             return;
         }
-        if let Some(d) = &self.defect {
-            if self.next_exit < self.next_entry {
-                // The ball over the spall carries ΔQ less.
-                let z = self.bearing.z;
-                let spacing = TAU / z as f64;
-                let theta_d = self.defect_azimuth(d, y);
-                let rel = wrap(theta_d - self.theta_start - y[CAGE]);
-                let j = ((rel / spacing).round() as i64).rem_euclid(z as i64) as usize;
+        if self.next_exit < self.next_entry {
+            // The ball over the spall (or the spalled ball) carries ΔQ less.
+            let z = self.bearing.z;
+            let spacing = TAU / z as f64;
+            let j = match (&self.defect, &self.ball_fault) {
+                (Some(d), _) => {
+                    let theta_d = self.defect_azimuth(d, y);
+                    let rel = wrap(theta_d - self.theta_start - y[CAGE]);
+                    Some(((rel / spacing).round() as i64).rem_euclid(z as i64) as usize)
+                }
+                (None, Some(b)) => Some(b.ball),
+                (None, None) => None,
+            };
+            if let Some(j) = j {
                 o[out::CONTACT_START + j] = (o[out::CONTACT_START + j] - self.dip).max(0.0);
                 o[out::CONTACT_START + z + j] = (o[out::CONTACT_START + z + j] - self.dip).max(0.0);
                 out::set_separation_flags(o, z);

@@ -50,7 +50,7 @@ pub const LEVELS: &[Level] = &[
                   traction's cage speed (L1 with the balls' steady spin, the caged balance of \
                   their orbital torques); no dynamics",
         distributed: false,
-        ball_spalls: false,
+        ball_spalls: true,
         build: |s, b, i| Ok(Box::new(kinematic::KinematicModel::new(s, b, i)?)),
     },
     Level {
