@@ -1,9 +1,10 @@
-//! `raceway fmu`: the BallBearing FMU for any bearing, without a Rust toolchain. The FMU's
-//! binary reads its bearing from `resources/bearing.toml` at instantiation; this command writes
-//! the model description for the bearing (its per-ball outputs sized from the number of balls),
-//! the documentation, the resources and the reference run around the binaries of a template
-//! FMU made by fmu-build of the same version (`cargo run --release -p fmu-build`, or the
-//! `BallBearing.fmu` shipped beside the program).
+//! `raceway fmu`: the BallBearing FMU for any bearing or scene, without a Rust toolchain. The
+//! FMU's binary reads its bearing from `resources/bearing.toml` at instantiation, and with
+//! `--scene` its base scene from `resources/scene.toml`; this command writes the model
+//! description for them (its per-ball outputs sized from the number of balls, its start values
+//! the scene's), the documentation, the resources and the reference run around the binaries of
+//! a template FMU made by fmu-build of the same version (`cargo run --release -p fmu-build`, or
+//! the `BallBearing.fmu` shipped beside the program).
 
 use std::path::{Path, PathBuf};
 
@@ -11,8 +12,14 @@ use std::path::{Path, PathBuf};
 #[derive(clap::Args)]
 pub struct Args {
     /// Bearing: a preset (niu2014-table1, cwru-6205-de, cwru-6203-fe, ims-za2115) or a TOML file
+    /// [default: niu2014-table1]. Exclusive with --scene
+    #[arg(long, conflicts_with = "scene")]
+    pub bearing: Option<String>,
+    /// Base scene (a scene TOML file): its bearing becomes the FMU's, its values the start values
+    /// of the parameters and inputs, its spalls 1-4 defect.* … defect4.*, its later spalls,
+    /// waviness and roughness fixed (packed as resources/scene.toml)
     #[arg(long)]
-    pub bearing: String,
+    pub scene: Option<String>,
     /// The FMU to write
     #[arg(long)]
     pub out: PathBuf,
@@ -44,7 +51,8 @@ fn template_candidates() -> Vec<PathBuf> {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> Result<(), String> {
-    let (bearing, text) = fmu_pack::bearing_arg(&args.bearing)?;
+    let source = fmu_pack::source_arg(args.bearing.as_deref(), args.scene.as_deref())?;
+    let bearing = source.base.bearing();
     let template = match args.template {
         Some(t) => t,
         None => {
@@ -79,8 +87,9 @@ pub fn run(args: Args) -> Result<(), String> {
         }
     };
     let package = fmu_pack::Package {
-        bearing: &bearing,
-        bearing_text: &text,
+        base: &source.base,
+        bearing_text: &source.bearing_text,
+        scene_text: source.scene_text.as_deref(),
         binaries: &t.binaries,
         reference_lib,
     };
@@ -88,10 +97,18 @@ pub fn run(args: Args) -> Result<(), String> {
     let _ = std::fs::remove_dir_all(&dir);
     let w = w?;
     println!(
-        "wrote {} (bearing '{}', {} balls, GUID {}, {} variables, binaries: {}{})",
+        "wrote {} (bearing '{}', {} balls{}, GUID {}, {} variables, binaries: {}{})",
         args.out.display(),
         bearing.name,
         bearing.bearing.z,
+        match &source.scene_text {
+            Some(_) => format!(
+                ", base scene '{}' with {} spalls",
+                source.base.scene.name,
+                source.base.scene.n_defects()
+            ),
+            None => String::new(),
+        },
         w.guid,
         w.variables,
         t.binaries

@@ -2,7 +2,7 @@
 //! `target/fmu/JeffcottRotor.fmu`.
 //!
 //! ```text
-//! cargo run --release -p fmu-build -- [--bearing <preset|file.toml>] [--out target/fmu/BallBearing.fmu]
+//! cargo run --release -p fmu-build -- [--bearing <preset|file.toml> | --scene <scene.toml>] [--out target/fmu/BallBearing.fmu]
 //! cargo run -p fmu-build -- --write-model-description     # refresh modelDescription/modelDescription.xml
 //!                                                         # and rotor/modelDescription/modelDescription.xml
 //! cargo run --release -p fmu-build -- --only rotor         # only target/fmu/JeffcottRotor.fmu
@@ -19,7 +19,7 @@
 //! outputs, options) through the linux64 library itself (dlopen), and zips it all.
 
 use clap::Parser;
-use raceway::{BearingFile, DEFAULT_PRESET};
+use raceway::BearingFile;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -27,9 +27,15 @@ use std::process::Command;
 #[derive(Parser, Debug)]
 #[command(about = "Build the BallBearing FMI 2.0 Co-Simulation FMU")]
 struct Args {
-    /// Bearing of the FMU: a preset name or a bearing TOML file.
-    #[arg(long, default_value = DEFAULT_PRESET)]
-    bearing: String,
+    /// Bearing of the FMU: a preset name or a bearing TOML file [default: niu2014-table1].
+    /// Exclusive with --scene.
+    #[arg(long, conflicts_with = "scene")]
+    bearing: Option<String>,
+    /// Base scene of the FMU (a scene TOML file, packed as resources/scene.toml): its bearing is
+    /// the FMU's, its values the parameters' start values, its later spalls, waviness and
+    /// roughness fixed.
+    #[arg(long)]
+    scene: Option<String>,
     /// Output file [default: TARGET_DIR/fmu/BallBearing.fmu, TARGET_DIR being cargo's target folder].
     #[arg(long)]
     out: Option<PathBuf>,
@@ -531,7 +537,9 @@ fn main() {
         }
     }
 
-    let (bearing, bearing_text) = fmu_pack::bearing_arg(&args.bearing).unwrap_or_else(|e| fail(e));
+    let source = fmu_pack::source_arg(args.bearing.as_deref(), args.scene.as_deref())
+        .unwrap_or_else(|e| fail(e));
+    let bearing = source.base.bearing();
     let libs = match &args.lib {
         Some(lib) => {
             eprintln!(
@@ -555,8 +563,9 @@ fn main() {
         .clone()
         .unwrap_or_else(|| target_dir().join("fmu").join("BallBearing.fmu"));
     let package = fmu_pack::Package {
-        bearing: &bearing,
-        bearing_text: &bearing_text,
+        base: &source.base,
+        bearing_text: &source.bearing_text,
+        scene_text: source.scene_text.as_deref(),
         binaries: &binaries,
         reference_lib: if args.no_reference {
             Err("skipped with --no-reference".into())

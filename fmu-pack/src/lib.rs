@@ -2,12 +2,14 @@
 //! the reference run (through the shipped shared library itself) around binaries made
 //! elsewhere. Used by `fmu-build` (which builds the binaries) and by `raceway fmu` (which takes
 //! them from an FMU made by fmu-build, so that any bearing gets an FMU without a Rust
-//! toolchain: the binary reads its bearing from `resources/bearing.toml`).
+//! toolchain: the binary reads its bearing from `resources/bearing.toml` and, for an FMU made
+//! from a scene, its base scene from `resources/scene.toml`).
 
 use ballbearing_fmu::ballbearing::BEARING_RESOURCE;
+use ballbearing_fmu::base::{Base, SCENE_RESOURCE};
 use fmi2::bindings::*;
 use fmi2::Variable;
-use raceway::{BearingFile, PRESETS};
+use raceway::{BearingFile, Scene, DEFAULT_PRESET, PRESETS};
 use std::ffi::{CStr, CString};
 use std::io::{Read, Write};
 use std::os::raw::{c_char, c_int, c_void};
@@ -230,8 +232,7 @@ pub struct Reference {
 /// Runs the reference experiment through the shared library at `lib` (dlopen).
 fn reference_run(
     lib: &Path,
-    bearing: &BearingFile,
-    bearing_text: &str,
+    p: &Package,
     vars: &[Variable],
     inputs: &[(f64, [f64; 4])],
 ) -> Reference {
@@ -252,12 +253,10 @@ fn reference_run(
             }
         }
     };
-    let guid = CString::new(ballbearing_fmu::guid(bearing)).expect("no NUL");
-    // Resources: a temporary folder with the bearing, like the unzipped FMU.
+    let guid = CString::new(ballbearing_fmu::guid_for(p.base)).expect("no NUL");
+    // Resources: a temporary folder with the bearing (and scene), like the unzipped FMU.
     let dir = std::env::temp_dir().join(format!("fmu-build-ref-{}", std::process::id()));
-    if let Err(e) = std::fs::create_dir_all(&dir)
-        .and_then(|()| std::fs::write(dir.join(BEARING_RESOURCE), bearing_text))
-    {
+    if let Err(e) = write_resources(&dir, p.bearing_text, p.scene_text) {
         return Reference {
             header,
             rows,
@@ -426,12 +425,136 @@ pub fn bearing_arg(arg: &str) -> Result<(BearingFile, String), String> {
     }
 }
 
+/// Writes `resources/bearing.toml` and, if any, `resources/scene.toml` into `dir` (created).
+fn write_resources(
+    dir: &Path,
+    bearing_text: &str,
+    scene_text: Option<&str>,
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    std::fs::write(dir.join(BEARING_RESOURCE), bearing_text)?;
+    if let Some(s) = scene_text {
+        std::fs::write(dir.join(SCENE_RESOURCE), s)?;
+    }
+    Ok(())
+}
+
+/// The base of the FMU whose resources are `bearing_text` and `scene_text`, read as the FMU
+/// reads them at fmi2Instantiate (from a temporary copy of the resources); `origin` names the
+/// scene in messages.
+pub fn base_of(bearing_text: &str, scene_text: Option<&str>, origin: &str) -> Result<Base, String> {
+    let bearing = BearingFile::from_toml_str(bearing_text, BEARING_RESOURCE)
+        .map_err(|e| format!("{origin}: bearing: {e}"))?;
+    let Some(scene_text) = scene_text else {
+        return Ok(Base::default_for(&bearing));
+    };
+    // One folder per call (threads of one process may read scenes at once).
+    static CALLS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("raceway-fmu-scene-{}-{n}", std::process::id()));
+    let r = write_resources(&dir, bearing_text, None)
+        .map_err(|e| format!("{}: {e}", dir.display()))
+        .and_then(|()| Base::from_scene_text(scene_text, origin, Some(&dir), &bearing));
+    let _ = std::fs::remove_dir_all(&dir);
+    r
+}
+
+/// What an FMU is made from, read from `raceway fmu`/`fmu-build` arguments.
+pub struct Source {
+    /// The FMU's base (bearing and scene).
+    pub base: Base,
+    /// `resources/bearing.toml`.
+    pub bearing_text: String,
+    /// `resources/scene.toml`, for an FMU made from a scene.
+    pub scene_text: Option<String>,
+}
+
+/// A scene argument: the scene file at `path`, its bearing's file text, and the text shipped
+/// as `resources/scene.toml`: the scene's own values with its `bearing` key set to
+/// `"bearing.toml"` (the bearing resource beside it), so the FMU needs no other file. The
+/// scene is checked first as `raceway simulate` reads it (errors name the file, line and
+/// field), then as the FMU will read it.
+pub fn scene_arg(path: &str) -> Result<Source, String> {
+    Scene::load(Path::new(path)).map_err(|e| e.to_string())?;
+    let text =
+        std::fs::read_to_string(path).map_err(|e| format!("cannot read scene {path}: {e}"))?;
+    let mut table: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("{path}: {}", e.to_string().trim_end()))?;
+    let dir = Path::new(path).parent().unwrap_or(Path::new(""));
+    let bearing_text = match table.get("bearing") {
+        None => preset_text(DEFAULT_PRESET)?,
+        Some(toml::Value::String(name)) => match PRESETS.iter().find(|(n, _)| n == name) {
+            Some((_, t)) => t.to_string(),
+            None => {
+                let p = dir.join(name);
+                std::fs::read_to_string(&p)
+                    .map_err(|e| format!("{path}: bearing: cannot read {}: {e}", p.display()))?
+            }
+        },
+        Some(toml::Value::Table(t)) => toml::to_string(t)
+            .map_err(|e| format!("{path}: bearing: cannot write the inline bearing: {e}"))?,
+        Some(_) => return Err(format!("{path}: bearing: a preset name, a path or a table")),
+    };
+    table.insert(
+        "bearing".into(),
+        toml::Value::String(BEARING_RESOURCE.into()),
+    );
+    let body = toml::to_string(&table).map_err(|e| format!("{path}: {e}"))?;
+    let file_name = Path::new(path)
+        .file_name()
+        .map_or(path.into(), |n| n.to_string_lossy());
+    let scene_text = format!(
+        "# The base scene of this FMU: {file_name} as packed by raceway {}, its bearing the
+         # bearing resource beside it. Its values are the parameters' start values and the fixed
+         # configuration; editing it needs a new model description (repack the FMU).
+{body}",
+        env!("CARGO_PKG_VERSION")
+    );
+    let base = base_of(&bearing_text, Some(&scene_text), path)?;
+    Ok(Source {
+        base,
+        bearing_text,
+        scene_text: Some(scene_text),
+    })
+}
+
+/// The text of preset `name`.
+fn preset_text(name: &str) -> Result<String, String> {
+    PRESETS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| t.to_string())
+        .ok_or_else(|| format!("no preset '{name}'"))
+}
+
+/// The source of an FMU from `--bearing` and `--scene` (exclusive: a scene names its bearing;
+/// neither: the default preset without a scene resource).
+pub fn source_arg(bearing: Option<&str>, scene: Option<&str>) -> Result<Source, String> {
+    match (bearing, scene) {
+        (Some(_), Some(_)) => Err(
+            "--bearing and --scene are exclusive: the scene names its bearing (its `bearing`              key); to use another bearing, write a scene that names it"
+                .into(),
+        ),
+        (_, Some(s)) => scene_arg(s),
+        (b, None) => {
+            let (bearing, bearing_text) = bearing_arg(b.unwrap_or(DEFAULT_PRESET))?;
+            Ok(Source {
+                base: Base::default_for(&bearing),
+                bearing_text,
+                scene_text: None,
+            })
+        }
+    }
+}
+
 /// What [`write_fmu`] packs.
 pub struct Package<'a> {
-    /// The bearing of the FMU and its file text (`resources/bearing.toml`).
-    pub bearing: &'a BearingFile,
-    /// The text of `bearing`'s file.
+    /// The base of the FMU: its bearing (`resources/bearing.toml`) and base scene.
+    pub base: &'a Base,
+    /// The text of the bearing's file.
     pub bearing_text: &'a str,
+    /// The text of `resources/scene.toml` (an FMU made from a scene); `None`: the default scene.
+    pub scene_text: Option<&'a str>,
     /// The shared libraries: (path in the archive, e.g. `binaries/linux64/BallBearing.so`,
     /// bytes).
     pub binaries: &'a [(String, Vec<u8>)],
@@ -452,15 +575,15 @@ pub struct Written {
 /// Writes the FMU of `p` to `out` (through a temporary file renamed into place); `log` gets
 /// the progress lines.
 pub fn write_fmu(out: &Path, p: &Package, log: &dyn Fn(&str)) -> Result<Written, String> {
-    let bearing = p.bearing;
-    let xml = ballbearing_fmu::model_description_xml(bearing);
-    let vars: Vec<Variable> = ballbearing_fmu::variables::table(bearing)
+    let base = p.base;
+    let xml = ballbearing_fmu::model_description_xml_for(base);
+    let vars: Vec<Variable> = ballbearing_fmu::variables::table_for(&base.scene)
         .into_iter()
         .map(|e| e.var)
         .collect();
     log("probing the fidelity levels");
-    let avail = ballbearing_fmu::docs::fidelity_availability(bearing);
-    let html = ballbearing_fmu::docs::documentation_html(bearing, &avail);
+    let avail = ballbearing_fmu::docs::fidelity_availability(base.bearing());
+    let html = ballbearing_fmu::docs::documentation_html_for(base, &avail);
 
     // Cross-check style reference.
     let mut start_inputs = [0.0; 4];
@@ -482,7 +605,7 @@ pub fn write_fmu(out: &Path, p: &Package, log: &dyn Fn(&str)) -> Result<Written,
             log(&format!(
                 "reference run ({START} .. {STOP} s, step {STEP} s)"
             ));
-            reference_run(lib, bearing, p.bearing_text, &vars, &inputs)
+            reference_run(lib, p, &vars, &inputs)
         }
         Err(ref why) => Reference {
             header: Vec::new(),
@@ -547,6 +670,9 @@ pub fn write_fmu(out: &Path, p: &Package, log: &dyn Fn(&str)) -> Result<Written,
         p.bearing_text.as_bytes(),
         0o644,
     )?;
+    if let Some(s) = p.scene_text {
+        add(&format!("resources/{SCENE_RESOURCE}"), s.as_bytes(), 0o644)?;
+    }
     add(
         "resources/default-scene.toml",
         raceway::DEFAULT_SCENE.as_bytes(),
@@ -562,7 +688,7 @@ pub fn write_fmu(out: &Path, p: &Package, log: &dyn Fn(&str)) -> Result<Written,
     zip.finish().map_err(|e| format!("zip: {e}"))?;
     std::fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
     Ok(Written {
-        guid: ballbearing_fmu::guid(bearing),
+        guid: ballbearing_fmu::guid_for(base),
         variables: vars.len(),
         reference_note: reference.note,
     })
@@ -586,8 +712,8 @@ impl Template {
 
 /// Reads the binaries of the BallBearing FMU at `path`, after checking that they are this
 /// program's: the template's model description must be the one this version writes for the
-/// template's own bearing (its `resources/bearing.toml`), so the variables it will be given
-/// match what the binaries serve.
+/// template's own bearing and scene (its `resources/bearing.toml` and `resources/scene.toml`),
+/// so the variables it will be given match what the binaries serve.
 pub fn read_template(path: &Path) -> Result<Template, String> {
     let what = path.display();
     let file = std::fs::File::open(path).map_err(|e| format!("template FMU {what}: {e}"))?;
@@ -603,9 +729,10 @@ pub fn read_template(path: &Path) -> Result<Template, String> {
     };
     let xml = text("modelDescription.xml")?;
     let bearing_text = text(&format!("resources/{BEARING_RESOURCE}"))?;
-    let origin = format!("{what}: resources/{BEARING_RESOURCE}");
-    let bearing = BearingFile::from_toml_str(&bearing_text, &origin).map_err(|e| e.to_string())?;
-    if xml != ballbearing_fmu::model_description_xml(&bearing) {
+    let scene_text = text(&format!("resources/{SCENE_RESOURCE}")).ok();
+    let origin = format!("{what}: resources/{SCENE_RESOURCE}");
+    let base = base_of(&bearing_text, scene_text.as_deref(), &origin)?;
+    if xml != ballbearing_fmu::model_description_xml_for(&base) {
         return Err(format!(
             "template FMU {what} was not made by this version of raceway ({}): its model \
              description differs from the one this version writes for its bearing; make the \

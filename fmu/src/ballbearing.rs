@@ -2,7 +2,8 @@
 //! `fmi2ExitInitializationMode`, then a [`Simulation`] stepped by `fmi2DoStep`.
 //! No physics here: everything is delegated to [`Simulation`].
 
-use crate::variables::{journal_get, journal_set, params, table, Access, Config, ROWS};
+use crate::base::Base;
+use crate::variables::{journal_get, journal_set, params, table_for, Access, Config, ROWS};
 use fmi2::codec::{ByteReader, ByteWriter};
 use fmi2::{
     EventUpdate, FmuModel, InstantiateArgs, Interface, Logger, StepEnd, StepResult, Variable,
@@ -20,7 +21,8 @@ pub const BEARING_RESOURCE: &str = "bearing.toml";
 // 3: the operating point in SI units (shaft speed in rad/s, force components).
 // 4: the transmission-line inputs and the line's force at the start.
 // 5: Model Exchange's mode flags (continuous-time mode, an event asked for by an input).
-const MODEL_STATE_VERSION: u32 = 5;
+// 6: the parameters of spalls 2-4 (defect2.* … defect4.*).
+const MODEL_STATE_VERSION: u32 = 6;
 
 /// Reads `resources/bearing.toml`, or the default preset when there is none.
 pub fn load_bearing(resource_dir: Option<&Path>) -> Result<(BearingFile, String), String> {
@@ -144,11 +146,17 @@ fn sim_err(e: SimError) -> String {
 }
 
 impl BallBearing {
-    /// A model for `bearing` (what fmi2Instantiate builds after reading the resources).
+    /// A model for `bearing` without a scene resource.
     pub fn new(bearing: &BearingFile) -> Self {
-        let entries = table(bearing);
-        let guid = crate::description::guid(bearing);
-        let cfg = Config::default_for(bearing);
+        Self::from_base(&Base::default_for(bearing))
+    }
+
+    /// A model made from `base` (what fmi2Instantiate builds after reading the resources).
+    pub fn from_base(base: &Base) -> Self {
+        let bearing = base.bearing();
+        let entries = table_for(&base.scene);
+        let guid = crate::description::guid_for(base);
+        let cfg = Config::from_scene(&base.scene);
         let inputs = cfg.scene.operating;
         let n_out = entries
             .iter()
@@ -231,12 +239,11 @@ impl BallBearing {
         notes
     }
 
-    /// The scene the simulation is built from: parameters, defect, tolerance override and the
+    /// The scene the simulation is built from: parameters, spalls, tolerance override and the
     /// current inputs as the operating point (so the initial state is the equilibrium at the
     /// inputs). Validated, with errors naming the FMU variable.
     fn scene_to_build(&self) -> Result<Scene, String> {
-        let mut s = self.cfg.scene.clone();
-        s.defect = self.cfg.defect.spec();
+        let mut s = self.cfg.scene_with_spalls();
         if let Some(t) = self.tolerance {
             if !(raceway::MIN_RTOL..0.1).contains(&t) {
                 return Err(format!(
@@ -251,7 +258,8 @@ impl BallBearing {
             .check()
             .map_err(|m| sim_err(SimError::Input(m)))?;
         s.bearing.validate().map_err(|e| e.to_string())?;
-        s.validate().map_err(|e| e.to_string())?;
+        s.validate()
+            .map_err(|e| self.cfg.name_spalls(&e.to_string()))?;
         Ok(s)
     }
 
@@ -281,7 +289,7 @@ impl BallBearing {
                 return Ok(sim.clone());
             }
         }
-        let sim = Simulation::new(scene).map_err(sim_err)?;
+        let sim = Simulation::new(scene).map_err(|e| self.cfg.name_spalls(&sim_err(e)))?;
         self.fresh = Some((scene.clone(), sim.clone()));
         Ok(sim)
     }
@@ -435,17 +443,27 @@ impl FmuModel for BallBearing {
 
     fn instantiate(args: &InstantiateArgs, log: &Logger) -> Result<Self, String> {
         let (bearing, origin) = load_bearing(args.resource_dir.as_deref())?;
+        let base = crate::base::load_scene(args.resource_dir.as_deref(), &bearing)?;
         if log.enabled(LOG_EVENTS) {
+            let scene = match &base.scene_digest {
+                Some(_) => format!(
+                    "base scene '{}' ({} spalls) from resources/{}",
+                    base.scene.name,
+                    base.scene.n_defects(),
+                    crate::base::SCENE_RESOURCE
+                ),
+                None => "the default scene (no scene resource)".into(),
+            };
             log.log(
                 fmi2::bindings::Fmi2Status::Ok,
                 LOG_EVENTS,
                 &format!(
-                    "bearing '{}' ({} balls) from {origin}",
+                    "bearing '{}' ({} balls) from {origin}; {scene}",
                     bearing.name, bearing.bearing.z
                 ),
             );
         }
-        let mut m = Self::new(&bearing);
+        let mut m = Self::from_base(&base);
         m.interface = args.interface;
         Ok(m)
     }
@@ -511,7 +529,7 @@ impl FmuModel for BallBearing {
                 LOG_EVENTS,
                 &format!(
                     "initialized: fidelity {} ({}), method {}, rtol {:e}, defect {:?}, cage speed \
-                     of the kinematic-ball levels {}, inner ring axially {:?}",
+                     of the kinematic-ball levels {}, inner ring axially {:?}{}",
                     live.scene.fidelity.code(),
                     live.scene.fidelity.name(),
                     live.scene.solver.method.name(),
@@ -521,7 +539,12 @@ impl FmuModel for BallBearing {
                         raceway::CageSpeed::Traction => "the traction's caged balance",
                         raceway::CageSpeed::OuterRaceControl => "L1's outer-race control",
                     },
-                    live.scene.mounting
+                    live.scene.mounting,
+                    if live.scene.more_defects.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", further spalls {:?}", live.scene.more_defects)
+                    }
                 ),
             );
         }
@@ -1029,8 +1052,7 @@ impl FmuModel for BallBearing {
             ];
             let sim_bytes = r.bytes("simulation state")?;
             r.finish("the BallBearing state")?;
-            let mut scene = cfg.scene.clone();
-            scene.defect = cfg.defect.spec();
+            let mut scene = cfg.scene_with_spalls();
             scene.operating = operating;
             scene.solver.rtol = rtol;
             let mut sim = self.new_simulation(&scene)?;

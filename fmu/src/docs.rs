@@ -1,6 +1,7 @@
 //! `documentation/index.html` of the FMU, generated from the variable table.
 
-use crate::variables::{enumerations, table, Access, Config};
+use crate::base::{Base, SCENE_RESOURCE};
+use crate::variables::{enumerations, table_for, Access, Config, SPALL_SLOTS};
 use fmi2::xml::esc;
 use fmi2::{Start, VarType};
 use raceway::models::{level, LEVELS};
@@ -16,8 +17,7 @@ pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(),
             let f = l.fidelity;
             let mut cfg = Config::default_for(bearing);
             cfg.scene.fidelity = f;
-            cfg.scene.defect = cfg.defect.spec();
-            let r = Simulation::new(&cfg.scene)
+            let r = Simulation::new(&cfg.scene_with_spalls())
                 .and_then(|mut s| s.advance(1e-4))
                 .map_err(|e| e.to_string());
             (f, r)
@@ -111,19 +111,82 @@ const COUPLING_HTML: &str = r##"<h2>Coupling modes (parameter <code>coupling</co
 <p>Use: at t_k set <code>journal.*</code>, read F_k = <code>bearing.F.*</code> and K = ∂F/∂x, C = ∂F/∂v (seed vectors e_j on the knowns, or one call per column). Integrate the rotor over [t_k, t_k + H] with the linearized bearing force F ≈ F_k + K (x − x_k) + C (v − v_k) implicitly (linearly implicit coupling, e.g. an exact or trapezoidal step of the linear rotor+bearing system); then step both FMUs. The co-simulation is then stable far beyond ωH = 4ζ.</p>
 "##;
 
-/// The HTML page. `availability` is [`fidelity_availability`]'s result (fmu-build computes it).
+/// The HTML page of the FMU without a scene resource. `availability` is
+/// [`fidelity_availability`]'s result (fmu-build computes it).
 pub fn documentation_html(
     bearing: &BearingFile,
     availability: &[(Fidelity, Result<(), String>)],
 ) -> String {
-    let t = table(bearing);
-    let guid = crate::description::guid(bearing);
-    let info = crate::description::model_info(bearing);
+    documentation_html_for(&Base::default_for(bearing), availability)
+}
+
+/// The spalls section: the parameter spalls, the fixed ones, the shared mode, and what the
+/// scene resource fixes.
+fn spalls_html(base: &Base) -> String {
+    let scene = &base.scene;
+    let n = scene.n_defects();
+    let resource = match &base.scene_digest {
+        None => "<p>This FMU has no scene resource: its start values are the default \
+                 scene's (<code>resources/default-scene.toml</code>) on its bearing, with one \
+                 spall (<code>defect.*</code>) and <code>defect2.ring</code> … \
+                 <code>defect4.ring</code> = 0; no waviness, no roughness.</p>\n"
+            .to_string(),
+        Some(d) => format!(
+            "<p>This FMU was made from the scene '{}' (<code>raceway fmu --scene</code>), \
+             shipped as <code>resources/{SCENE_RESOURCE}</code> (SHA-256 <code>{d}</code>, part \
+             of the model description and so of the GUID: an FMU whose resource was edited \
+             refuses to instantiate). Its fidelity, operating point, solver, lumped and full \
+             options, mounting and coupling are the parameters' and inputs' start values; its \
+             spalls 1–4 ({} in the scene) the start values of <code>defect.*</code> … \
+             <code>defect4.*</code>; its spalls 5 and later ({} here), its per-spall modes, \
+             waviness ({}), roughness ({}), pulse and resonator are fixed.</p>\n",
+            esc(&scene.name),
+            n.min(SPALL_SLOTS),
+            n.saturating_sub(SPALL_SLOTS),
+            if scene.waviness.is_some() {
+                "present"
+            } else {
+                "none"
+            },
+            if scene.roughness.is_some() {
+                "present"
+            } else {
+                "none"
+            },
+        ),
+    };
+    format!(
+        "<h2>Spalls (parameters <code>defect.*</code>, <code>defect2.*</code> … \
+         <code>defect4.*</code>)</h2>\n<p>Up to four spalls are parameters: spall 1 is \
+         <code>defect.ring</code>, <code>defect.width</code>, <code>defect.depth</code>, \
+         <code>defect.theta0</code>, <code>defect.ball</code>; spalls 2–4 the same fields under \
+         <code>defect2</code>, <code>defect3</code>, <code>defect4</code> (value references \
+         130–144); a ring of 0 leaves the spall out. The simulation's spalls are the parameter \
+         spalls whose ring is not 0, in this order, then the scene resource's spalls 5 and \
+         later (fixed). <code>defect.mode</code> is the one mode of every spall that has no mode \
+         of its own in the scene resource. Two spalls on one race must not overlap, a spalled \
+         ball must exist, and a spall on a ball needs the lumped level: otherwise \
+         fmi2ExitInitializationMode returns fmi2Error with a message naming the parameters \
+         (e.g. <code>defect2.*</code>). Waviness and roughness are not parameters: they come \
+         from the scene resource only.</p>\n{resource}"
+    )
+}
+
+/// The HTML page of the FMU made from `base`. `availability` is [`fidelity_availability`]'s
+/// result (fmu-build computes it).
+pub fn documentation_html_for(
+    base: &Base,
+    availability: &[(Fidelity, Result<(), String>)],
+) -> String {
+    let bearing = base.bearing();
+    let t = table_for(&base.scene);
+    let guid = crate::description::guid_for(base);
+    let info = crate::description::model_info_for(base);
     let mut h = String::new();
     h.push_str("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
     h.push_str("<title>BallBearing FMU</title>\n<style>body{font-family:sans-serif;max-width:70em;margin:2em auto;line-height:1.4}table{border-collapse:collapse}td,th{border:1px solid #aaa;padding:2px 6px;text-align:left;vertical-align:top}code{background:#f3f3f3}</style>\n</head>\n<body>\n");
     h.push_str(
-        "<h1>BallBearing: high-speed angular-contact ball bearing with a raceway spall</h1>\n",
+        "<h1>BallBearing: high-speed angular-contact ball bearing with raceway and ball spalls</h1>\n",
     );
     h.push_str(&format!(
         "<p>{}. FMI 2.0 Co-Simulation and Model Exchange FMU generated by {} (GUID <code>{}</code>).</p>\n",
@@ -131,7 +194,7 @@ pub fn documentation_html(
         esc(&info.generation_tool),
         esc(&guid)
     ));
-    h.push_str("<p>The FMU simulates the vibration of a ball bearing with a localized spall on one race after Niu, Cao, He and Li (ASME J. Manuf. Sci. Eng. 136 (2014) 041015): given the shaft speed and the external load on the inner ring (inputs; or, in coupling mode motion, the journal's displacement and velocity), it integrates the bearing dynamics with an adaptive explicit Runge–Kutta method to exactly each communication point and returns pedestal accelerations, displacements, contact forces, the bearing reaction on the shaft, the cage speed, and per ball the orbital speed and a flag that is 1 while the ball touches neither race (outputs).</p>\n");
+    h.push_str("<p>The FMU simulates the vibration of a ball bearing with localized spalls (up to four as parameters, more from a scene resource) on its races and balls after Niu, Cao, He and Li (ASME J. Manuf. Sci. Eng. 136 (2014) 041015): given the shaft speed and the external load on the inner ring (inputs; or, in coupling mode motion, the journal's displacement and velocity), it integrates the bearing dynamics with an adaptive explicit Runge–Kutta method to exactly each communication point and returns pedestal accelerations, displacements, contact forces, the bearing reaction on the shaft, the cage speed, and per ball the orbital speed and a flag that is 1 while the ball touches neither race (outputs).</p>\n");
     h.push_str(&format!(
         "<h2>Bearing</h2>\n<p>'{}' with {} balls, ball diameter {} m, pitch diameter {} m, free contact angle {}°. The bearing is read at instantiation from <code>resources/bearing.toml</code>; the number of per-ball outputs follows the ball count, so a different bearing needs a different FMU (<code>cargo run --release -p fmu-build -- --bearing &lt;preset|file.toml&gt;</code>).</p>\n",
         esc(&bearing.name),
@@ -140,6 +203,8 @@ pub fn documentation_html(
         bearing.bearing.pitch_diameter,
         bearing.bearing.contact_angle_free_deg
     ));
+
+    h.push_str(&spalls_html(base));
 
     h.push_str("<h2>Fidelity levels (parameter <code>fidelity</code>)</h2>\n<table>\n<tr><th>code</th><th>level</th><th>what it computes</th><th>in this build</th></tr>\n");
     for (f, avail) in availability {
@@ -224,9 +289,9 @@ pub fn documentation_html(
 
     h.push_str("<h2>Behaviour of the FMU</h2>\n<ul>\n<li>Any number of instances per process, on any threads; no global state. The FMU state can be saved (fmi2GetFMUstate) and serialized; the serialized form is versioned, pointer-free, carries the GUID, and restores bit-identically in another process.</li>\n<li>Non-finite inputs or parameters, values outside the declared ranges and impossible geometry are rejected with fmi2Error and a message naming the variable; an fmi2Set* call with a rejected value applies none of its values. No output is ever returned as NaN with fmi2OK.</li>\n<li>A wrong call sequence returns fmi2Error (\"illegal call sequence\") and has no effect. fmi2Reset returns to the just-instantiated state from any state but Fatal.</li>\n<li>Log categories: logEvents, logSolver, logStatusWarning, logStatusDiscard, logStatusError, logStatusFatal, logAll. Discard, Error and Fatal messages are always passed to the logger.</li>\n<li>fmi2GetDirectionalDerivative is provided in coupling mode motion (see above); fmi2SetRealInputDerivatives, fmi2GetRealOutputDerivatives and fmi2CancelStep return fmi2Error (not supported). All 44 FMI 2.0 functions are exported; a function of the other interface returns fmi2Error with no effect.</li>\n</ul>\n");
 
-    h.push_str("<h2>Limits of validity</h2>\n<ul>\n<li>Rigid rings and balls apart from the Hertz contacts; the pedestal (with the outer ring) is a 2-DOF mass–spring–damper; the spall is a band across the whole groove with a smooth floor and sharp edges.</li>\n<li>Shaft speed ≥ 0 (rotation about +x); the loads must keep the balls loaded enough for the model's kinematic assumptions (an axial preload, as in the default scene, is advisable).</li>\n<li>Defect width must be smaller than the ball diameter; defect depth and width below 0.1 m.</li>\n<li>Outputs in the first ≈20 ms contain the start-up transient from the quasi-static initial state.</li>\n<li>Results agree between communication step sizes within the integrator tolerance (inputs are piecewise constant).</li>\n</ul>\n");
+    h.push_str("<h2>Limits of validity</h2>\n<ul>\n<li>Rigid rings and balls apart from the Hertz contacts; the pedestal (with the outer ring) is a 2-DOF mass–spring–damper; the spall is a band across the whole groove with a smooth floor and sharp edges.</li>\n<li>Shaft speed ≥ 0 (rotation about +x); the loads must keep the balls loaded enough for the model's kinematic assumptions (an axial preload, as in the default scene, is advisable).</li>\n<li>Up to four spalls are parameters (<code>defect.*</code> … <code>defect4.*</code>); more, and waviness and roughness, come fixed from a scene resource (<code>raceway fmu --scene</code>). Each spall's width must be smaller than the ball diameter; depth and width below 0.1 m; spalls on one race must not overlap.</li>\n<li>Outputs in the first ≈20 ms contain the start-up transient from the quasi-static initial state.</li>\n<li>Results agree between communication step sizes within the integrator tolerance (inputs are piecewise constant).</li>\n</ul>\n");
 
-    h.push_str("<h2>Files</h2>\n<ul>\n<li><code>resources/bearing.toml</code>: the bearing of this FMU; <code>resources/presets/</code>: the bearing presets; <code>resources/default-scene.toml</code>: the default scene.</li>\n<li><code>documentation/BallBearing_in.csv</code>, <code>BallBearing_ref.csv</code>, <code>BallBearing_ref.opt</code>: a reference run in cross-check style (inputs, outputs, and StartTime/StopTime/StepSize/RelTol).</li>\n</ul>\n");
+    h.push_str("<h2>Files</h2>\n<ul>\n<li><code>resources/bearing.toml</code>: the bearing of this FMU; <code>resources/scene.toml</code> (an FMU made with <code>--scene</code> only): its base scene; <code>resources/presets/</code>: the bearing presets; <code>resources/default-scene.toml</code>: the default scene.</li>\n<li><code>documentation/BallBearing_in.csv</code>, <code>BallBearing_ref.csv</code>, <code>BallBearing_ref.opt</code>: a reference run in cross-check style (inputs, outputs, and StartTime/StopTime/StepSize/RelTol).</li>\n</ul>\n");
 
     h.push_str("<h2>How to cite</h2>\n<p>Linkai Niu, Hongrui Cao, Zhengjia He, Yamin Li: <i>Dynamic Modeling and Vibration Response Simulation for High Speed Rolling Ball Bearings With Localized Surface Defects in Raceways</i>, ASME Journal of Manufacturing Science and Engineering 136(4), 041015 (2014), doi:10.1115/1.4027334; and the raceway software (version ");
     h.push_str(&esc(&info.version));

@@ -8,19 +8,21 @@
 //! - [`description`]: identifier, default experiment, modelDescription.xml and the GUID.
 //!
 //! The shared library is generic: the bearing is read at `fmi2Instantiate` from
-//! `resources/bearing.toml`, and the GUID is a hash of the model description generated for
-//! that bearing, so an FMU whose XML and resources disagree refuses to instantiate.
+//! `resources/bearing.toml` and the base scene from `resources/scene.toml` when there is one
+//! ([`base`]), and the GUID is a hash of the model description generated for them, so an FMU
+//! whose XML and resources disagree refuses to instantiate.
 //!
 //! [`Simulation`]: raceway::Simulation
 
 pub mod ballbearing;
+pub mod base;
 pub mod description;
 pub mod docs;
 pub mod variables;
 
 pub use description::{
-    guid, model_description_xml, model_info, DEFAULT_START_TIME, DEFAULT_STEP_SIZE,
-    DEFAULT_STOP_TIME, DEFAULT_TOLERANCE, MODEL_IDENTIFIER,
+    guid, guid_for, model_description_xml, model_description_xml_for, model_info, model_info_for,
+    DEFAULT_START_TIME, DEFAULT_STEP_SIZE, DEFAULT_STOP_TIME, DEFAULT_TOLERANCE, MODEL_IDENTIFIER,
 };
 
 fmi2::export_fmi2!(ballbearing::BallBearing);

@@ -5,11 +5,13 @@
 //! move (a new variable takes a new one).
 //!
 //! Value references: inputs 1–4, journal inputs 5–10, transmission-line inputs 11–15, ring
-//! velocity outputs 16–18, parameters 100–128, solver counters 900–902, written out in
-//! [`ROWS`]; the real outputs are 1000 + i, i being the position in
-//! [`raceway::output_table_with_cage`] (their number depends on the bearing's ball count; the
-//! cage block comes last, so the others keep their references).
-//! Start values of inputs and parameters are the default scene's on the FMU's bearing.
+//! velocity outputs 16–18, parameters 100–129, solver counters 900–902, written out in
+//! [`ROWS`]; the parameters of spalls 2–4, 130–144, in [`SPALL_ROWS`]; the real outputs are
+//! 1000 + i, i being the position in [`raceway::output_table_with_cage`] (their number depends
+//! on the bearing's ball count; the cage block comes last, so the others keep their
+//! references).
+//! Start values of inputs and parameters are the base scene's: the default scene on the FMU's
+//! bearing, or the FMU's scene resource (`resources/scene.toml`).
 
 use fmi2::table::Row;
 use fmi2::{
@@ -415,9 +417,9 @@ pub const ROWS: &[VarRow] = &[
         "defect.ring",
         "DefectRing",
         "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race, 3 a ball (defect.ball; lumped level)",
-        |c| c.defect.ring as f64,
+        |c| c.spalls[0].ring as f64,
         |c, v| {
-            c.defect.ring = v as i32;
+            c.spalls[0].ring = v as i32;
             Ok(())
         },
     ),
@@ -428,9 +430,9 @@ pub const ROWS: &[VarRow] = &[
         Some("m"),
         (Some(0.0), Some(0.1)),
         "Spall width along the track w_d (> 0, smaller than the ball diameter)",
-        |c| c.defect.width,
+        |c| c.spalls[0].width,
         |c, v| {
-            c.defect.width = v;
+            c.spalls[0].width = v;
             Ok(())
         },
     ),
@@ -441,9 +443,9 @@ pub const ROWS: &[VarRow] = &[
         Some("m"),
         (Some(0.0), Some(0.1)),
         "Spall depth h_d (> 0)",
-        |c| c.defect.depth,
+        |c| c.spalls[0].depth,
         |c, v| {
-            c.defect.depth = v;
+            c.spalls[0].depth = v;
             Ok(())
         },
     ),
@@ -454,9 +456,9 @@ pub const ROWS: &[VarRow] = &[
         Some("rad"),
         (None, None),
         "Angular position of the spall centre (pi = load-zone centre of a load along -z; inner ring: at shaft angle 0)",
-        |c| c.defect.theta0,
+        |c| c.spalls[0].theta0,
         |c, v| {
-            c.defect.theta0 = v;
+            c.spalls[0].theta0 = v;
             Ok(())
         },
     ),
@@ -789,9 +791,9 @@ pub const ROWS: &[VarRow] = &[
         None,
         (Some(1.0), Some(IMAX)),
         "The spalled ball's number (from 1, at most the bearing's ball count) when defect.ring = 3 (ball)",
-        |c| f64::from(c.defect.ball),
+        |c| f64::from(c.spalls[0].ball),
         |c, v| {
-            c.defect.ball = v as i32;
+            c.spalls[0].ball = v as i32;
             Ok(())
         },
     ),
@@ -800,15 +802,106 @@ pub const ROWS: &[VarRow] = &[
     stat(902, "solver.rhs_evals", "Right-hand-side evaluations since the start", |s| s.rhs_evals),
 ];
 
+/// The scene resource's name in messages (`resources/scene.toml`).
+pub const SCENE_RESOURCE_NAME: &str = "resources/scene.toml";
+
+/// Number of spalls that are parameters: `defect.*` (spall 1) and `defect2.*` … `defect4.*`.
+pub const SPALL_SLOTS: usize = 4;
+
+/// The rows of parameter spall `$k + 1` (`$k` = 1, 2, 3: spalls 2, 3, 4), value references
+/// `$vr` … `$vr + 4`: ring, width, depth, theta0, ball, like `defect.*`.
+macro_rules! spall_rows {
+    ($(($k:literal, $vr:literal, $g:literal, $n:literal)),* $(,)?) => {
+        /// The parameters of spalls 2 … [`SPALL_SLOTS`] (value references 130–144, after every
+        /// older one), listed in the model description after the Model Exchange states so that
+        /// the indices of the older variables (which `ModelStructure` uses) do not move.
+        pub const SPALL_ROWS: &[VarRow] = &[$(
+            choice(
+                $vr,
+                concat!($g, ".ring"),
+                "DefectRing",
+                concat!("Spall ", $n, ": its ring, 0 none (absent), 1 outer race, 2 inner race, 3 a ball (", $g, ".ball; lumped level); the simulation's spalls are defect.* and ", "defect2.* … defect4.* whose ring is not 0, in that order, then the scene resource's spalls 5 and later"),
+                |c| f64::from(c.spalls[$k].ring),
+                |c, v| {
+                    c.spalls[$k].ring = v as i32;
+                    Ok(())
+                },
+            ),
+            param(
+                $vr + 1,
+                concat!($g, ".width"),
+                Real,
+                Some("m"),
+                (Some(0.0), Some(0.1)),
+                concat!("Spall ", $n, ": width along the track w_d (> 0, smaller than the ball diameter)"),
+                |c| c.spalls[$k].width,
+                |c, v| {
+                    c.spalls[$k].width = v;
+                    Ok(())
+                },
+            ),
+            param(
+                $vr + 2,
+                concat!($g, ".depth"),
+                Real,
+                Some("m"),
+                (Some(0.0), Some(0.1)),
+                concat!("Spall ", $n, ": depth h_d (> 0)"),
+                |c| c.spalls[$k].depth,
+                |c, v| {
+                    c.spalls[$k].depth = v;
+                    Ok(())
+                },
+            ),
+            param(
+                $vr + 3,
+                concat!($g, ".theta0"),
+                Real,
+                Some("rad"),
+                (None, None),
+                concat!("Spall ", $n, ": angular position of its centre, as defect.theta0 (two spalls on one ring must not overlap)"),
+                |c| c.spalls[$k].theta0,
+                |c, v| {
+                    c.spalls[$k].theta0 = v;
+                    Ok(())
+                },
+            ),
+            param(
+                $vr + 4,
+                concat!($g, ".ball"),
+                Integer,
+                None,
+                (Some(1.0), Some(IMAX)),
+                concat!("Spall ", $n, ": the spalled ball's number (from 1, at most the bearing's ball count) when ", $g, ".ring = 3 (ball)"),
+                |c| f64::from(c.spalls[$k].ball),
+                |c, v| {
+                    c.spalls[$k].ball = v as i32;
+                    Ok(())
+                },
+            ),
+        )*];
+    };
+}
+
+spall_rows!(
+    (1, 130, "defect2", "2"),
+    (2, 135, "defect3", "3"),
+    (3, 140, "defect4", "4"),
+);
+
+/// Every row: [`ROWS`], then [`SPALL_ROWS`].
+pub fn all_rows() -> impl Iterator<Item = &'static VarRow> {
+    ROWS.iter().chain(SPALL_ROWS)
+}
+
 /// The parameter rows, in value-reference order (the order of the FMU state's parameters).
 pub fn params() -> impl Iterator<Item = &'static VarRow> {
-    ROWS.iter()
-        .filter(|r| matches!(r.access, Access::Param { .. }))
+    all_rows().filter(|r| matches!(r.access, Access::Param { .. }))
 }
 
 /// The row of the variable called `name`.
 pub fn row(name: &str) -> Option<&'static VarRow> {
-    ROWS.iter().find(|r| r.name == name)
+    all_rows().find(|r| r.name == name)
 }
 
 /// Journal input `k` of `j` (see [`Access::Journal`]).
@@ -829,7 +922,7 @@ pub fn journal_set(j: &mut Journal, k: usize, v: f64) {
     }
 }
 
-/// The defect as the FMU's parameters describe it (kept even while `defect.ring = 0`).
+/// A spall as the FMU's parameters describe it (kept even while its ring is 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DefectParams {
     /// 0 none, 1 outer, 2 inner, 3 a ball.
@@ -842,17 +935,22 @@ pub struct DefectParams {
 }
 
 impl DefectParams {
+    /// Spall 1 of `scene` (its size and place those of the default scene's spall when the
+    /// scene has none, with ring 0).
     pub fn from_scene(scene: &Scene) -> Self {
-        let d = scene
-            .defect
-            .clone()
-            .or_else(|| Scene::default_scene().defect);
-        let (width, depth, theta0) = d
-            .as_ref()
+        Self::from_spec(scene.defect.as_ref())
+    }
+
+    /// The parameters of `spec`; `None`: ring 0, with the default scene's spall's size and
+    /// place as the start values of the other fields.
+    pub fn from_spec(spec: Option<&DefectSpec>) -> Self {
+        let fallback = Scene::default_scene().defect;
+        let (width, depth, theta0) = spec
+            .or(fallback.as_ref())
             .map_or((1e-3, 0.2e-3, std::f64::consts::PI), |d| {
                 (d.width, d.depth, d.theta0)
             });
-        let (ring, ball) = match scene.defect.as_ref().map(|d| d.ring) {
+        let (ring, ball) = match spec.map(|d| d.ring) {
             None => (0, 1),
             Some(Site::Outer) => (1, 1),
             Some(Site::Inner) => (2, 1),
@@ -867,7 +965,7 @@ impl DefectParams {
         }
     }
 
-    /// The scene's defect.
+    /// The scene's spall (`None` with ring 0).
     pub fn spec(&self) -> Option<DefectSpec> {
         let ring = match self.ring {
             1 => Site::Outer,
@@ -885,13 +983,30 @@ impl DefectParams {
     }
 }
 
-/// Everything the parameters edit: the scene (bearing, fidelity, solver, ...) and the defect.
+/// The FMU name of parameter spall `slot` (0-based): `defect`, `defect2`, …
+pub fn slot_name(slot: usize) -> String {
+    if slot == 0 {
+        "defect".into()
+    } else {
+        format!("defect{}", slot + 1)
+    }
+}
+
+/// Everything the parameters edit: the scene (bearing, fidelity, solver, ...) and the spalls.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Config {
-    /// The scene (its operating point is replaced by the inputs when the simulation is built).
+    /// The base scene (the default scene on the FMU's bearing, or the scene resource). Its
+    /// operating point is replaced by the inputs and its spalls by [`Config::spall_list`] when
+    /// the simulation is built ([`Config::scene_with_spalls`]).
     pub scene: Scene,
-    /// The defect parameters.
-    pub defect: DefectParams,
+    /// The parameter spalls: `defect.*`, `defect2.*` … `defect4.*`.
+    pub spalls: [DefectParams; SPALL_SLOTS],
+    /// The scene resource's own `mode` of its spalls 1 … 4, kept with the parameter spall of
+    /// the same number (None: the shared `defect.mode`). Fixed.
+    pub slot_modes: [Option<DefectMode>; SPALL_SLOTS],
+    /// The scene resource's spalls 5 and later, with their modes: fixed, after the parameter
+    /// spalls.
+    pub fixed: Vec<(DefectSpec, Option<DefectMode>)>,
     /// `ring.axial_offset` as set (it enters the scene's mounting with `ring.axial` = 2).
     pub axial_offset: f64,
     /// `solver.warn_steps`: integrator steps per communication step above which a step warns
@@ -906,19 +1021,102 @@ pub struct Config {
 pub const DEFAULT_WARN_STEPS: u64 = 100_000;
 
 impl Config {
-    /// The default scene on `bearing`.
+    /// The default scene on `bearing` (the FMU without a scene resource).
     pub fn default_for(bearing: &BearingFile) -> Self {
         let mut scene = Scene::default_scene();
         scene.bearing = bearing.clone();
-        let defect = DefectParams::from_scene(&scene);
+        Self::from_scene(&scene)
+    }
+
+    /// The configuration whose start values and fixed parts are `scene`'s: its spalls 1 … 4
+    /// become the parameter spalls, the later ones stay fixed.
+    pub fn from_scene(scene: &Scene) -> Self {
+        let all: Vec<(&DefectSpec, Option<DefectMode>)> = scene.spalls().collect();
+        let spalls = std::array::from_fn(|k| DefectParams::from_spec(all.get(k).map(|s| s.0)));
+        let slot_modes = std::array::from_fn(|k| all.get(k).and_then(|s| s.1));
+        let fixed = all
+            .iter()
+            .skip(SPALL_SLOTS)
+            .map(|&(d, m)| (d.clone(), m))
+            .collect();
         let axial_offset = scene.mounting.axial_offset.unwrap_or(0.0);
         Self {
-            scene,
-            defect,
+            scene: scene.clone(),
+            spalls,
+            slot_modes,
+            fixed,
             axial_offset,
             warn_steps: DEFAULT_WARN_STEPS,
             tlm: false,
         }
+    }
+
+    /// The simulation's spalls: the parameter spalls whose ring is not 0, in order, then the
+    /// fixed ones; each with its mode and its FMU name (`defect2`, or for a fixed one
+    /// `defect[k]` of the scene resource).
+    pub fn spall_list(&self) -> Vec<(DefectSpec, Option<DefectMode>, String)> {
+        let params = self
+            .spalls
+            .iter()
+            .zip(self.slot_modes)
+            .enumerate()
+            .filter_map(|(k, (p, m))| p.spec().map(|d| (d, m, slot_name(k))));
+        let fixed = self.fixed.iter().enumerate().map(|(j, (d, m))| {
+            (
+                d.clone(),
+                *m,
+                format!("{SCENE_RESOURCE_NAME}'s defect[{}]", SPALL_SLOTS + j),
+            )
+        });
+        params.chain(fixed).collect()
+    }
+
+    /// The base scene with [`Config::spall_list`] as its spalls (operating point and tolerance
+    /// as in the base scene).
+    pub fn scene_with_spalls(&self) -> Scene {
+        let list = self.spall_list();
+        let mut s = self.scene.clone();
+        let modes: Vec<Option<DefectMode>> = list.iter().map(|l| l.1).collect();
+        s.set_defects(list.into_iter().map(|l| l.0).collect());
+        if modes.iter().any(Option::is_some) {
+            s.defect_modes = modes;
+        }
+        s
+    }
+
+    /// `message` (of the library, about the scene of [`Config::scene_with_spalls`]) with the
+    /// spalls named as the FMU names them: the library's `defect[k]` (several spalls) or
+    /// `defect.` (one) become the parameter group (`defect3.width`) or the fixed spall of the
+    /// scene resource.
+    pub fn name_spalls(&self, message: &str) -> String {
+        let names: Vec<String> = self.spall_list().into_iter().map(|l| l.2).collect();
+        let mut m = message.to_string();
+        if names.len() == 1 {
+            if names[0] != "defect" {
+                for f in ["ring", "width", "depth", "theta0", "ball"] {
+                    m = m.replace(&format!("defect.{f}"), &format!("{}.{f}", names[0]));
+                }
+            }
+            return m;
+        }
+        // Placeholders first, so that a new name is never renamed again.
+        for k in 0..names.len() {
+            m = m
+                .replace(&format!("defect[{k}]."), &format!("\u{1}{k}\u{2}"))
+                .replace(&format!("defect[{k}]"), &format!("\u{1}{k}\u{3}"));
+        }
+        for (k, n) in names.iter().enumerate() {
+            // A parameter spall is its group of parameters, a fixed one its scene entry.
+            let bare = if n.starts_with("defect") {
+                format!("{n}.*")
+            } else {
+                n.clone()
+            };
+            m = m
+                .replace(&format!("\u{1}{k}\u{2}"), &format!("{n}."))
+                .replace(&format!("\u{1}{k}\u{3}"), &bare);
+        }
+        m
     }
 
     /// The value of the parameter `name` (Integers as exact f64); `None` if there is none.
@@ -1080,10 +1278,18 @@ pub fn enumerations() -> Vec<EnumerationType> {
     ]
 }
 
-/// The full table of the FMU built on `bearing`: [`ROWS`] with the default scene's start
-/// values, and the real outputs (1000 + i) before the solver counters.
+/// The full table of the FMU built on `bearing` without a scene resource: [`table_for`] the
+/// default scene on it.
 pub fn table(bearing: &BearingFile) -> Vec<Entry> {
-    let cfg = Config::default_for(bearing);
+    table_for(&Config::default_for(bearing).scene)
+}
+
+/// The full table of the FMU whose base scene is `scene`: [`ROWS`] with the scene's start
+/// values, the real outputs (1000 + i) before the solver counters, the Model Exchange states,
+/// then [`SPALL_ROWS`].
+pub fn table_for(scene: &Scene) -> Vec<Entry> {
+    let cfg = Config::from_scene(scene);
+    let bearing = &scene.bearing;
     let inputs = cfg.scene.operating;
     let journal = Journal::default();
     let enums = enumerations();
@@ -1198,6 +1404,7 @@ pub fn table(bearing: &BearingFile) -> Vec<Entry> {
             role: Access::Derivative(i),
         });
     }
+    t.extend(SPALL_ROWS.iter().map(entry));
     t
 }
 
@@ -1218,9 +1425,9 @@ mod tests {
         let (nx, _) = raceway::model_exchange_capacity(z);
         assert_eq!(
             t.len(),
-            ROWS.len() + output_table_with_cage(z).len() + 2 * nx
+            ROWS.len() + SPALL_ROWS.len() + output_table_with_cage(z).len() + 2 * nx
         );
-        assert_eq!(params().count(), 30);
+        assert_eq!(params().count(), 30 + 5 * (SPALL_SLOTS - 1));
         for e in &t {
             if let (Start::Real(x), Some(lo)) = (&e.var.start, e.var.min) {
                 assert!(*x >= lo, "{}", e.var.name);
@@ -1245,7 +1452,7 @@ mod tests {
         let t = table(&b);
         let enums = enumerations();
         let choices: Vec<&Entry> = t.iter().filter(|e| e.var.ty == Enumeration).collect();
-        assert_eq!(choices.len(), 7);
+        assert_eq!(choices.len(), 7 + (SPALL_SLOTS - 1));
         let mut cfg = Config::default_for(&b);
         for e in choices {
             let v = &e.var;

@@ -39,5 +39,5 @@ fn released_variables_keep_their_value_references_and_attributes() {
         }
         checked += 1;
     }
-    assert_eq!(checked, 119 + 2 * 142);
+    assert_eq!(checked, 119 + 2 * 142 + 2 + 15);
 }
