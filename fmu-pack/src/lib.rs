@@ -504,10 +504,9 @@ pub fn scene_arg(path: &str) -> Result<Source, String> {
         .file_name()
         .map_or(path.into(), |n| n.to_string_lossy());
     let scene_text = format!(
-        "# The base scene of this FMU: {file_name} as packed by raceway {}, its bearing the
-         # bearing resource beside it. Its values are the parameters' start values and the fixed
-         # configuration; editing it needs a new model description (repack the FMU).
-{body}",
+        "# The base scene of this FMU: {file_name} as packed by raceway {}, its bearing the\n\
+         # bearing resource beside it. Its values are the parameters' start values and the fixed\n\
+         # configuration; editing it needs a new model description (repack the FMU).\n{body}",
         env!("CARGO_PKG_VERSION")
     );
     let base = base_of(&bearing_text, Some(&scene_text), path)?;
@@ -532,7 +531,8 @@ fn preset_text(name: &str) -> Result<String, String> {
 pub fn source_arg(bearing: Option<&str>, scene: Option<&str>) -> Result<Source, String> {
     match (bearing, scene) {
         (Some(_), Some(_)) => Err(
-            "--bearing and --scene are exclusive: the scene names its bearing (its `bearing`              key); to use another bearing, write a scene that names it"
+            "--bearing and --scene are exclusive: the scene names its bearing (its `bearing` \
+             key); to use another bearing, write a scene that names it"
                 .into(),
         ),
         (_, Some(s)) => scene_arg(s),
