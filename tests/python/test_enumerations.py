@@ -15,13 +15,18 @@ BEARING = {
     "lumped.cage_speed": ("CageSpeed", ["traction", "outer_race_control"]),
     "ring.axial": ("AxialMounting", ["load", "located", "located_offset"]),
     "cage": ("Cage", ["none", "rigid"]),
+    # spalls 2-4 (issue 23): the same type as defect.ring
+    "defect2.ring": ("DefectRing", ["none", "outer", "inner", "ball"]),
+    "defect3.ring": ("DefectRing", ["none", "outer", "inner", "ball"]),
+    "defect4.ring": ("DefectRing", ["none", "outer", "inner", "ball"]),
 }
 ROTOR = {
     "disk.axial": ("DiskAxial", ["lateral", "with_journal"]),
 }
 # Value references from before the switches were Enumerations: they never move.
 BEARING_VRS = {"fidelity": 100, "defect.ring": 102, "defect.mode": 106,
-               "solver.method": 120, "lumped.cage_speed": 123, "ring.axial": 125, "cage": 128}
+               "solver.method": 120, "lumped.cage_speed": 123, "ring.axial": 125, "cage": 128,
+               "defect2.ring": 130, "defect3.ring": 135, "defect4.ring": 140}
 
 
 def switches(path):
