@@ -761,3 +761,94 @@ pub fn read_template(path: &Path) -> Result<Template, String> {
     }
     Ok(Template { binaries })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/scenes");
+
+    /// A temporary folder, removed on drop.
+    struct Dir(std::path::PathBuf);
+    impl Dir {
+        fn new(tag: &str) -> Self {
+            let p =
+                std::env::temp_dir().join(format!("fmu-pack-test-{tag}-{}", std::process::id()));
+            std::fs::create_dir_all(&p).unwrap();
+            Self(p)
+        }
+    }
+    impl Drop for Dir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// The packed scene is the scene as `raceway simulate` reads it, its bearing the resource.
+    #[test]
+    fn a_scene_packs_as_the_same_scene_on_its_bearing_resource() {
+        let path = format!("{EXAMPLES}/two-spalls.toml");
+        let s = source_arg(None, Some(&path)).unwrap();
+        assert_eq!(s.base.scene, Scene::load(Path::new(&path)).unwrap());
+        let text = s.scene_text.as_deref().unwrap();
+        assert!(
+            text.lines().any(|l| l == "bearing = \"bearing.toml\""),
+            "{text}"
+        );
+        assert_eq!(s.bearing_text, PRESETS[0].1);
+        assert!(s.base.scene_digest.is_some());
+        // Without --scene: the default scene on the bearing, no scene resource.
+        let plain = source_arg(Some("cwru-6205-de"), None).unwrap();
+        assert!(plain.scene_text.is_none() && plain.base.scene_digest.is_none());
+        assert_eq!(plain.base.bearing().name, "cwru-6205-de");
+        let e = source_arg(Some("cwru-6205-de"), Some(&path)).err().unwrap();
+        assert!(e.contains("exclusive"), "{e}");
+    }
+
+    /// A bearing named by a path relative to the scene, or written inline, is packed as
+    /// bearing.toml and read back the same.
+    #[test]
+    fn a_scene_bearing_by_path_or_inline_becomes_the_bearing_resource() {
+        let d = Dir::new("bearing");
+        let cwru = PRESETS
+            .iter()
+            .find(|(n, _)| *n == "cwru-6205-de")
+            .unwrap()
+            .1;
+        std::fs::create_dir_all(d.0.join("b")).unwrap();
+        std::fs::write(d.0.join("b/mine.toml"), cwru).unwrap();
+        let default = std::fs::read_to_string(format!("{EXAMPLES}/default.toml")).unwrap();
+        let by_path = default.replace("bearing = \"niu2014-table1\"", "bearing = \"b/mine.toml\"");
+        std::fs::write(d.0.join("by-path.toml"), &by_path).unwrap();
+        let mut inline: toml::Table = toml::from_str(&default).unwrap();
+        inline.insert(
+            "bearing".into(),
+            toml::Value::Table(toml::from_str(cwru).unwrap()),
+        );
+        std::fs::write(d.0.join("inline.toml"), toml::to_string(&inline).unwrap()).unwrap();
+        let want = BearingFile::load("cwru-6205-de").unwrap();
+        for f in ["by-path.toml", "inline.toml"] {
+            let s = scene_arg(&d.0.join(f).to_string_lossy()).unwrap();
+            assert_eq!(*s.base.bearing(), want, "{f}");
+            assert_eq!(
+                BearingFile::from_toml_str(&s.bearing_text, f).unwrap(),
+                want,
+                "{f}"
+            );
+        }
+    }
+
+    /// A scene the FMU cannot run is refused before anything is written, naming the field.
+    #[test]
+    fn an_impossible_scene_is_refused_naming_the_field() {
+        let d = Dir::new("bad");
+        let ball = std::fs::read_to_string(format!("{EXAMPLES}/ball-spall.toml")).unwrap();
+        let p = d.0.join("ball-15.toml");
+        std::fs::write(&p, ball.replace("ball = 1", "ball = 15")).unwrap();
+        let e = scene_arg(&p.to_string_lossy()).err().unwrap();
+        assert!(
+            e.contains("defect.ball") && e.contains("ball-15.toml"),
+            "{e}"
+        );
+    }
+}
