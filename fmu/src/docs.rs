@@ -196,7 +196,7 @@ pub fn documentation_html_for(
     ));
     h.push_str("<p>The FMU simulates the vibration of a ball bearing with localized spalls (up to four as parameters, more from a scene resource) on its races and balls after Niu, Cao, He and Li (ASME J. Manuf. Sci. Eng. 136 (2014) 041015): given the shaft speed and the external load on the inner ring (inputs; or, in coupling mode motion, the journal's displacement and velocity), it integrates the bearing dynamics with an adaptive explicit Runge–Kutta method to exactly each communication point and returns pedestal accelerations, displacements, contact forces, the bearing reaction on the shaft, the cage speed, and per ball the orbital speed and a flag that is 1 while the ball touches neither race (outputs).</p>\n");
     h.push_str(&format!(
-        "<h2>Bearing</h2>\n<p>'{}' with {} balls, ball diameter {} m, pitch diameter {} m, free contact angle {}°. The bearing is read at instantiation from <code>resources/bearing.toml</code>; the number of per-ball outputs follows the ball count, so a different bearing needs a different FMU (<code>cargo run --release -p fmu-build -- --bearing &lt;preset|file.toml&gt;</code>).</p>\n",
+        "<h2>Bearing</h2>\n<p>'{}' with {} balls, ball diameter {} m, pitch diameter {} m, free contact angle {}°. The bearing is read at instantiation from <code>resources/bearing.toml</code>; the number of per-ball outputs follows the ball count, so a different bearing needs a different FMU (<code>raceway fmu --bearing &lt;preset|file.toml&gt;</code>, or <code>raceway fmu --scene &lt;scene.toml&gt;</code> for a scene's bearing with the scene as the FMU's base).</p>\n",
         esc(&bearing.name),
         bearing.bearing.z,
         bearing.bearing.ball_diameter,

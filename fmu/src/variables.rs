@@ -944,7 +944,11 @@ impl DefectParams {
     /// The parameters of `spec`; `None`: ring 0, with the default scene's spall's size and
     /// place as the start values of the other fields.
     pub fn from_spec(spec: Option<&DefectSpec>) -> Self {
-        let fallback = Scene::default_scene().defect;
+        // (the default scene is parsed only for an absent spall)
+        let fallback = spec
+            .is_none()
+            .then(|| Scene::default_scene().defect)
+            .flatten();
         let (width, depth, theta0) = spec
             .or(fallback.as_ref())
             .map_or((1e-3, 0.2e-3, std::f64::consts::PI), |d| {

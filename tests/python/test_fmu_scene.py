@@ -52,6 +52,9 @@ def test_the_scene_fmu_is_valid_and_starts_from_the_scene(scene_fmu):
     with zipfile.ZipFile(scene_fmu) as z:
         packed = tomllib.loads(z.read("resources/scene.toml").decode())
         bearing = tomllib.loads(z.read("resources/bearing.toml").decode())
+        html = z.read("documentation/index.html").decode()
+    assert "This FMU was made from the scene" in html and "two-spalls" in html
+    assert "<code>defect2.*</code>" in html
     assert packed["bearing"] == "bearing.toml"
     assert bearing["name"] == "niu2014-table1"
     assert [d["theta0"] for d in packed["defect"]] == [2.3562, 3.9270]
