@@ -448,3 +448,86 @@ fn impossible_parameter_spalls_are_refused_naming_the_parameter() {
         assert!(words.iter().all(|w| m.contains(w)), "{words:?}: {m}");
     }
 }
+
+/// Every Real output (as bits) at communication points `k0 + 1` … `k0 + n` (steps of [`STEP`]).
+fn steps(c: Fmi2Component, base: &Base, k0: usize, n: usize) -> Vec<Vec<u64>> {
+    let vrs = real_outputs(base);
+    let mut rows = Vec::new();
+    // SAFETY: c is a live instance; the arrays outlive each call.
+    unsafe {
+        for k in k0..k0 + n {
+            assert_eq!(
+                sh::do_step::<BallBearing>(c, k as f64 * STEP, STEP, 1),
+                Fmi2Status::Ok
+            );
+            let mut v = vec![f64::NAN; vrs.len()];
+            assert_eq!(
+                sh::get_real::<BallBearing>(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr()),
+                Fmi2Status::Ok
+            );
+            rows.push(v.iter().map(|x| x.to_bits()).collect());
+        }
+    }
+    rows
+}
+
+/// The serialized FMU state of a scene FMU carries the spall parameters (defect3.theta0 moved)
+/// and restores into a fresh instance of the same FMU, whose fixed spall 5 comes from its own
+/// scene resource: the continuation is bit-equal.
+#[test]
+fn the_fmu_state_carries_the_spall_parameters_of_a_scene_fmu() {
+    let mut text = example_as_resource("default.toml");
+    let at = text.find("[defect]").unwrap();
+    let end = text[at..].find("[solver]").unwrap() + at;
+    let spalls: String = [0.5, 1.7, 2.9, 4.1, 5.3]
+        .iter()
+        .map(|t| {
+            format!(
+                "[[defect]]\nring = \"outer\"\nwidth = 1.0e-3\ndepth = 0.2e-3\ntheta0 = {t}\n\n"
+            )
+        })
+        .collect();
+    text.replace_range(at..end, &spalls);
+    let res = Resources::new(Some(&text));
+    let log = LogCapture::new();
+    let (c, base) = initialized(&log, Some(&res), &[], &[("defect3.theta0", 3.1)])
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    steps(c, &base, 0, 10);
+    let mut st: Fmi2FmuState = std::ptr::null_mut();
+    let mut size = 0usize;
+    // SAFETY: c is a live instance; the state pointer and size are written by the calls.
+    let bytes = unsafe {
+        assert_eq!(sh::get_fmu_state::<BallBearing>(c, &mut st), Fmi2Status::Ok);
+        assert_eq!(
+            sh::serialized_fmu_state_size::<BallBearing>(c, st, &mut size),
+            Fmi2Status::Ok
+        );
+        let mut bytes: Vec<Fmi2Byte> = vec![0; size];
+        assert_eq!(
+            sh::serialize_fmu_state::<BallBearing>(c, st, bytes.as_mut_ptr(), size),
+            Fmi2Status::Ok
+        );
+        bytes
+    };
+    let first = steps(c, &base, 10, 10);
+    let (fresh, _) = initialized(&log, Some(&res), &[], &[]).unwrap_or_else(|e| panic!("{e:?}"));
+    let mut st2: Fmi2FmuState = std::ptr::null_mut();
+    // SAFETY: fresh is a live instance; bytes holds `size` bytes of a serialized state.
+    unsafe {
+        assert_eq!(
+            sh::deserialize_fmu_state::<BallBearing>(fresh, bytes.as_ptr(), size, &mut st2),
+            Fmi2Status::Ok
+        );
+        assert_eq!(sh::set_fmu_state::<BallBearing>(fresh, st2), Fmi2Status::Ok);
+    }
+    let mut theta = 0.0;
+    // SAFETY: fresh is a live instance; one value.
+    unsafe { sh::get_real::<BallBearing>(fresh, &vr_of(&base, "defect3.theta0"), 1, &mut theta) };
+    assert_eq!(theta, 3.1);
+    assert_eq!(steps(fresh, &base, 10, 10), first);
+    // SAFETY: live instances, each freed once.
+    unsafe {
+        sh::free_instance::<BallBearing>(c);
+        sh::free_instance::<BallBearing>(fresh);
+    }
+}
