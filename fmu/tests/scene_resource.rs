@@ -62,6 +62,23 @@ fn example_as_resource(name: &str) -> String {
     text.replace("bearing = \"niu2014-table1\"", "bearing = \"bearing.toml\"")
 }
 
+/// The default scene as a resource with five outer spalls at 0.5, 1.7, 2.9, 4.1, 5.3 rad.
+fn five_outer_spalls() -> String {
+    let mut text = example_as_resource("default.toml");
+    let at = text.find("[defect]").unwrap();
+    let end = text[at..].find("[solver]").unwrap() + at;
+    let spalls: String = [0.5, 1.7, 2.9, 4.1, 5.3]
+        .iter()
+        .map(|t| {
+            format!(
+                "[[defect]]\nring = \"outer\"\nwidth = 1.0e-3\ndepth = 0.2e-3\ntheta0 = {t}\n\n"
+            )
+        })
+        .collect();
+    text.replace_range(at..end, &spalls);
+    text
+}
+
 fn example(name: &str) -> Scene {
     Scene::load(&Path::new(REPO).join("examples/scenes").join(name)).unwrap()
 }
@@ -263,20 +280,7 @@ fn defect2_parameters_equal_the_two_spall_scene() {
 /// one included, as the library's scene without it.
 #[test]
 fn spalls_beyond_four_are_fixed_and_follow_the_parameter_spalls() {
-    let theta = [0.5, 1.7, 2.9, 4.1, 5.3];
-    let mut text = example_as_resource("default.toml");
-    let at = text.find("[defect]").unwrap();
-    let end = text[at..].find("[solver]").unwrap() + at;
-    let spalls: String = theta
-        .iter()
-        .map(|t| {
-            format!(
-                "[[defect]]\nring = \"outer\"\nwidth = 1.0e-3\ndepth = 0.2e-3\ntheta0 = {t}\n\n"
-            )
-        })
-        .collect();
-    text.replace_range(at..end, &spalls);
-    let res = Resources::new(Some(&text));
+    let res = Resources::new(Some(&five_outer_spalls()));
     let base = res.base();
     assert_eq!(base.scene.n_defects(), 5);
     let starts: Vec<String> = table_for(&base.scene)
@@ -476,19 +480,7 @@ fn steps(c: Fmi2Component, base: &Base, k0: usize, n: usize) -> Vec<Vec<u64>> {
 /// scene resource: the continuation is bit-equal.
 #[test]
 fn the_fmu_state_carries_the_spall_parameters_of_a_scene_fmu() {
-    let mut text = example_as_resource("default.toml");
-    let at = text.find("[defect]").unwrap();
-    let end = text[at..].find("[solver]").unwrap() + at;
-    let spalls: String = [0.5, 1.7, 2.9, 4.1, 5.3]
-        .iter()
-        .map(|t| {
-            format!(
-                "[[defect]]\nring = \"outer\"\nwidth = 1.0e-3\ndepth = 0.2e-3\ntheta0 = {t}\n\n"
-            )
-        })
-        .collect();
-    text.replace_range(at..end, &spalls);
-    let res = Resources::new(Some(&text));
+    let res = Resources::new(Some(&five_outer_spalls()));
     let log = LogCapture::new();
     let (c, base) = initialized(&log, Some(&res), &[], &[("defect3.theta0", 3.1)])
         .unwrap_or_else(|e| panic!("{e:?}"));
