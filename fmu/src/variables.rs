@@ -416,7 +416,7 @@ pub const ROWS: &[VarRow] = &[
         102,
         "defect.ring",
         "DefectRing",
-        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race, 3 a ball (defect.ball; lumped level)",
+        "Spalled ring: 0 none (healthy), 1 outer race, 2 inner race, 3 a ball (defect.ball; not at the quasi-static level)",
         |c| c.spalls[0].ring as f64,
         |c, v| {
             c.spalls[0].ring = v as i32;
@@ -820,7 +820,7 @@ macro_rules! spall_rows {
                 $vr,
                 concat!($g, ".ring"),
                 "DefectRing",
-                concat!("Spall ", $n, ": its ring, 0 none (absent), 1 outer race, 2 inner race, 3 a ball (", $g, ".ball; lumped level); the simulation's spalls are defect.* and ", "defect2.* … defect4.* whose ring is not 0, in that order, then the scene resource's spalls 5 and later"),
+                concat!("Spall ", $n, ": its ring, 0 none (absent), 1 outer race, 2 inner race, 3 a ball (", $g, ".ball; not at the quasi-static level); the simulation's spalls are defect.* and ", "defect2.* … defect4.* whose ring is not 0, in that order, then the scene resource's spalls 5 and later"),
                 |c| f64::from(c.spalls[$k].ring),
                 |c, v| {
                     c.spalls[$k].ring = v as i32;
@@ -1226,7 +1226,7 @@ pub fn enumerations() -> Vec<EnumerationType> {
                 (0, "none", "No spall (healthy bearing)"),
                 (1, "outer", "Spall on the outer race"),
                 (2, "inner", "Spall on the inner race"),
-                (3, "ball", "Spall on a ball (defect.ball; lumped level)"),
+                (3, "ball", "Spall on a ball (defect.ball; not at the quasi-static level)"),
             ],
         ),
         ty(

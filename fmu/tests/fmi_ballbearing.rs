@@ -1784,38 +1784,48 @@ fn a_contact_damping_far_beyond_critical_is_refused_at_initialization() {
 }
 
 /// A spall on a ball: `defect.ring = 3` with `defect.ball`; the ball must exist and the level
-/// must carry it (the lumped level), or fmi2ExitInitializationMode fails naming why.
+/// must carry it (every dynamic level: kinematic, lumped, reduced, full), or
+/// fmi2ExitInitializationMode fails naming why.
 #[test]
-fn a_spall_on_a_ball_runs_at_the_lumped_level_and_is_refused_where_it_cannot() {
+fn a_spall_on_a_ball_runs_at_the_dynamic_levels_and_is_refused_where_it_cannot() {
     let b = BearingFile::default_preset();
-    let h = H::new();
-    let (c, s) = configured(
-        &h,
-        &b,
-        &[("fidelity", 2), ("defect.ring", 3), ("defect.ball", 2)],
-        &[],
-    );
-    assert_eq!(s, Fmi2Status::Ok, "{}", h.last());
-    // SAFETY: c is a live instance.
-    unsafe {
-        assert_eq!(
-            sh::do_step::<BallBearing>(c, 0.0, 2e-3, 1),
-            Fmi2Status::Ok,
-            "{}",
-            h.last()
+    for fidelity in [0, 2, 3, 4] {
+        let h = H::new();
+        let (c, s) = configured(
+            &h,
+            &b,
+            &[
+                ("fidelity", fidelity),
+                ("defect.ring", 3),
+                ("defect.ball", 2),
+            ],
+            &[],
         );
+        assert_eq!(s, Fmi2Status::Ok, "fidelity {fidelity}: {}", h.last());
+        // SAFETY: c is a live instance.
+        unsafe {
+            assert_eq!(
+                sh::do_step::<BallBearing>(c, 0.0, 1e-3, 1),
+                Fmi2Status::Ok,
+                "fidelity {fidelity}: {}",
+                h.last()
+            );
+        }
+        assert!(real(c, &b, "pedestal.a.z").is_finite());
+        // SAFETY: c is a live instance, freed once.
+        unsafe { sh::free_instance::<BallBearing>(c) };
     }
-    assert!(real(c, &b, "pedestal.a.z").is_finite());
-    // SAFETY: c is a live instance, freed once.
-    unsafe { sh::free_instance::<BallBearing>(c) };
     for (ints, words) in [
         (
             vec![("fidelity", 2), ("defect.ring", 3), ("defect.ball", 15)],
             ["defect.ball", "balls 1 to 14"],
         ),
         (
-            vec![("fidelity", 4), ("defect.ring", 3), ("defect.ball", 1)],
-            ["spall on a ball", "levels that do: lumped"],
+            vec![("fidelity", 1), ("defect.ring", 3), ("defect.ball", 1)],
+            [
+                "spall on a ball",
+                "levels that do: kinematic, lumped, reduced, full",
+            ],
         ),
     ] {
         let h = H::new();

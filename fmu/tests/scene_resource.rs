@@ -334,8 +334,8 @@ fn a_bad_scene_resource_fails_instantiate_naming_the_file_and_the_field() {
         ),
         (ball.replace("ball = 1", "ball = 15"), vec!["ball", "14"]),
         (
-            ball.replace("fidelity = \"lumped\"", "fidelity = \"full\""),
-            vec!["spall on a ball", "levels that do: lumped"],
+            ball.replace("fidelity = \"lumped\"", "fidelity = \"quasi_static\""),
+            vec!["spall on a ball", "levels that do: kinematic, lumped, reduced, full"],
         ),
         (
             two.replace("bearing = \"bearing.toml\"", "bearing = \"cwru-6205-de\""),
@@ -426,7 +426,7 @@ fn impossible_parameter_spalls_are_refused_naming_the_parameter() {
             vec!["defect3.ball", "14"],
         ),
         (
-            vec![("fidelity", 4), ("defect2.ring", 3)],
+            vec![("fidelity", 1), ("defect2.ring", 3)],
             vec![],
             vec!["defect2.*", "spall on a ball"],
         ),
