@@ -424,8 +424,9 @@ mod tests {
         sw.closed[2] = [false, true];
         let contacts: Vec<_> = (0..6).map(|i| sw.mode_sign(i).unwrap()).collect();
         assert_eq!(contacts, [1.0, 1.0, 1.0, -1.0, -1.0, 1.0]);
-        // Ball 2 in slot 1's zone on the − half, ball 3 in its blend.
+        // Ball 2 in slot 1's zone on the − half, ball 3 on the − half in its blend.
         sw.sides[3 + 1] = -1.0;
+        sw.sides[3 + 2] = -1.0;
         sw.in_blend[3 + 2] = true;
         let b = 6 + 9;
         assert_eq!(sw.mode_sign(b), Some(-1.0), "ball 1 outside: edge");
@@ -436,9 +437,15 @@ mod tests {
             Some(-1.0),
             "ball 2 on the − half: centre"
         );
+        assert_eq!(
+            sw.mode_sign(b + 5),
+            Some(-1.0),
+            "ball 3 on the − half: centre"
+        );
         assert_eq!(sw.mode_sign(b + 6), Some(1.0), "ball 1 out of the blend");
         assert_eq!(sw.mode_sign(b + 8), Some(-1.0), "ball 3 in the blend");
         // Slot 0 untouched: every ball outside, no blend.
+        assert_eq!(sw.mode_sign(6), Some(-1.0), "the first spall function");
         assert_eq!(sw.mode_sign(6 + 2), Some(-1.0));
         assert_eq!(sw.mode_sign(6 + 3), Some(1.0));
         assert_eq!(sw.mode_sign(6 + 6 + 1), Some(1.0));
