@@ -335,7 +335,10 @@ fn a_bad_scene_resource_fails_instantiate_naming_the_file_and_the_field() {
         (ball.replace("ball = 1", "ball = 15"), vec!["ball", "14"]),
         (
             ball.replace("fidelity = \"lumped\"", "fidelity = \"quasi_static\""),
-            vec!["spall on a ball", "levels that do: kinematic, lumped, reduced, full"],
+            vec![
+                "spall on a ball",
+                "levels that do: kinematic, lumped, reduced, full",
+            ],
         ),
         (
             two.replace("bearing = \"bearing.toml\"", "bearing = \"cwru-6205-de\""),
