@@ -12,18 +12,51 @@ fn advances_and_outputs_do_not_allocate() {
     for level in (0..=4).filter_map(Fidelity::from_code) {
         let mut s = Scene::default_scene();
         s.fidelity = level;
-        let mut sim = Simulation::new(&s).unwrap();
-        let mut o = vec![0.0; sim.output_table().len()];
-        let h = 1e-4;
-        sim.advance(h).unwrap();
-        sim.outputs(&mut o);
-        // 2 ms: spall passes, stops and events on the way at the dynamic levels.
-        let (n, ()) = allocations_during(|| {
-            for k in 2..=20 {
-                sim.advance(k as f64 * h).unwrap();
-                sim.outputs(&mut o);
-            }
-        });
-        assert_eq!(n, 0, "{}: {n} allocations in 19 advances", level.name());
+        no_allocation_in_advances(&s);
     }
+}
+
+#[test]
+fn a_spall_on_a_ball_and_ball_waviness_add_no_allocation() {
+    // The ball spall's direction states and slots, and the balls' reference directions.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/ball-spall.toml");
+    for level in [
+        Fidelity::Kinematic,
+        Fidelity::Lumped,
+        Fidelity::Reduced,
+        Fidelity::Full,
+    ] {
+        let mut s = Scene::load(&path).unwrap();
+        s.fidelity = level;
+        if level != Fidelity::Kinematic {
+            s.waviness = Some(raceway::WavinessSpec {
+                ball: vec![raceway::Harmonic(2.0, 1e-7, 0.0)],
+                ..Default::default()
+            });
+        }
+        no_allocation_in_advances(&s);
+    }
+}
+
+/// 19 advances of 0.1 ms and their outputs after a first one allocate nothing.
+fn no_allocation_in_advances(s: &Scene) {
+    let mut sim = Simulation::new(s).unwrap();
+    let mut o = vec![0.0; sim.output_table().len()];
+    let h = 1e-4;
+    sim.advance(h).unwrap();
+    sim.outputs(&mut o);
+    // 2 ms: spall passes, stops and events on the way at the dynamic levels.
+    let (n, ()) = allocations_during(|| {
+        for k in 2..=20 {
+            sim.advance(k as f64 * h).unwrap();
+            sim.outputs(&mut o);
+        }
+    });
+    assert_eq!(
+        n,
+        0,
+        "{}: {n} allocations in 19 advances",
+        s.fidelity.name()
+    );
 }

@@ -436,18 +436,19 @@ impl KinematicModel {
         if psi < next {
             return Ok(0);
         }
-        let race = match site {
-            Ok((Race::Inner, _)) => "inner-race".to_string(),
-            Ok((Race::Outer, _)) => "outer-race".to_string(),
-            Err(j) => format!("ball-{}", j + 1),
-        };
         // Consecutive thresholds lie 1 ± 0.9 apart (jitter within ±0.45), so about ψ − ψ_next + 1
         // passes are due: far more than allowed is refused before any work.
         let due = (psi - self.entry_thr).floor() + 1.0;
         let too_many = |due: f64, m: &Self| {
+            // (Formatted only here: registering allocates nothing.)
+            let spall = match site {
+                Ok((Race::Inner, _)) => "inner-race spall".to_string(),
+                Ok((Race::Outer, _)) => "outer-race spall".to_string(),
+                Err(j) => format!("spall on ball {} (passing a race)", j + 1),
+            };
             format!(
                 "registering the spall passes up to t = {t} s would take {due:.3e} passes (the \
-                 {race} spall is passed {rate:.6e} times per second at the cage speed {:.6e} \
+                 {spall} is passed {rate:.6e} times per second at the cage speed {:.6e} \
                  rad/s and shaft speed {:.6e} rad/s; next pass number {}), more than the {limit} \
                  allowed",
                 m.table.cage_speed, m.inputs.shaft_speed, m.next_entry
