@@ -147,10 +147,12 @@ def run_raceway(duration, rtol, out_dir, columns="pedestal.a.z,pedestal.a.y"):
 
 
 def raceway_initial_state(out_dir):
-    """raceway's state at t = 0: ring and pedestal positions, the balls' orbital speeds, and each ball's
-    (x, r) recovered from its two contact loads (at rest, Q = K delta^1.5: two deflections, two unknowns).
-    Balls j = 0..13 at azimuth 2 pi j / z (theta_start = 0 without a spall), at rest but for the orbit."""
-    cols = ["ring.x", "ring.y", "ring.z", "pedestal.y", "pedestal.z"]
+    """raceway's state at t = 0, as its full level starts (docs/model.md#initial-state): each ball at its L1
+    position (`raceway static --json`: azimuth theta and (X1, X2) from the outer groove-curvature centre)
+    shifted with the pedestal, at rest but for its orbital speed; the ring and pedestal positions and the
+    balls' orbital speed read from the t = 0 row of a full-level run. Checked: the contact loads and the
+    pedestal accelerations this state gives are those of raceway's t = 0 row."""
+    cols = ["ring.x", "ring.y", "ring.z", "pedestal.y", "pedestal.z", "pedestal.a.y", "pedestal.a.z"]
     cols += [f"ball.orbit_speed[{j}]" for j in range(1, Z + 1)]
     cols += [f"contact.{race}.Q[{j}]" for race in ("inner", "outer") for j in range(1, Z + 1)]
     data, _ = run_raceway(1e-4, 1e-6, out_dir, columns=",".join(cols))
@@ -158,28 +160,25 @@ def raceway_initial_state(out_dir):
     ring = np.array([row["ringx"], row["ringy"], row["ringz"]])
     ped = np.array([0.0, row["pedestaly"], row["pedestalz"]])
     thdot = np.array([row[f"ballorbit_speed{j}"] for j in range(1, Z + 1)])
-    balls = []
-    for j in range(Z):
-        th = 2 * np.pi * j / Z
-        v = thdot[j] * e_th(th)  # per unit radius
-
-        def q_of(p, c, xg, rg, f, k):
-            fvec, delta = contact_force(p, c, xg, rg, f, k)
-            qn = np.linalg.norm(fvec)
-            n = -fvec / qn  # from the ball centre toward the contact
-            return qn + C_BR * (n @ (v * np.hypot(p[1], p[2])))  # Q = K delta^1.5 + c_br n.v at t = 0
-
-        def res(q):
-            p = np.array([q[0], 0, 0]) + q[1] * e_r(th)
-            return [q_of(p, ring, XG_I, RG_I, F_I, K_I) - row[f"contactinnerQ{j + 1}"],
-                    q_of(p, ped, XG_O, RG_O, F_O, K_O) - row[f"contactouterQ{j + 1}"]]
-
-        # the two loads fix the ball only up to a mirror across the line of the groove centres:
-        # start from the frictionless equilibrium to take the branch next to it
-        x, r = fsolve(res, ball_equilibrium(th, ring, ped, thdot[j]), xtol=1e-14)
-        assert max(abs(v) for v in res([x, r])) < 1e-5, "ball position not recovered"
-        balls.append((x, r))
-    return ring, ped, thdot, np.array(balls)
+    l1 = json.loads(subprocess.run([str(raceway_bin()), "static", "--fa", str(FA), "--fr", str(FR), "--speed-rpm",
+                                    str(RPM), "--json"], check=True, capture_output=True, text=True).stdout)
+    balls, f_ped = [], np.array([0.0, -K_P * ped[1], -K_P * ped[2]])
+    for j, b in enumerate(l1["balls"]):
+        x1, x2 = b["x"]
+        p = ped + np.array([XG_O + x1, 0, 0]) + (RG_O + x2) * e_r(b["theta"])
+        r, th = np.hypot(p[1], p[2]), np.arctan2(-p[1], p[2])
+        v = r * thdot[j] * e_th(th)
+        for race, c, xg, rg, f, k in (("inner", ring, XG_I, RG_I, F_I, K_I), ("outer", ped, XG_O, RG_O, F_O, K_O)):
+            fv, _ = contact_force(p, c, xg, rg, f, k)
+            n = -fv / np.linalg.norm(fv)
+            q = np.linalg.norm(fv) + C_BR * (n @ v)
+            assert abs(q - row[f"contact{race}Q{j + 1}"]) < 1e-6 * q, (race, j, q)
+            if race == "outer":
+                f_ped += q * n
+        balls.append((p, v))
+    acc = f_ped / M_P
+    assert abs(acc[1] - row["pedestalay"]) < 1e-4 and abs(acc[2] - row["pedestalaz"]) < 1e-4, acc
+    return ring, ped, thdot, balls
 
 
 # ---------------------------------------------------------------------------------------------- Exudyn
@@ -277,9 +276,11 @@ def build_exudyn(ring0, ped0, thdot, balls0=None, variant="native", friction=0.0
     contacts = {"inner": [], "outer": []}
     for j in range(Z):
         th = 2 * np.pi * j / Z
-        x, r = balls0[j] if balls0 is not None else ball_equilibrium(th, ring0, ped0, thdot[j])
-        p = np.array([x, 0, 0]) + r * e_r(th)
-        v = r * thdot[j] * e_th(th)
+        if balls0 is not None:
+            p, v = balls0[j]
+        else:
+            x, r = ball_equilibrium(th, ring0, ped0, thdot[j])
+            p, v = np.array([x, 0, 0]) + r * e_r(th), r * thdot[j] * e_th(th)
         if native:
             ball = mbs.CreateRigidBody(referencePosition=list(p), initialVelocity=list(v),
                                        nodeType=exu.NodeType.RotationRxyz,
