@@ -756,6 +756,21 @@ def main():
       f"{', '.join(sorted({f'T{n}' for n, *_ in tests}))} found | "
       f"{'all present' if have >= set(range(1, 10)) else 'missing: ' + ', '.join(f'T{n}' for n in range(1, 10) if n not in have)} |")
     w("")
+    # The equal-physics peer (issue 24): written by studies/exudyn_peer.py (Exudyn is a benchmark dependency
+    # only, never in scripts/test.sh or CI); copied here without its title.
+    peer = docs / "research" / "exudyn-peer.md"
+    if peer.exists():
+        body = peer.read_text().splitlines()
+        w('<a id="exudyn-peer"></a>')
+        w("## Equal-physics peer: Exudyn (issue 24)")
+        w("")
+        w("Copied from [research/exudyn-peer.md](research/exudyn-peer.md), which `studies/exudyn_peer.py` writes "
+          "(the command is in its first lines; it is not part of `raceway bench`).")
+        w("")
+        for line in body[1:] if body and body[0].startswith("# ") else body:
+            # its links are relative to docs/research/; its sections go one level down
+            line = "#" + line if line.startswith("## ") else line
+            w(line.replace("](../", "](").replace("](exudyn-peer", "](research/exudyn-peer"))
     (docs / "performance.md").write_text("\n".join(md) + "\n")
     print(f"wrote {docs / 'performance.md'} and charts in {docs}")
 
