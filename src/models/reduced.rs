@@ -377,7 +377,7 @@ impl Model for ReducedModel {
             }
             _ => self
                 .core
-                .ball_spall_state_name(i)
+                .direction_state_name(i)
                 .unwrap_or_else(|| format!("state component {i}")),
         }
     }
@@ -409,7 +409,7 @@ impl Model for ReducedModel {
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
         self.core.cage_nominal(out);
-        self.core.ball_spall_nominal(out);
+        self.core.direction_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -513,6 +513,6 @@ impl Model for ReducedModel {
         c.ring_force = f_ring;
         self.ring_moment_x = m_ring_x;
         self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
-        self.core.ball_spall_rates(y, dydt);
+        self.core.direction_rates(y, dydt);
     }
 }

@@ -530,10 +530,10 @@ impl BallCore {
         (v, d * sign * rate)
     }
 
-    /// The spalls on balls: their direction states' rates u̇ = ω × u (ω the ball's angular
-    /// velocity, inertial), written into `dydt`.
+    /// The direction states' rates u̇ = ω × u (ω the ball's angular velocity, inertial): the
+    /// spalls on balls' and the balls' reference directions, written into `dydt`.
     #[inline]
-    pub fn ball_spall_rates(&self, y: &[f64], dydt: &mut [f64]) {
+    pub fn direction_rates(&self, y: &[f64], dydt: &mut [f64]) {
         for (s, bs) in self.ball_spalls.iter().enumerate() {
             let i = self.lay.spall_dir(s);
             let omega = self.ball_kin(y, bs.ball()).0.omega;
@@ -599,13 +599,13 @@ impl BallCore {
     }
 
     /// Nominal values of the direction states (unit vectors): 1.
-    pub fn ball_spall_nominal(&self, out: &mut [f64]) {
+    pub fn direction_nominal(&self, out: &mut [f64]) {
         let start = self.lay.spall_dir(0);
         out[start..self.lay.dim()].iter_mut().for_each(|v| *v = 1.0);
     }
 
     /// Name of state `i` of the direction blocks, if it is one.
-    pub fn ball_spall_state_name(&self, i: usize) -> Option<String> {
+    pub fn direction_state_name(&self, i: usize) -> Option<String> {
         let start = self.lay.spall_dir(0);
         let refs = self.lay.ball_ref(0);
         if self.lay.ball_refs && i >= refs && i < self.lay.dim() {

@@ -437,7 +437,7 @@ impl Model for FullModel {
             }
             _ => self
                 .core
-                .ball_spall_state_name(i)
+                .direction_state_name(i)
                 .unwrap_or_else(|| format!("state component {i}")),
         }
     }
@@ -475,7 +475,7 @@ impl Model for FullModel {
         out[lay.psi()] = 1.0;
         out[lay.phi()] = 1.0;
         self.core.cage_nominal(out);
-        self.core.ball_spall_nominal(out);
+        self.core.direction_nominal(out);
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -570,7 +570,7 @@ impl Model for FullModel {
             dydt[r + RWY] = 0.0;
             dydt[r + RWZ] = 0.0;
         }
-        c.ball_spall_rates(y, dydt);
+        c.direction_rates(y, dydt);
     }
 
     /// Analytic for frictionless contacts (`ring_translation_jacobian` of `models/balls/ball_contact.rs` per intact
