@@ -1324,3 +1324,96 @@ macro_rules! forward_to_ball_core {
     };
 }
 pub(crate) use forward_to_ball_core;
+
+#[cfg(test)]
+mod tests {
+    use crate::geometry::{Bearing, Race};
+    use crate::models::full::FullModel;
+    use crate::models::Model;
+    use crate::scene::Scene;
+
+    /// The rates the ball levels use for a spall on a ball and for ball waviness are the time
+    /// derivatives of the quantities themselves: central differences along the model's own
+    /// motion (y ± h ẏ) at the start, at both contacts, for a spall 0.37 rad ahead of the outer
+    /// contact (inside the quarter turn where its angle is not clipped there; clipped, with
+    /// rate 0, at the inner one) and an order-3 ball waviness.
+    #[test]
+    fn direction_rates_are_the_derivatives_of_the_angles_and_the_waviness() {
+        let mut sc = Scene::default_scene();
+        sc.fidelity = crate::scene::Fidelity::Full;
+        sc.set_defects(vec![crate::defect::DefectSpec {
+            ring: crate::defect::Site::Ball(2),
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: 1.2,
+        }]);
+        sc.waviness = Some(crate::waviness::WavinessSpec {
+            ball: vec![crate::waviness::Harmonic(3.0, 1e-7, 0.4)],
+            ..Default::default()
+        });
+        let b = Bearing::new(&sc.bearing).unwrap();
+        let mut m = FullModel::new(&sc, &b, &sc.operating).unwrap();
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        let mut f = vec![0.0; n];
+        m.rhs(0.0, &y, &mut f);
+        let h = 1e-8;
+        let at = |k: f64| -> Vec<f64> { y.iter().zip(&f).map(|(v, d)| v + k * h * d).collect() };
+        let (yp, ym) = (at(1.0), at(-1.0));
+        let c = m.core();
+        let j = 1;
+        for race in [Race::Outer, Race::Inner] {
+            let (pose, rc) = match race {
+                Race::Inner => (c.inner_pose(&y), &c.inner),
+                Race::Outer => (c.outer_pose(&y), &c.outer),
+            };
+            let pose_of = |y: &[f64]| match race {
+                Race::Inner => c.inner_pose(y),
+                Race::Outer => c.outer_pose(y),
+            };
+            let kin_of = |y: &[f64]| c.ball_kin(y, j);
+            let (kin, _, _, _, w) = kin_of(&y);
+            let spall = |y: &[f64]| {
+                let (kin, _, _, _, w) = kin_of(y);
+                c.ball_spall_angle(y, 0, race, &kin, &pose_of(y), rc, w)
+            };
+            let (tbd, rate) = c.ball_spall_angle(&y, 0, race, &kin, &pose, rc, w);
+            let fd = (spall(&yp).0 - spall(&ym).0) / (2.0 * h);
+            match race {
+                Race::Outer => {
+                    // The spall 0.37 rad ahead of the contact along e_θ (φ = π/2 − θ0): y_b =
+                    // −(D/2)·φ, negative as for a ball before a raceway spall, which it nears
+                    // (within 1 %: the circle is the spin's, the contact the groove's).
+                    let y_b = c.ball_spalls[0].at(race).along_track(tbd);
+                    let expected = -c.ball_radius * (std::f64::consts::FRAC_PI_2 - 1.2);
+                    assert!(
+                        (y_b - expected).abs() < 0.01 * expected.abs(),
+                        "y_b {y_b}, expected {expected}"
+                    );
+                    assert!(rate.abs() > 1.0, "rate {rate}");
+                }
+                Race::Inner => assert_eq!((tbd, rate), (tbd, 0.0), "clipped there"),
+            }
+            // (The rates leave out the contact normal's own motion beyond the orbit's turn, the
+            // contact angle's drift: 5e-5 of the spall's rate here, 3e-4 of the waviness's,
+            // whose reference direction is a quarter turn from the contact.)
+            assert!(
+                (rate - fd).abs() <= 1e-3 * rate.abs().max(1.0),
+                "{race:?}: spall rate {rate} against {fd}"
+            );
+            let wv = c.waviness.as_ref().unwrap();
+            let wavy = |y: &[f64]| {
+                let (kin, _, _, _, w) = kin_of(y);
+                c.ball_waviness(wv, y, j, race, &kin, &pose_of(y), w)
+            };
+            let (v, d) = wavy(&y);
+            let fd = (wavy(&yp).0 - wavy(&ym).0) / (2.0 * h);
+            assert!(v.abs() <= 1e-7 && d.abs() > 1e-5, "waviness {v}, rate {d}");
+            assert!(
+                (d - fd).abs() <= 1e-3 * d.abs(),
+                "{race:?}: waviness rate {d} against {fd}"
+            );
+        }
+    }
+}
