@@ -17,8 +17,9 @@ fn advances_and_outputs_do_not_allocate() {
 }
 
 #[test]
-fn a_spall_on_a_ball_and_ball_waviness_add_no_allocation() {
-    // The ball spall's direction states and slots, and the balls' reference directions.
+fn a_spall_on_a_ball_adds_no_allocation() {
+    // Its direction states and switch slots at the ball levels, its passes at L0 (ball
+    // waviness: tests/waviness_alloc.rs).
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/ball-spall.toml");
     for level in [
@@ -29,12 +30,6 @@ fn a_spall_on_a_ball_and_ball_waviness_add_no_allocation() {
     ] {
         let mut s = Scene::load(&path).unwrap();
         s.fidelity = level;
-        if level != Fidelity::Kinematic {
-            s.waviness = Some(raceway::WavinessSpec {
-                ball: vec![raceway::Harmonic(2.0, 1e-7, 0.0)],
-                ..Default::default()
-            });
-        }
         no_allocation_in_advances(&s);
     }
 }

@@ -24,12 +24,9 @@ fn distributed_defects_do_not_allocate_in_a_step() {
         s.waviness = Some(WavinessSpec {
             inner: vec![Harmonic(15.0, 0.1e-6, 0.0)],
             outer: vec![Harmonic(13.0, 0.1e-6, 0.0)],
-            // Ball waviness is the lumped level's only (the others refuse it).
-            ball: if level == Fidelity::Lumped {
-                vec![Harmonic(2.0, 0.1e-6, 0.0)]
-            } else {
-                vec![]
-            },
+            // (At the reduced and full levels ball waviness adds each ball's reference
+            // direction to the states.)
+            ball: vec![Harmonic(2.0, 0.1e-6, 0.0)],
             ball_phase_seed: Some(1),
             ball_diameter_deviation: vec![0.1e-6; 14],
         });
