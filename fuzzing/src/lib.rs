@@ -109,7 +109,7 @@ fn allowed(call: &str, s: State) -> bool {
         "fmi2DoStep" => s == StepComplete,
         "fmi2Terminate" => matches!(s, StepComplete | StepFailed),
         "fmi2Reset" => true,
-        "fmi2SetReal" => matches!(s, Instantiated | Init | StepComplete),
+        "fmi2SetReal" | "fmi2SetInteger" => matches!(s, Instantiated | Init | StepComplete),
         "fmi2GetReal" => matches!(s, Init | StepComplete | StepFailed | Terminated | Error),
         "fmi2GetFMUstate" | "fmi2SetFMUstate" | "fmi2FreeFMUstate" => {
             matches!(
@@ -129,7 +129,7 @@ fn finding(what: String) -> Result<(), String> {
 thread_local! {
     /// The default bearing's GUID, Real value references and Real output value references:
     /// made once (the GUID hashes the whole model description).
-    static SESSION_TABLE: (CString, Vec<u32>, Vec<u32>, u32) = {
+    static SESSION_TABLE: (CString, Vec<u32>, Vec<u32>, u32, Vec<u32>) = {
         let b = raceway::BearingFile::default_preset();
         let table = ballbearing_fmu::variables::table(&b);
         let real = |e: &&ballbearing_fmu::variables::Entry| e.var.ty == fmi2::VarType::Real;
@@ -140,6 +140,17 @@ thread_local! {
             .filter(|e| e.var.causality == fmi2::Causality::Output)
             .map(|e| e.var.vr)
             .collect();
+        // The Integer and Enumeration parameters but the step budget (fidelity, spall rings and
+        // balls, seeds, ...).
+        let ints = table
+            .iter()
+            .filter(|e| {
+                matches!(e.var.ty, fmi2::VarType::Integer | fmi2::VarType::Enumeration)
+                    && e.var.causality == fmi2::Causality::Parameter
+                    && e.var.name != "solver.max_steps"
+            })
+            .map(|e| e.var.vr)
+            .collect();
         let guid = CString::new(ballbearing_fmu::guid(&b)).expect("no NUL");
         let budget = table
             .iter()
@@ -147,7 +158,7 @@ thread_local! {
             .expect("solver.max_steps")
             .var
             .vr;
-        (guid, reals, outputs, budget)
+        (guid, reals, outputs, budget, ints)
     };
 }
 
@@ -161,13 +172,15 @@ struct Session {
     outputs: Vec<u32>,
     /// Value reference of solver.max_steps.
     budget: u32,
+    /// Integer and Enumeration parameters (solver.max_steps apart).
+    ints: Vec<u32>,
     /// A saved FMU state and the call state it was saved in.
     saved: Option<(Fmi2FmuState, State)>,
 }
 
 impl Session {
     fn new() -> Result<Self, String> {
-        let (guid, reals, outputs, budget) = SESSION_TABLE.with(Clone::clone);
+        let (guid, reals, outputs, budget, ints) = SESSION_TABLE.with(Clone::clone);
         let log = LogCapture::new();
         // SAFETY: the strings and callbacks outlive the call.
         let c = unsafe {
@@ -192,6 +205,7 @@ impl Session {
             reals,
             outputs,
             budget,
+            ints,
             saved: None,
         };
         s.set_budget()?;
@@ -348,6 +362,15 @@ impl Session {
                         self.finite_outputs()?;
                     }
                     Ok(())
+                }
+                5 if b.u8() < 48 => {
+                    // An Integer parameter (the fidelity level, a spall's ring or ball, ...):
+                    // values around the valid ones, and far out.
+                    let vr = self.ints[b.below(self.ints.len())];
+                    let v = [-1, 0, 1, 2, 3, 4, 5, 14, 15, i32::MAX][b.below(10)];
+                    let st = sh::set_integer::<M>(self.c, &vr, 1, &v);
+                    let to = self.state;
+                    self.check("fmi2SetInteger", st, t0.elapsed().as_secs_f64(), to)
                 }
                 5 => {
                     let vr = if b.u8() < 240 {
