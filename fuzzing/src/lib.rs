@@ -3,7 +3,9 @@
 //!
 //! - [`fmi_calls`]: a random sequence of FMI 2.0 Co-Simulation calls with random arguments
 //!   (NaN and infinite values, unknown value references, NULL arrays with a non-zero length,
-//!   repeated `fmi2FreeFMUstate`) through the BallBearing's C entry points: every call returns
+//!   repeated `fmi2FreeFMUstate`, Integer parameters such as the fidelity level and the spalls'
+//!   rings and balls set around their valid values) through the BallBearing's C entry points:
+//!   every call returns
 //!   a status the standard allows in the state the instance is in (a call the state does not
 //!   allow returns fmi2Error), none takes longer than [`HANG_S`], and no `fmi2DoStep` that
 //!   returns fmi2OK or fmi2Warning leaves a non-finite output. After an fmi2Error the sequence
