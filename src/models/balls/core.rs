@@ -427,7 +427,7 @@ impl BallCore {
     }
 
     /// The angle φ of a direction on ball j (states from `i`, a unit vector but for the
-    /// integration error) from the ball's contact with `race`: from the contact normal n (from
+    /// integration error; its length does not matter) from the ball's contact with `race`: from the contact normal n (from
     /// the ball's centre towards the contact) towards the track direction c2, in their plane,
     /// in (−π, π]; and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and
     /// c2 turn with the orbit). None while the states are not set (the start's solves).
@@ -442,12 +442,13 @@ impl BallCore {
         rc: &RaceConst,
         w: f64,
     ) -> Option<(f64, f64)> {
-        let dir = [y[i], y[i + 1], y[i + 2]];
-        let norm = dot(dir, dir).sqrt();
-        if norm.is_nan() || norm < 0.5 {
+        // φ and its rate do not depend on |u| (atan2 of two of its components, and their
+        // rates over the same squared scale), so u is not normalised.
+        let u = [y[i], y[i + 1], y[i + 2]];
+        let n2 = dot(u, u);
+        if n2.is_nan() || n2 < 0.25 {
             return None;
         }
-        let u = ball_contact::scale(dir, 1.0 / norm);
         let g = ball_contact::groove_pos(kin.p, pose, rc);
         let n = pose.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
         let c2 = pose.to_inertial([0.0, -g.ez, g.ey]);
@@ -456,7 +457,7 @@ impl BallCore {
         let du = ball_contact::cross(w_rel, u);
         let den = a * a + b * b;
         // (Zero only for a direction along the spin axis, far from both contacts.)
-        let rate = if den > 1e-12 {
+        let rate = if den > 1e-12 * n2 {
             (a * dot(du, c2) - b * dot(du, n)) / den
         } else {
             0.0
@@ -1380,6 +1381,12 @@ mod tests {
             };
             let (tbd, rate) = c.ball_spall_angle(&y, 0, race, &kin, &pose, rc, w);
             let fd = (spall(&yp).0 - spall(&ym).0) / (2.0 * h);
+            // The direction counts, not its length (the integration lets |u| drift).
+            let mut y2 = y.clone();
+            let i = c.lay.spall_dir(0);
+            y2[i..i + 3].iter_mut().for_each(|v| *v *= 1.5);
+            let (tbd2, rate2) = c.ball_spall_angle(&y2, 0, race, &kin, &pose, rc, w);
+            assert!((tbd2 - tbd).abs() <= 1e-12 && (rate2 - rate).abs() <= 1e-9 * rate.abs());
             match race {
                 Race::Outer => {
                     // The spall 0.37 rad ahead of the contact along e_θ (φ = π/2 − θ0): y_b =
