@@ -1224,6 +1224,22 @@ impl Simulation {
                     .into(),
             ));
         }
+        // The FMU declares a fixed number of states and indicators per bearing.
+        let (nx, ni) = model_exchange_capacity(self.bearing.z);
+        let (n, m) = (self.state_dim(), self.n_event_functions());
+        if n > nx || m > ni {
+            return Err(SimError::Unsupported(format!(
+                "this scene has {n} continuous states and {m} event indicators at the {} level, \
+                 more than the {nx} and {ni} a Model Exchange FMU of this bearing declares (its \
+                 full level with the cage and one spall): each further raceway spall adds {} \
+                 indicators, each spall on a ball 3 states and {} indicators at the reduced and \
+                 full levels, ball waviness 3 states per ball there; use Co-Simulation for this \
+                 scene, or Model Exchange with one raceway spall",
+                self.scene.fidelity.name(),
+                3 * self.bearing.z,
+                6 * self.bearing.z
+            )));
+        }
         if self.scene.coupling == CouplingMode::Motion && self.model.ring_states().is_none() {
             return Err(SimError::Unsupported(
                 "coupling mode motion in Model Exchange needs a level whose inner ring is a \

@@ -281,6 +281,41 @@ fn the_kinematic_level_and_the_co_simulation_couplings_are_refused_with_reasons(
     ));
     assert!(h.ready(FMI2_MODEL_EXCHANGE, 2, 2).is_none());
     assert!(said("coupling = 2 (tlm) is refused"));
+    // More states or indicators than the FMU declares (a spall on a ball at the full level, a
+    // second raceway spall at the reduced level): refused at the exit, naming Co-Simulation;
+    // the same scenes run in Co-Simulation.
+    for (fidelity, ints) in [
+        (4, [("defect.ring", 3), ("defect.ball", 2)]),
+        (3, [("defect2.ring", 1), ("defect2.ball", 1)]),
+    ] {
+        let refused = |kind| {
+            let c = h.inst(kind);
+            // SAFETY: test importer: live component, the values outlive the calls.
+            unsafe {
+                assert_eq!(
+                    sh::setup_experiment::<M>(c, 0, 0.0, 0.0, 0, 0.0),
+                    Fmi2Status::Ok
+                );
+                for (name, v) in [("fidelity", fidelity)].into_iter().chain(ints) {
+                    assert_eq!(sh::set_integer::<M>(c, &h.vr(name), 1, &v), Fmi2Status::Ok);
+                }
+                if ints[0].0 == "defect2.ring" {
+                    // 90° from spall 1 (at π).
+                    assert_eq!(
+                        sh::set_real::<M>(c, &h.vr("defect2.theta0"), 1, &1.5708),
+                        Fmi2Status::Ok
+                    );
+                }
+                assert_eq!(sh::enter_initialization_mode::<M>(c), Fmi2Status::Ok);
+                let st = sh::exit_initialization_mode::<M>(c);
+                sh::free_instance::<M>(c);
+                st != Fmi2Status::Ok
+            }
+        };
+        assert!(refused(FMI2_MODEL_EXCHANGE), "fidelity {fidelity} {ints:?}");
+        assert!(said("a Model Exchange FMU of this bearing declares") && said("use Co-Simulation"));
+        assert!(!refused(FMI2_CO_SIMULATION), "{}", h.last());
+    }
     // and the kinematic level still runs in Co-Simulation
     let c = h
         .ready(FMI2_CO_SIMULATION, 0, 0)
