@@ -302,7 +302,12 @@ fn the_kinematic_level_and_the_co_simulation_couplings_are_refused_with_reasons(
                 if ints[0].0 == "defect2.ring" {
                     // 90° from spall 1 (at π).
                     assert_eq!(
-                        sh::set_real::<M>(c, &h.vr("defect2.theta0"), 1, &1.5708),
+                        sh::set_real::<M>(
+                            c,
+                            &h.vr("defect2.theta0"),
+                            1,
+                            &std::f64::consts::FRAC_PI_2
+                        ),
                         Fmi2Status::Ok
                     );
                 }
