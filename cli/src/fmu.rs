@@ -102,11 +102,14 @@ pub fn run(args: Args) -> Result<(), String> {
         bearing.name,
         bearing.bearing.z,
         match &source.scene_text {
-            Some(_) => format!(
-                ", base scene '{}' with {} spalls",
-                source.base.scene.name,
-                source.base.scene.n_defects()
-            ),
+            Some(_) => {
+                let n = source.base.scene.n_defects();
+                format!(
+                    ", base scene '{}' with {n} spall{}",
+                    source.base.scene.name,
+                    if n == 1 { "" } else { "s" }
+                )
+            }
             None => String::new(),
         },
         w.guid,

@@ -582,7 +582,7 @@ pub fn write_fmu(out: &Path, p: &Package, log: &dyn Fn(&str)) -> Result<Written,
         .map(|e| e.var)
         .collect();
     log("probing the fidelity levels");
-    let avail = ballbearing_fmu::docs::fidelity_availability(base.bearing());
+    let avail = ballbearing_fmu::docs::fidelity_availability(base);
     let html = ballbearing_fmu::docs::documentation_html_for(base, &avail);
 
     // Cross-check style reference.

@@ -8,14 +8,16 @@ use raceway::models::{level, LEVELS};
 use raceway::{BearingFile, Fidelity, Simulation};
 
 /// Whether each fidelity level runs in this build: (level, availability text). A level is
-/// "available" when a simulation of the default scene at that level can be built and advanced
-/// by 0.1 ms; otherwise the library's message is shown.
-pub fn fidelity_availability(bearing: &BearingFile) -> Vec<(Fidelity, Result<(), String>)> {
+/// "available" when a simulation of the FMU's base scene (the default scene on its bearing, or
+/// its scene resource) at that level can be built and advanced by 0.1 ms; otherwise the
+/// library's message is shown (a spall on a ball at the quasi-static level, waviness at the
+/// kinematic one, ...).
+pub fn fidelity_availability(base: &Base) -> Vec<(Fidelity, Result<(), String>)> {
     LEVELS
         .iter()
         .map(|l| {
             let f = l.fidelity;
-            let mut cfg = Config::default_for(bearing);
+            let mut cfg = Config::from_scene(&base.scene);
             cfg.scene.fidelity = f;
             let r = Simulation::new(&cfg.scene_with_spalls())
                 .and_then(|mut s| s.advance(1e-4))
@@ -36,11 +38,15 @@ fn model_exchange_html(bearing: &BearingFile) -> String {
          <code>BallBearing</code> in both elements): the importer integrates the bearing's \
          states with its own solver, together with the rest of its model.</p>\n<ul>\n\
          <li>Supported: coupling mode force (<code>coupling = 0</code>) at the quasi-static, \
-         lumped, reduced and full levels (<code>fidelity</code> 1&ndash;4). Refused at \
+         lumped, reduced and full levels (<code>fidelity</code> 1&ndash;4), and coupling mode \
+         motion (<code>coupling = 1</code>) at the lumped, reduced and full levels. Refused at \
          fmi2ExitInitializationMode with the reason logged: the kinematic level (its pedestal \
          signal is impulse responses registered spall pass by spall pass, no continuous \
-         dynamics to integrate) and coupling modes motion and tlm (co-simulation devices). \
-         fmi2GetDirectionalDerivative is not provided in Model Exchange.</li>\n\
+         dynamics to integrate), motion coupling at the quasi-static level (an algebraic solve \
+         per journal position), coupling mode tlm (a co-simulation device), and a \
+         scene with more states or indicators than declared below (a second raceway spall, a \
+         spall on a ball or ball waviness at the reduced and full levels: run it in \
+         Co-Simulation). fmi2GetDirectionalDerivative is not provided in Model Exchange.</li>\n\
          <li>States: {nx}, the most any level has on this bearing ({z} balls: the full level's \
          9 per ball + 16), as <code>state[1]</code> &hellip; <code>state[{nx}]</code> (vr 2000 + \
          i) and <code>der(state[i])</code> (vr 3000 + i). A level with fewer states uses the \
