@@ -34,6 +34,13 @@ fn a_spall_on_a_ball_adds_no_allocation() {
     }
 }
 
+#[test]
+fn the_counter_sees_the_allocations_of_its_thread() {
+    // The tests above can fail: a vector made inside is counted.
+    let (n, v) = allocations_during(|| vec![0u8; 64]);
+    assert!(n >= 1 && v.len() == 64, "{n}");
+}
+
 /// 19 advances of 0.1 ms and their outputs after a first one allocate nothing.
 fn no_allocation_in_advances(s: &Scene) {
     let mut sim = Simulation::new(s).unwrap();

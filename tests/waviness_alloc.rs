@@ -1,6 +1,6 @@
 //! A step with waviness, off-size balls and roughness does not allocate, at every level that
-//! carries them (their tables are built with the model). Alone in its test binary: the
-//! counting allocator sees every thread.
+//! carries them (their tables are built with the model). The counting allocator counts the
+//! test's own thread.
 
 use raceway::{Fidelity, Harmonic, RoughnessSpec, Scene, Simulation, TrackRoughness, WavinessSpec};
 #[path = "common/alloc_counter.rs"]
