@@ -441,6 +441,7 @@ impl BallCore {
         pose: &RingPose,
         rc: &RaceConst,
         w: f64,
+        groove: Option<&GroovePos>,
     ) -> Option<(f64, f64)> {
         // φ and its rate do not depend on |u| (atan2 of two of its components, and their
         // rates over the same squared scale), so u is not normalised.
@@ -449,7 +450,11 @@ impl BallCore {
         if n2.is_nan() || n2 < 0.25 {
             return None;
         }
-        let g = ball_contact::groove_pos(kin.p, pose, rc);
+        // (The ball's place in the groove when the caller has it: the same numbers.)
+        let g = match groove {
+            Some(g) => *g,
+            None => ball_contact::groove_pos(kin.p, pose, rc),
+        };
         let n = pose.to_inertial([g.n1, g.n3 * g.ey, g.n3 * g.ez]);
         let c2 = pose.to_inertial([0.0, -g.ez, g.ey]);
         let (a, b) = (dot(u, n), dot(u, c2));
@@ -482,7 +487,8 @@ impl BallCore {
         rc: &RaceConst,
         w: f64,
     ) -> (f64, f64) {
-        let Some((phi, phi_rate)) = self.contact_angle(y, self.lay.spall_dir(s), kin, pose, rc, w)
+        let Some((phi, phi_rate)) =
+            self.contact_angle(y, self.lay.spall_dir(s), kin, pose, rc, w, None)
         else {
             return (3.0, 0.0);
         };
@@ -514,12 +520,14 @@ impl BallCore {
         kin: &BallKin,
         pose: &RingPose,
         w: f64,
+        groove: Option<&GroovePos>,
     ) -> (f64, f64) {
         let rc = match race {
             Race::Inner => &self.inner,
             Race::Outer => &self.outer,
         };
-        let Some((phi, rate)) = self.contact_angle(y, self.lay.ball_ref(j), kin, pose, rc, w)
+        let Some((phi, rate)) =
+            self.contact_angle(y, self.lay.ball_ref(j), kin, pose, rc, w, groove)
         else {
             return (0.0, 0.0);
         };
@@ -631,8 +639,11 @@ impl BallCore {
     /// The distributed defects' added approach at ball j's contact with `race` and its rate
     /// \[m, m/s\] (docs/model.md#distributed): the race's waviness and roughness at the ball's
     /// angle on the ring (the inner ring's own angle: azimuth less shaft angle), which moves
-    /// past the ball at its orbital rate `w` (less the shaft speed on the inner ring), and half
-    /// the ball's diameter deviation. None without distributed defects.
+    /// past the ball at its orbital rate `w` (less the shaft speed on the inner ring), half
+    /// the ball's diameter deviation, and the ball's waviness at the point it touches (`groove`:
+    /// the ball's place in that groove when the caller has it). None without distributed
+    /// defects.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn added_approach(
         &self,
@@ -642,6 +653,7 @@ impl BallCore {
         pose: &RingPose,
         kin: &BallKin,
         w: f64,
+        groove: Option<&GroovePos>,
     ) -> Option<(f64, f64)> {
         if self.waviness.is_none() && self.roughness.is_none() {
             return None;
@@ -657,7 +669,7 @@ impl BallCore {
             a += v + 0.5 * wv.deviation(j);
             r += d;
             if self.lay.ball_refs {
-                let (v, d) = self.ball_waviness(wv, y, j, race, kin, pose, w);
+                let (v, d) = self.ball_waviness(wv, y, j, race, kin, pose, w, groove);
                 a += v;
                 r += d;
             }
@@ -745,7 +757,7 @@ impl BallCore {
                     self.ball_radius,
                     self.c_br,
                     self.spall_view(y, j, ring, w),
-                    self.added_approach(y, j, ring, pose, kin, w),
+                    self.added_approach(y, j, ring, pose, kin, w, Some(&grooves[k])),
                     sw.law(j, k),
                     slip,
                     c,
@@ -780,7 +792,7 @@ impl BallCore {
                 self.c_br,
                 None,
                 self.spall_view(y, j, ring, w),
-                self.added_approach(y, j, ring, pose, &kin, w),
+                self.added_approach(y, j, ring, pose, &kin, w, None),
                 Law::Closed,
             );
             (contact_event(&c), c.q_raw)
@@ -1412,7 +1424,7 @@ mod tests {
             let wv = c.waviness.as_ref().unwrap();
             let wavy = |y: &[f64]| {
                 let (kin, _, _, _, w) = kin_of(y);
-                c.ball_waviness(wv, y, j, race, &kin, &pose_of(y), w)
+                c.ball_waviness(wv, y, j, race, &kin, &pose_of(y), w, None)
             };
             let (v, d) = wavy(&y);
             let fd = (wavy(&yp).0 - wavy(&ym).0) / (2.0 * h);

@@ -337,7 +337,7 @@ impl FullModel {
                 c.ball_radius,
                 c.c_br,
                 c.spall_view(y, j, race, w),
-                c.added_approach(y, j, race, pose, &kin, w),
+                c.added_approach(y, j, race, pose, &kin, w, None),
                 c.sw.law(j, k),
             )
         };
