@@ -377,7 +377,7 @@ impl BallCore {
             .enumerate()
             .find(|(k, d)| d.ring() == race && self.sw.side_of(*k, j) != 0.0)
         else {
-            return self.ball_spall_view(y, j, race, w);
+            return self.ball_spall_view(y, j, race);
         };
         // θ_bd turns with the ball, less the shaft for an inner-race spall.
         let rate = match race {
@@ -404,17 +404,12 @@ impl BallCore {
     /// A spall on ball j over its contact with `race` in the frozen interval (spalls on one
     /// ball do not overlap: at most one), placed by its direction states.
     #[inline(always)]
-    fn ball_spall_view(&self, y: &[f64], j: usize, race: Race, w: f64) -> Option<DefectView<'_>> {
+    fn ball_spall_view(&self, y: &[f64], j: usize, race: Race) -> Option<DefectView<'_>> {
         let (s, bs) =
             self.ball_spalls.iter().enumerate().find(|(s, b)| {
                 b.ball() == j && self.sw.side_of(self.ball_slot(*s, race), j) != 0.0
             })?;
         let k = self.ball_slot(s, race);
-        let kin = self.ball_kin(y, j).0;
-        let (pose, rc) = match race {
-            Race::Inner => (self.inner_pose(y), &self.inner),
-            Race::Outer => (self.outer_pose(y), &self.outer),
-        };
         Some(DefectView {
             defect: bs.at(race),
             side: self.sw.side_of(k, j),
@@ -422,14 +417,14 @@ impl BallCore {
             theta_bd_rate: 0.0,
             a_star: self.defect_a_star[k],
             blend: self.sw.blend_of(k, j),
-            on_ball: Some(self.ball_spall_angle(y, s, race, &kin, &pose, rc, w)),
+            on_ball: Some(self.ball_spall_angle_of(y, s, race, j)),
         })
     }
 
     /// The angle φ of a direction on ball j (states from `i`, a unit vector but for the
-    /// integration error; its length does not matter) from the ball's contact with `race`: from the contact normal n (from
-    /// the ball's centre towards the contact) towards the track direction c2, in their plane,
-    /// in (−π, π]; and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and
+    /// integration error; its length does not matter) from the ball's contact with `race`:
+    /// from the contact normal n (from the ball's centre towards the contact) towards the track
+    /// direction c2, in their plane, in (−π, π]; and its rate, from the ball's spin relative to its orbit, ω − θ̇ e_x (n and
     /// c2 turn with the orbit). None while the states are not set (the start's solves).
     #[allow(clippy::too_many_arguments)]
     #[inline]
@@ -539,23 +534,25 @@ impl BallCore {
         (v, d * sign * rate)
     }
 
+    /// Every direction state block: (its first state, its ball, its spin angle at the start):
+    /// the spalls on balls' (at their θ0), then the balls' reference directions (at 0) when
+    /// the layout has them.
+    fn directions(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let spalls = self.ball_spalls.iter().enumerate();
+        let refs = if self.lay.ball_refs { self.z } else { 0 };
+        spalls
+            .map(|(s, b)| (self.lay.spall_dir(s), b.ball(), b.theta0()))
+            .chain((0..refs).map(|j| (self.lay.ball_ref(j), j, 0.0)))
+    }
+
     /// The direction states' rates u̇ = ω × u (ω the ball's angular velocity, inertial): the
     /// spalls on balls' and the balls' reference directions, written into `dydt`.
     #[inline]
     pub fn direction_rates(&self, y: &[f64], dydt: &mut [f64]) {
-        for (s, bs) in self.ball_spalls.iter().enumerate() {
-            let i = self.lay.spall_dir(s);
-            let omega = self.ball_kin(y, bs.ball()).0.omega;
+        for (i, j, _) in self.directions() {
+            let omega = self.ball_kin(y, j).0.omega;
             let du = ball_contact::cross(omega, [y[i], y[i + 1], y[i + 2]]);
             dydt[i..i + 3].copy_from_slice(&du);
-        }
-        if self.lay.ball_refs {
-            for j in 0..self.z {
-                let i = self.lay.ball_ref(j);
-                let omega = self.ball_kin(y, j).0.omega;
-                let du = ball_contact::cross(omega, [y[i], y[i + 1], y[i + 2]]);
-                dydt[i..i + 3].copy_from_slice(&du);
-            }
         }
     }
 
@@ -567,17 +564,9 @@ impl BallCore {
     /// of the outer contact n_o (the outer contact at θ0 = π/2).
     pub fn init_ball_directions(&mut self) {
         let mut y0 = std::mem::take(&mut self.y0);
-        for (s, bs) in self.ball_spalls.iter().enumerate() {
-            let u = self.circle_point(&y0, bs.ball(), bs.theta0());
-            let i = self.lay.spall_dir(s);
+        for (i, j, psi) in self.directions() {
+            let u = self.circle_point(&y0, j, psi);
             y0[i..i + 3].copy_from_slice(&u);
-        }
-        if self.lay.ball_refs {
-            for j in 0..self.z {
-                let u = self.circle_point(&y0, j, 0.0);
-                let i = self.lay.ball_ref(j);
-                y0[i..i + 3].copy_from_slice(&u);
-            }
         }
         self.y0 = y0;
     }
@@ -826,9 +815,7 @@ impl BallCore {
                     *a = self.ball_spall_angle_of(y, s, race, j);
                 }
                 self.sw.angles = angles;
-                let spalls = std::mem::take(&mut self.ball_spalls);
-                self.sw.update_spall(t, k, spalls[s].at(race));
-                self.ball_spalls = spalls;
+                self.sw.update_spall(t, k, self.ball_spalls[s].at(race));
             }
         }
         let (inner, outer) = (self.inner_pose(y), self.outer_pose(y));
