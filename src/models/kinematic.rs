@@ -72,6 +72,15 @@ struct Mode {
     gain: f64,
 }
 
+/// The scene's one spall as the generator sees it.
+#[derive(Debug, Clone, Copy)]
+enum Fault {
+    /// On a race: its place, extent and drop.
+    Race(SpallSummary),
+    /// On a ball (the module documentation).
+    Ball(BallFault),
+}
+
 /// A spall on a ball as the generator sees it (the module documentation).
 #[derive(Debug, Clone, Copy)]
 struct BallFault {
@@ -93,9 +102,8 @@ pub struct KinematicModel {
     bearing: Bearing,
     table: L1Table,
     inputs: OperatingPoint,
-    defect: Option<SpallSummary>,
-    /// A spall on a ball instead (at most one of the two).
-    ball_fault: Option<BallFault>,
+    /// The spall, if any.
+    fault: Option<Fault>,
     theta_start: f64,
     /// Series Hertz constant of a ball [N/m^1.5].
     k_series: f64,
@@ -164,23 +172,21 @@ impl KinematicModel {
         }
         let q_ref = table.q_max.max(10.0);
         let mode = scene.spalls().next().and_then(|(_, m)| m);
-        let (defect, ball_fault) = match &scene.defect {
+        let fault = match &scene.defect {
             Some(spec) if spec.ring.race().is_none() => {
                 let b = BallSpall::new(spec, bearing, q_ref, mode)?;
-                let fault = BallFault {
+                Some(Fault::Ball(BallFault {
                     ball: b.ball(),
                     theta0: b.theta0(),
                     spin_per_orbit: b.spin_per_orbit(),
                     half: b.half_angle(),
                     drop: [b.at(Race::Outer).max_drop(), b.at(Race::Inner).max_drop()],
-                };
-                (None, Some(fault))
+                }))
             }
-            Some(spec) => (
-                Some(Defect::summary_with_mode(spec, bearing, q_ref, mode)?),
-                None,
-            ),
-            None => (None, None),
+            Some(spec) => Some(Fault::Race(Defect::summary_with_mode(
+                spec, bearing, q_ref, mode,
+            )?)),
+            None => None,
         };
         let mut m = Self {
             bearing: bearing.clone(),
@@ -192,8 +198,7 @@ impl KinematicModel {
             }; 2],
             table,
             inputs: *inputs,
-            defect,
-            ball_fault,
+            fault,
             theta_start: 0.0,
             k_series: bearing.k_series(),
             jitter: scene.lumped.slip_jitter.abs(),
@@ -224,7 +229,9 @@ impl KinematicModel {
 
     /// Ball 0's start azimuth, as at the lumped level (no ball within θ_e + 0.02 rad of the spall).
     fn choose_theta_start(&self) -> f64 {
-        let Some(d) = &self.defect else { return 0.0 };
+        let Some(Fault::Race(d)) = &self.fault else {
+            return 0.0;
+        };
         let clear = d.half_angle() + 0.02;
         let z = self.bearing.z;
         let spacing = TAU / z as f64;
@@ -298,38 +305,37 @@ impl KinematicModel {
     /// Fault phase ψ [ball passes; for a spall on a ball, its meetings with a race] from the
     /// state.
     fn phase(&self, y: &[f64]) -> f64 {
-        if let Some(b) = &self.ball_fault {
-            return (b.theta0 + b.spin_per_orbit * y[CAGE] - FRAC_PI_2) / PI;
-        }
-        let Some(d) = &self.defect else { return 0.0 };
         let z = self.bearing.z as f64;
-        match d.ring() {
-            Race::Outer => z * (self.theta_start + y[CAGE] - d.theta0()) / TAU,
-            Race::Inner => z * (d.theta0() + y[SHAFT] - self.theta_start - y[CAGE]) / TAU,
+        match &self.fault {
+            None => 0.0,
+            Some(Fault::Ball(b)) => (b.theta0 + b.spin_per_orbit * y[CAGE] - FRAC_PI_2) / PI,
+            Some(Fault::Race(d)) => match d.ring() {
+                Race::Outer => z * (self.theta_start + y[CAGE] - d.theta0()) / TAU,
+                Race::Inner => z * (d.theta0() + y[SHAFT] - self.theta_start - y[CAGE]) / TAU,
+            },
         }
     }
 
     /// dψ/dt [passes/s].
     fn phase_rate(&self) -> f64 {
-        if let Some(b) = &self.ball_fault {
-            return b.spin_per_orbit * self.cage_speed() / PI;
-        }
-        let Some(d) = &self.defect else { return 0.0 };
         let z = self.bearing.z as f64;
-        match d.ring() {
-            Race::Outer => z * self.cage_speed() / TAU,
-            Race::Inner => z * (self.inputs.shaft_speed - self.cage_speed()) / TAU,
+        match &self.fault {
+            None => 0.0,
+            Some(Fault::Ball(b)) => b.spin_per_orbit * self.cage_speed() / PI,
+            Some(Fault::Race(d)) => match d.ring() {
+                Race::Outer => z * self.cage_speed() / TAU,
+                Race::Inner => z * (self.inputs.shaft_speed - self.cage_speed()) / TAU,
+            },
         }
     }
 
     /// Half-width of the spall in ball spacings (of a spall on a ball: in half spin turns).
     fn half_width(&self) -> f64 {
-        if let Some(b) = &self.ball_fault {
-            return b.half / PI;
+        match &self.fault {
+            None => 0.0,
+            Some(Fault::Ball(b)) => b.half / PI,
+            Some(Fault::Race(d)) => d.half_angle() * self.bearing.z as f64 / TAU,
         }
-        self.defect
-            .as_ref()
-            .map_or(0.0, |d| d.half_angle() * self.bearing.z as f64 / TAU)
     }
 
     /// Slip jitter of pass n [ball spacings].
@@ -415,11 +421,8 @@ impl KinematicModel {
         limit: u64,
         register: bool,
     ) -> Result<u64, String> {
-        // The spalled ring's, or the spalled ball's (its index from 0).
-        let site = match (&self.defect, &self.ball_fault) {
-            (Some(d), _) => Ok((d.ring(), d.theta0())),
-            (None, Some(b)) => Err(b.ball),
-            (None, None) => return Ok(0),
+        let Some(fault) = self.fault else {
+            return Ok(0);
         };
         let rate = self.phase_rate();
         if rate <= 0.0 {
@@ -441,10 +444,10 @@ impl KinematicModel {
         let due = (psi - self.entry_thr).floor() + 1.0;
         let too_many = |due: f64, m: &Self| {
             // (Formatted only here: registering allocates nothing.)
-            let spall = match site {
-                Ok((Race::Inner, _)) => "inner-race spall".to_string(),
-                Ok((Race::Outer, _)) => "outer-race spall".to_string(),
-                Err(j) => format!("spall on ball {} (passing a race)", j + 1),
+            let spall = match fault {
+                Fault::Race(d) if d.ring() == Race::Inner => "inner-race spall".to_string(),
+                Fault::Race(_) => "outer-race spall".to_string(),
+                Fault::Ball(b) => format!("spall on ball {} (passing a race)", b.ball + 1),
             };
             format!(
                 "registering the spall passes up to t = {t} s would take {due:.3e} passes (the \
@@ -482,13 +485,15 @@ impl KinematicModel {
             }
             let back = (psi - thr) / rate;
             let tk = t - back;
-            let theta = match site {
-                Ok((Race::Inner, theta0)) => theta0 + y[SHAFT] - self.inputs.shaft_speed * back,
-                Ok((Race::Outer, theta0)) => theta0,
+            let theta = match fault {
+                Fault::Race(d) if d.ring() == Race::Inner => {
+                    d.theta0() + y[SHAFT] - self.inputs.shaft_speed * back
+                }
+                Fault::Race(d) => d.theta0(),
                 // The spalled ball's azimuth then.
-                Err(j) => {
+                Fault::Ball(b) => {
                     self.theta_start + y[CAGE] - self.cage_speed() * back
-                        + TAU * j as f64 / self.bearing.z as f64
+                        + TAU * b.ball as f64 / self.bearing.z as f64
                 }
             };
             // cos α here, where a threshold is crossed, not per call (this runs at every sample).
@@ -514,11 +519,10 @@ impl KinematicModel {
                 }
                 passes += 1;
                 // The ball loses ΔQ: the force of the bearing on the pedestal drops by ΔQ e_r.
-                let max_drop = match (&self.defect, &self.ball_fault) {
-                    (Some(d), _) => d.max_drop(),
+                let max_drop = match fault {
+                    Fault::Race(d) => d.max_drop(),
                     // Even passes at the outer race, odd ones at the inner.
-                    (None, Some(b)) => b.drop[usize::from(self.next_entry.rem_euclid(2) == 1)],
-                    (None, None) => break,
+                    Fault::Ball(b) => b.drop[usize::from(self.next_entry.rem_euclid(2) == 1)],
                 };
                 self.dip = self.load_loss(max_drop, theta);
                 self.push_event(tk, -self.dip * e_rz);
@@ -725,14 +729,14 @@ impl Model for KinematicModel {
             // The ball over the spall (or the spalled ball) carries ΔQ less.
             let z = self.bearing.z;
             let spacing = TAU / z as f64;
-            let j = match (&self.defect, &self.ball_fault) {
-                (Some(d), _) => {
+            let j = match &self.fault {
+                Some(Fault::Race(d)) => {
                     let theta_d = self.defect_azimuth(d, y);
                     let rel = wrap(theta_d - self.theta_start - y[CAGE]);
                     Some(((rel / spacing).round() as i64).rem_euclid(z as i64) as usize)
                 }
-                (None, Some(b)) => Some(b.ball),
-                (None, None) => None,
+                Some(Fault::Ball(b)) => Some(b.ball),
+                None => None,
             };
             if let Some(j) = j {
                 o[out::CONTACT_START + j] = (o[out::CONTACT_START + j] - self.dip).max(0.0);
