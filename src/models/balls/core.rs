@@ -15,7 +15,7 @@ use super::layout::{
     RWZ, RX,
 };
 use super::pass::{BallFrame, ContactPass, Loaded, Normal};
-use super::switches::{contact_event, Switches};
+use super::switches::{contact_event, EventOf, Switches};
 use crate::ball_spall::BallSpall;
 use crate::config::DefectMode;
 use crate::defect::{Defect, DefectSpec};
@@ -875,27 +875,21 @@ impl BallCore {
     /// What event function `i` watches: the switches' names, with a spall on a ball's slots
     /// named by its ball and contact.
     pub fn event_name(&self, i: usize) -> String {
-        let name = self.sw.event_name(i);
-        let z = self.z;
         let races = self.defects.len();
-        let Some(slot) = (i >= 2 * z).then(|| (i - 2 * z) / (3 * z)) else {
-            return name;
-        };
-        if slot < races || slot >= races + 2 * self.ball_spalls.len() {
-            return name;
+        match self.sw.event_of(i) {
+            EventOf::Spall { slot, what, .. }
+                if slot >= races && slot < races + 2 * self.ball_spalls.len() =>
+            {
+                let (s, r) = ((slot - races) / 2, (slot - races) % 2);
+                format!(
+                    "the {what} of ball spall {} (on ball {}) at its {} contact",
+                    s + 1,
+                    self.ball_spalls[s].ball() + 1,
+                    ["outer", "inner"][r]
+                )
+            }
+            _ => self.sw.event_name(i),
         }
-        let (s, r) = ((slot - races) / 2, (slot - races) % 2);
-        let what = match (i - 2 * z) % (3 * z) {
-            x if x >= 2 * z => "blend",
-            x if x % 2 == 0 => "edge",
-            _ => "centre",
-        };
-        format!(
-            "the {what} of ball spall {} (on ball {}) at its {} contact",
-            s + 1,
-            self.ball_spalls[s].ball() + 1,
-            ["outer", "inner"][r]
-        )
     }
 
     /// The next kink of the pulse after t, if not after `t_max` (a stop).

@@ -62,6 +62,19 @@ pub struct Switches {
     pub contact_events: Vec<[(f64, f64); 2]>,
 }
 
+/// What an event function watches ([`Switches::event_of`]; balls and slots from 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EventOf {
+    /// The `race` ("inner" or "outer") contact of a ball.
+    Contact { ball: usize, race: &'static str },
+    /// A spall slot's `what` ("edge", "centre" or "blend") for a ball.
+    Spall {
+        slot: usize,
+        ball: usize,
+        what: &'static str,
+    },
+}
+
 /// The contact event function min(δ′, Q/S) of one evaluation (Q unclamped).
 #[inline(always)]
 pub fn contact_event(c: &ContactOut) -> f64 {
@@ -101,9 +114,9 @@ impl Switches {
         2 * self.z + 3 * self.z * spalls.min(self.spalls)
     }
 
-    /// What event function `i` watches (the layout of [`Switches::n_events`]; balls and spalls
-    /// counted from 1).
-    pub fn event_name(&self, i: usize) -> String {
+    /// Where event function `i` sits in the layout of [`Switches::n_events`]: the contact
+    /// of a ball (balls from 0), or what a spall slot watches for a ball.
+    pub fn event_of(&self, i: usize) -> EventOf {
         let z = self.z;
         if i < 2 * z {
             let race = if i.is_multiple_of(2) {
@@ -111,10 +124,10 @@ impl Switches {
             } else {
                 "outer"
             };
-            return format!("the {race} contact of ball {}", i / 2 + 1);
+            return EventOf::Contact { ball: i / 2, race };
         }
-        let (k, r) = ((i - 2 * z) / (3 * z), (i - 2 * z) % (3 * z));
-        let (what, j) = if r < 2 * z {
+        let (slot, r) = ((i - 2 * z) / (3 * z), (i - 2 * z) % (3 * z));
+        let (what, ball) = if r < 2 * z {
             (
                 if r.is_multiple_of(2) {
                     "edge"
@@ -126,7 +139,18 @@ impl Switches {
         } else {
             ("blend", r - 2 * z)
         };
-        format!("ball {} at the {what} of spall {}", j + 1, k + 1)
+        EventOf::Spall { slot, ball, what }
+    }
+
+    /// What event function `i` watches (the layout of [`Switches::n_events`]; balls and spalls
+    /// counted from 1).
+    pub fn event_name(&self, i: usize) -> String {
+        match self.event_of(i) {
+            EventOf::Contact { ball, race } => format!("the {race} contact of ball {}", ball + 1),
+            EventOf::Spall { slot, ball, what } => {
+                format!("ball {} at the {what} of spall {}", ball + 1, slot + 1)
+            }
+        }
     }
 
     /// Frozen spall half of ball j (0 outside every spall's zone; else the half of the first
