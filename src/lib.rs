@@ -35,6 +35,7 @@ mod operating;
 mod roughness;
 mod scene;
 mod simulation;
+mod vecmath;
 mod waviness;
 
 pub mod contact;

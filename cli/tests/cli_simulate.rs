@@ -166,60 +166,6 @@ fn the_run_is_one_undisturbed_advance() {
     }
 }
 
-/// What the one advance removes, measured on a quiet signal (the default bearing healthy,
-/// constant inputs, lumped level): advanced in 100 chunks (the old CLI), the step-control
-/// restarts at the chunk ends raise the pedestal acceleration's spectrum across 0.5-10 kHz,
-/// at the chunk-rate lines (100/duration) and between them alike (2.3x and 2.2x the one
-/// advance's, measured); the one advance (what the CLI writes, the test above) has no line at
-/// the chunk rate above its level between them (0.89x measured).
-#[test]
-fn chunked_advances_raise_the_spectrum_and_one_advance_has_no_chunk_lines() {
-    let mut s = raceway::Scene::load(Path::new(&scene())).unwrap();
-    s.fidelity = raceway::Fidelity::Lumped;
-    s.defect = None;
-    let (duration, chunks) = (0.2, 100);
-    let dt = 1.0 / s.output.sample_rate;
-    let spectrum = |n: usize| {
-        let mut sim = raceway::Simulation::new(&s).unwrap();
-        let k = pedestal_a_z(&sim);
-        let mut x = Vec::new();
-        for c in 1..=n {
-            let end = duration * c as f64 / n as f64;
-            sim.advance_sampled(end, dt, &mut |t, o| {
-                if t >= 0.02 {
-                    x.push(o[k])
-                }
-            })
-            .unwrap();
-        }
-        raceway::signal::amplitude_spectrum(&x, 1.0 / dt, raceway::signal::Window::Hann).unwrap()
-    };
-    let (one, many) = (spectrum(1), spectrum(chunks));
-    let comb = chunks as f64 / duration; // 500 Hz
-    let df = one.freq[1] - one.freq[0];
-    let at = |sp: &raceway::signal::Spectrum, f: f64| {
-        let i = (f / df).round() as usize;
-        sp.value[i - 1..=i + 1].iter().cloned().fold(0.0, f64::max)
-    };
-    let mean = |sp: &raceway::signal::Spectrum, offset: f64| {
-        (1..=20)
-            .map(|h| at(sp, (h as f64 + offset) * comb))
-            .sum::<f64>()
-            / 20.0
-    };
-    let (many_lines, one_lines) = (mean(&many, 0.0), mean(&one, 0.0));
-    let (many_between, one_between) = (mean(&many, 0.5), mean(&one, 0.5));
-    eprintln!(
-        "comb lines: chunked {many_lines:e} (between them {many_between:e}), one advance \
-         {one_lines:e} (between them {one_between:e})"
-    );
-    assert!(
-        many_lines > 1.6 * one_lines && many_between > 1.6 * one_between,
-        "the chunks' restarts raise the spectrum"
-    );
-    assert!(one_lines < 1.2 * one_between, "no comb in the one advance");
-}
-
 /// A run that fails (here its step budget runs out) says up to which time its outputs are in
 /// the file, and the file holds exactly the whole rows up to that time.
 #[test]

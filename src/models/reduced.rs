@@ -152,6 +152,117 @@ fn traction_of(
 }
 
 impl ReducedModel {
+    /// The right-hand side ([`Model::rhs`] runs it compiled for AVX2 where the processor has
+    /// it).
+    #[inline(always)]
+    fn rhs_body(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let c = &mut self.core;
+        let inner = c.inner_pose(y);
+        let outer = c.outer_pose(y);
+        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
+        let (cb, sb) = self.attitude;
+        let mut f_ring: V3 = [0.0; 3];
+        let mut m_ring_x = 0.0;
+        let mut f_outer: V3 = [0.0; 3];
+        let jb = c.ball_inertia;
+        let strip_traction = match (&self.traction, &self.strips) {
+            (Some(curve), Some(strips)) => Some((curve, strips)),
+            _ => None,
+        };
+        // Every ball's normal contacts first, then the strip traction of all loaded contacts
+        // in one batch, then the equations of motion.
+        let mut pass = std::mem::take(&mut c.pass);
+        {
+            let c = &*c;
+            pass.evaluate(
+                c.z,
+                strip_traction,
+                [&inner, &outer],
+                [&c.inner, &c.outer],
+                #[inline(always)]
+                |j| c.ball_azimuth(y, j),
+                #[inline(always)]
+                |j, sc| c.ball_kin_at(y, j, sc),
+                #[inline(always)]
+                |j, kin, w, slip, grooves, out| {
+                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
+                },
+            );
+        }
+        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
+        let touch = c
+            .ball_ball
+            .as_mut()
+            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
+        // Or the cage's pockets and land (docs/model.md#cage).
+        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
+        for j in 0..c.z {
+            let b = c.lay.ball(j);
+            let (kin, er, et, r, w) = pass.frames[j];
+            let (ci, co) = &pass.contacts[j];
+            c.sw.note_stage(t, j, ci, co);
+            // Inside a step the frozen law may give a round-off-small negative force just
+            // before a located loss of contact: report it as 0.
+            c.q_inner[j] = ci.q.max(0.0);
+            c.q_outer[j] = co.q.max(0.0);
+            let (fi, fo, moment) = if strip_traction.is_some() {
+                // Strip traction: the forces include it, the moments are about the ball centre.
+                // Reaction on the inner ring about its axis, as in the full model.
+                let arm = sub(kin.p, inner.p);
+                let f_t = add(ci.f, ci.qn);
+                let m = sub(sub(cross(arm, ci.qn_ring), cross(arm, f_t)), ci.m);
+                m_ring_x += m[0];
+                (ci.f, co.f, add(ci.m, co.m))
+            } else {
+                let (ti, to) = match &self.traction {
+                    Some(curve) => (
+                        traction_of(c.ball_radius, curve, &kin, &inner, ci),
+                        traction_of(c.ball_radius, curve, &kin, &outer, co),
+                    ),
+                    None => (Traction::default(), Traction::default()),
+                };
+                let fi = add(ci.f, ti.f);
+                let arm = sub(add(kin.p, ti.r_cp), inner.p);
+                m_ring_x -= arm[1] * fi[2] - arm[2] * fi[1];
+                (
+                    fi,
+                    add(co.f, to.f),
+                    add(cross(ti.r_cp, ti.f), cross(to.r_cp, to.f)),
+                )
+            };
+            let mut f = add(fi, fo);
+            let mut moment = moment;
+            if let (true, Some(bb)) = (touch, &c.ball_ball) {
+                f = add(f, bb.force[j]);
+            }
+            if let Some(pc) = c
+                .cage
+                .as_ref()
+                .map(|cg| &cg.pockets[j])
+                .filter(|p| p.p > 0.0)
+            {
+                f = add(f, pc.f);
+                moment = add(moment, pc.m);
+            }
+            let es = [cb, -sb * er[1], -sb * er[2]];
+            c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
+            dydt[b + BWS] = dot(moment, es) / jb;
+            // Reactions: −F on the inner ring at the contact point, −F on the outer ring.
+            f_ring = sub(f_ring, fi);
+            f_outer = sub(f_outer, fo);
+        }
+        c.pass = pass;
+        if let Some(r) = cage {
+            f_ring = add(f_ring, r.on_inner);
+            m_ring_x += r.inner_moment[0];
+            f_outer = add(f_outer, r.on_outer);
+        }
+        c.ring_force = f_ring;
+        self.ring_moment_x = m_ring_x;
+        self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
+        self.core.direction_rates(y, dydt);
+    }
+
     /// Builds the model for a scene with the default options.
     pub fn new(
         scene: &Scene,
@@ -413,106 +524,9 @@ impl Model for ReducedModel {
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let c = &mut self.core;
-        let inner = c.inner_pose(y);
-        let outer = c.outer_pose(y);
-        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
-        let (cb, sb) = self.attitude;
-        let mut f_ring: V3 = [0.0; 3];
-        let mut m_ring_x = 0.0;
-        let mut f_outer: V3 = [0.0; 3];
-        let jb = c.ball_inertia;
-        let strip_traction = match (&self.traction, &self.strips) {
-            (Some(curve), Some(strips)) => Some((curve, strips)),
-            _ => None,
-        };
-        // Every ball's normal contacts first, then the strip traction of all loaded contacts
-        // in one batch, then the equations of motion.
-        let mut pass = std::mem::take(&mut c.pass);
-        {
-            let c = &*c;
-            pass.evaluate(
-                c.z,
-                strip_traction,
-                [&inner, &outer],
-                [&c.inner, &c.outer],
-                |j| c.ball_kin(y, j),
-                |j, kin, w, slip, grooves, out| {
-                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
-                },
-            );
-        }
-        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
-        let touch = c
-            .ball_ball
-            .as_mut()
-            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
-        // Or the cage's pockets and land (docs/model.md#cage).
-        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
-        for j in 0..c.z {
-            let b = c.lay.ball(j);
-            let (kin, er, et, r, w) = pass.frames[j];
-            let (ci, co) = &pass.contacts[j];
-            c.sw.note_stage(t, j, ci, co);
-            // Inside a step the frozen law may give a round-off-small negative force just
-            // before a located loss of contact: report it as 0.
-            c.q_inner[j] = ci.q.max(0.0);
-            c.q_outer[j] = co.q.max(0.0);
-            let (fi, fo, moment) = if strip_traction.is_some() {
-                // Strip traction: the forces include it, the moments are about the ball centre.
-                // Reaction on the inner ring about its axis, as in the full model.
-                let arm = sub(kin.p, inner.p);
-                let f_t = add(ci.f, ci.qn);
-                let m = sub(sub(cross(arm, ci.qn_ring), cross(arm, f_t)), ci.m);
-                m_ring_x += m[0];
-                (ci.f, co.f, add(ci.m, co.m))
-            } else {
-                let (ti, to) = match &self.traction {
-                    Some(curve) => (
-                        traction_of(c.ball_radius, curve, &kin, &inner, ci),
-                        traction_of(c.ball_radius, curve, &kin, &outer, co),
-                    ),
-                    None => (Traction::default(), Traction::default()),
-                };
-                let fi = add(ci.f, ti.f);
-                let arm = sub(add(kin.p, ti.r_cp), inner.p);
-                m_ring_x -= arm[1] * fi[2] - arm[2] * fi[1];
-                (
-                    fi,
-                    add(co.f, to.f),
-                    add(cross(ti.r_cp, ti.f), cross(to.r_cp, to.f)),
-                )
-            };
-            let mut f = add(fi, fo);
-            let mut moment = moment;
-            if let (true, Some(bb)) = (touch, &c.ball_ball) {
-                f = add(f, bb.force[j]);
-            }
-            if let Some(pc) = c
-                .cage
-                .as_ref()
-                .map(|cg| &cg.pockets[j])
-                .filter(|p| p.p > 0.0)
-            {
-                f = add(f, pc.f);
-                moment = add(moment, pc.m);
-            }
-            let es = [cb, -sb * er[1], -sb * er[2]];
-            c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
-            dydt[b + BWS] = dot(moment, es) / jb;
-            // Reactions: −F on the inner ring at the contact point, −F on the outer ring.
-            f_ring = sub(f_ring, fi);
-            f_outer = sub(f_outer, fo);
-        }
-        c.pass = pass;
-        if let Some(r) = cage {
-            f_ring = add(f_ring, r.on_inner);
-            m_ring_x += r.inner_moment[0];
-            f_outer = add(f_outer, r.on_outer);
-        }
-        c.ring_force = f_ring;
-        self.ring_moment_x = m_ring_x;
-        self.core.rings(t, y, f_ring, f_outer, psi_rate, dydt);
-        self.core.direction_rates(y, dydt);
+        crate::vecmath::with_avx2(
+            #[inline(always)]
+            || self.rhs_body(t, y, dydt),
+        )
     }
 }

@@ -789,25 +789,39 @@ fn sum_strips(
 /// of dependent square roots and an `exp` per strip ([`strip_sums`]): one contact at a time,
 /// the processor waits on each link. Here every loaded contact of the evaluation is queued
 /// ([`TractionBatch::push`], after `evaluate_normal`) and [`TractionBatch::run`] does each
-/// stage of [`strip_sums`] for all of them in one pass over flat arrays, so that independent
-/// strips of different contacts overlap. Every value is computed by the same operations in
-/// the same order as [`strip_sums`], so the sums are bit for bit the same. The buffers are
-/// sized once ([`TractionBatch::new`]); queuing and running never allocate.
+/// stage of [`strip_sums`] for all of them in one pass over flat arrays laid out pair by pair
+/// (strip pair p of contact c at `p·n + c`, n the contacts queued): each pass runs across the
+/// contacts, four lanes at a time where the processor has AVX2, and each contact's sums still
+/// add its strips in strip order. Every value is computed by the same operations in the same
+/// order as [`strip_sums`], so the sums are bit for bit the same. The buffers are sized once
+/// ([`TractionBatch::new`]); queuing and running never allocate.
 #[derive(Debug, Clone, Default)]
 pub struct TractionBatch {
     len: usize,
     slot: Vec<usize>,
-    sf: Vec<SlipField>,
     frame: Vec<[V3; 3]>,
-    /// Per contact and strip pair (contact c's pairs at `c·h .. (c + 1)·h`, h = ⌈n/2⌉ pairs
-    /// of the rule in use): ζ, u1, u2 of the strip at +ξ and at −ξ.
+    /// The queued slip fields, one array per field (contact c at c).
+    q: Vec<f64>,
+    a: Vec<f64>,
+    rs: Vec<f64>,
+    z0: Vec<f64>,
+    a1: Vec<f64>,
+    a2: Vec<f64>,
+    b1: Vec<f64>,
+    b2: Vec<f64>,
+    spin: Vec<f64>,
+    /// Per strip pair and contact (pair p of contact c at `p·n + c`; h = ⌈strips/2⌉ pairs of
+    /// the rule in use, an odd rule's middle strip the last): ζ, u1, u2 of the strip at +ξ and
+    /// at −ξ.
     zeta: Vec<f64>,
     u1: Vec<f64>,
     u2p: Vec<f64>,
     u2m: Vec<f64>,
-    /// The slip speeds, then κ(u)/u, of the strips at +ξ (the first `len·h`) and at −ξ (the
-    /// next `len·h`): one slice for [`TractionCurve::kappa_over_u_in_place`].
+    /// The slip speeds, then κ(u)/u, of the strips at +ξ (the first `h·n`) and at −ξ (the
+    /// next `h·n`): one slice for [`TractionCurve::kappa_over_u_in_place`].
     kappa: Vec<f64>,
+    /// Each contact's five sums ([`strip_sums`]), one array per sum.
+    sums: [Vec<f64>; 5],
 }
 
 /// Strip pairs per contact at most (an odd rule's middle strip is the last "pair", whose −ξ
@@ -818,16 +832,26 @@ impl TractionBatch {
     /// A batch for up to `contacts` contacts per run.
     pub fn new(contacts: usize) -> Self {
         let v = |k: usize| vec![0.0; k * contacts * PAIRS];
+        let c = || vec![0.0; contacts];
         Self {
             len: 0,
             slot: vec![0; contacts],
-            sf: vec![SlipField::default(); contacts],
             frame: vec![[[0.0; 3]; 3]; contacts],
+            q: c(),
+            a: c(),
+            rs: c(),
+            z0: c(),
+            a1: c(),
+            a2: c(),
+            b1: c(),
+            b2: c(),
+            spin: c(),
             zeta: v(1),
             u1: v(1),
             u2p: v(1),
             u2m: v(1),
             kappa: v(2),
+            sums: [c(), c(), c(), c(), c()],
         }
     }
 
@@ -842,12 +866,20 @@ impl TractionBatch {
     ///
     /// # Panics
     /// When more contacts are queued than [`TractionBatch::new`] was sized for.
-    #[inline]
+    #[inline(always)]
     pub fn push(&mut self, slot: usize, sf: SlipField, frame: [V3; 3]) {
         let i = self.len;
         self.slot[i] = slot;
-        self.sf[i] = sf;
         self.frame[i] = frame;
+        self.q[i] = sf.q;
+        self.a[i] = sf.a;
+        self.rs[i] = sf.rs;
+        self.z0[i] = sf.z0;
+        self.a1[i] = sf.a1;
+        self.a2[i] = sf.a2;
+        self.b1[i] = sf.b1;
+        self.b2[i] = sf.b2;
+        self.spin[i] = sf.s;
         self.len = i + 1;
     }
 
@@ -861,23 +893,54 @@ impl TractionBatch {
         mut each: impl FnMut(usize, &[V3; 3], [f64; 5]),
     ) {
         let n = self.len;
+        self.stages(curve, strips);
+        for c in 0..n {
+            let sums = [
+                self.sums[0][c],
+                self.sums[1][c],
+                self.sums[2][c],
+                self.sums[3][c],
+                self.sums[4][c],
+            ];
+            each(self.slot[c], &self.frame[c], sums);
+        }
+    }
+
+    /// The passes of [`TractionBatch::run`] up to the sums, compiled for AVX2 where the
+    /// processor has it.
+    fn stages(&mut self, curve: &TractionCurve, strips: &Strips) {
+        crate::vecmath::with_avx2(
+            #[inline(always)]
+            || self.stages_body(curve, strips),
+        )
+    }
+
+    #[inline(always)]
+    fn stages_body(&mut self, curve: &TractionCurve, strips: &Strips) {
+        let n = self.len;
         let h = strips.n.div_ceil(2);
         let m = n * h;
-        // Slips of every strip (the first pass of strip_sums).
-        let pairs = self.zeta[..m]
-            .chunks_exact_mut(h)
-            .zip(self.u1[..m].chunks_exact_mut(h))
-            .zip(self.u2p[..m].chunks_exact_mut(h))
-            .zip(self.u2m[..m].chunks_exact_mut(h));
-        for ((((zeta, u1), u2p), u2m), sf) in pairs.zip(&self.sf[..n]) {
-            for (p, (((z, v1), vp), vm)) in zeta
-                .iter_mut()
-                .zip(u1.iter_mut())
-                .zip(u2p.iter_mut())
-                .zip(u2m.iter_mut())
-                .enumerate()
-            {
-                (*z, *v1, *vp, *vm) = pair_slip(sf, strips, p);
+        let np = strips.n / 2;
+        // Each input cut to the n contacts, so that the loops below need no bounds checks and
+        // vectorise.
+        let (q, a, rs, z0) = (&self.q[..n], &self.a[..n], &self.rs[..n], &self.z0[..n]);
+        let (a1, a2, b1, b2) = (&self.a1[..n], &self.a2[..n], &self.b1[..n], &self.b2[..n]);
+        let spin = &self.spin[..n];
+        // Slips of every strip (the first pass of strip_sums, pair_slip's operations).
+        for p in 0..h {
+            let r = p * n..(p + 1) * n;
+            let sp = strips.s[p];
+            let (zeta, u1) = (&mut self.zeta[r.clone()], &mut self.u1[r.clone()]);
+            let (u2p, u2m) = (&mut self.u2p[r.clone()], &mut self.u2m[r]);
+            for c in 0..n {
+                let xi = a[c] * sp;
+                let z = (rs[c] * rs[c] - xi * xi).sqrt() + z0[c];
+                let t = xi * spin[c];
+                let zb2 = z * b2[c];
+                zeta[c] = z;
+                u1[c] = a1[c] + z * b1[c];
+                u2p[c] = (a2[c] + t) - zb2;
+                u2m[c] = (a2[c] - t) - zb2;
             }
         }
         // Slip speeds, then κ(u)/u, over all strips of all contacts at once (an odd rule's
@@ -894,21 +957,49 @@ impl TractionBatch {
             *km = (v + u2m * u2m).sqrt();
         }
         curve.kappa_over_u_in_place(&mut self.kappa[..2 * m]);
-        // Sums, per contact in strip order (the last pass of strip_sums).
-        for c in 0..n {
-            let r = c * h..(c + 1) * h;
-            let sums = sum_strips(
-                self.sf[c].q,
-                self.sf[c].a,
-                strips,
+        // Sums, each contact's in strip order (sum_strips's operations).
+        let [f1, f2, mxi2, mze1, mze2] = &mut self.sums;
+        let (f1, f2, mxi2) = (&mut f1[..n], &mut f2[..n], &mut mxi2[..n]);
+        let (mze1, mze2) = (&mut mze1[..n], &mut mze2[..n]);
+        for v in [&mut *f1, &mut *f2, &mut *mxi2, &mut *mze1, &mut *mze2] {
+            v.fill(0.0);
+        }
+        let (kp, km) = self.kappa[..2 * m].split_at(m);
+        for p in 0..np {
+            let (w, sp) = (strips.w[p], strips.s[p]);
+            let r = p * n..(p + 1) * n;
+            let (zeta, u1) = (&self.zeta[r.clone()], &self.u1[r.clone()]);
+            let (u2p, u2m) = (&self.u2p[r.clone()], &self.u2m[r.clone()]);
+            let (kp, km) = (&kp[r.clone()], &km[r]);
+            for c in 0..n {
+                let qw = -q[c] * w;
+                let (gp, gm) = (qw * kp[c], qw * km[c]);
+                let g1 = (gp + gm) * u1[c];
+                let (g2p, g2m) = (gp * u2p[c], gm * u2m[c]);
+                f1[c] += g1;
+                f2[c] += g2p + g2m;
+                mxi2[c] += a[c] * sp * (g2p - g2m);
+                mze1[c] += zeta[c] * g1;
+                mze2[c] += zeta[c] * (g2p + g2m);
+            }
+        }
+        if strips.n % 2 == 1 {
+            let r = np * n..(np + 1) * n;
+            let w = strips.w[np];
+            let (zeta, u1, u2p) = (
                 &self.zeta[r.clone()],
                 &self.u1[r.clone()],
                 &self.u2p[r.clone()],
-                &self.u2m[r.clone()],
-                &self.kappa[r.clone()],
-                &self.kappa[m + r.start..m + r.end],
             );
-            each(self.slot[c], &self.frame[c], sums);
+            let kp = &kp[r];
+            for c in 0..n {
+                let g = -q[c] * w * kp[c];
+                let (g1, g2) = (g * u1[c], g * u2p[c]);
+                f1[c] += g1;
+                f2[c] += g2;
+                mze1[c] += zeta[c] * g1;
+                mze2[c] += zeta[c] * g2;
+            }
         }
     }
 }

@@ -24,6 +24,7 @@ use crate::models::{out, RingStates, SimError};
 use crate::operating::{OperatingPoint, RingLoad};
 use crate::roughness::Roughness;
 use crate::scene::{Pulse, Scene};
+use crate::vecmath;
 use crate::waviness::Waviness;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -331,10 +332,21 @@ impl BallCore {
     /// Ball j's kinematics and its cylindrical triad (e_r, e_θ), radius and orbital rate.
     #[inline(always)]
     pub fn ball_kin(&self, y: &[f64], j: usize) -> BallFrame {
+        self.ball_kin_at(y, j, vecmath::sin_cos(self.ball_azimuth(y, j)))
+    }
+
+    /// Ball j's azimuth θ_j (the cage angle, the ball's place in the cage and its offset) \[rad\].
+    #[inline(always)]
+    pub fn ball_azimuth(&self, y: &[f64], j: usize) -> f64 {
         let b = self.lay.ball(j);
-        let theta =
-            y[self.lay.psi()] + self.theta_start + TAU * j as f64 / self.z as f64 + y[b + BTH];
-        let (s, c) = theta.sin_cos();
+        y[self.lay.psi()] + self.theta_start + TAU * j as f64 / self.z as f64 + y[b + BTH]
+    }
+
+    /// [`BallCore::ball_kin`] given (sin θ_j, cos θ_j) of [`BallCore::ball_azimuth`] by
+    /// [`vecmath::sin_cos`] (one call per ball, or a batch of them for all balls).
+    #[inline(always)]
+    pub fn ball_kin_at(&self, y: &[f64], j: usize, (s, c): (f64, f64)) -> BallFrame {
+        let b = self.lay.ball(j);
         let er = [0.0, -s, c];
         let et = [0.0, -c, -s];
         let r = self.pitch_radius + y[b + BR];
@@ -735,27 +747,58 @@ impl BallCore {
         grooves: &[GroovePos; 2],
         out: &mut (ContactOut, ContactOut),
     ) -> [Option<Loaded>; 2] {
-        let sw = &self.sw;
-        let normal =
-            |k: usize, pose: &RingPose, race: &RaceConst, ring: Race, c: &mut ContactOut| {
-                ball_contact::evaluate_normal_at(
-                    &grooves[k],
-                    kin,
-                    pose,
-                    race,
-                    self.ball_radius,
-                    self.c_br,
-                    self.spall_view(y, j, ring, w),
-                    self.added_approach(y, j, ring, pose, kin, w, Some(&grooves[k])),
-                    sw.law(j, k),
-                    slip,
-                    c,
-                )
-            };
         [
-            normal(0, inner, &self.inner, Race::Inner, &mut out.0),
-            normal(1, outer, &self.outer, Race::Outer, &mut out.1),
+            self.normal_contact(
+                y,
+                j,
+                kin,
+                w,
+                slip,
+                grooves,
+                (0, inner, &self.inner, Race::Inner),
+                &mut out.0,
+            ),
+            self.normal_contact(
+                y,
+                j,
+                kin,
+                w,
+                slip,
+                grooves,
+                (1, outer, &self.outer, Race::Outer),
+                &mut out.1,
+            ),
         ]
+    }
+
+    /// One of [`BallCore::normal_contacts_into`]'s two contacts: `(k, pose, race, ring)` is
+    /// the contact's index (0 inner, 1 outer), ring pose, race constants and race.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn normal_contact(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        slip: bool,
+        grooves: &[GroovePos; 2],
+        (k, pose, race, ring): (usize, &RingPose, &RaceConst, Race),
+        c: &mut ContactOut,
+    ) -> Option<Loaded> {
+        ball_contact::evaluate_normal_at(
+            &grooves[k],
+            kin,
+            pose,
+            race,
+            self.ball_radius,
+            self.c_br,
+            self.spall_view(y, j, ring, w),
+            self.added_approach(y, j, ring, pose, kin, w, Some(&grooves[k])),
+            self.sw.law(j, k),
+            slip,
+            c,
+        )
     }
 
     /// Contact event functions of ball j, (inner, outer): min(δ′, Q/S) with Q the unclamped

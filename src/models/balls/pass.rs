@@ -8,6 +8,7 @@ use super::ball_contact::{
     self, BallKin, ContactOut, GroovePos, RaceConst, RingPose, SlipField, Strips, TractionBatch, V3,
 };
 use crate::contact::TractionCurve;
+use crate::vecmath;
 
 /// A ball's kinematics with its cylindrical triad (e_r, e_θ), radius and orbital rate, as the
 /// models' `ball_kin` return them.
@@ -25,6 +26,10 @@ pub type Normal = (ContactOut, Option<Loaded>);
 pub struct ContactPass {
     /// Each ball's frame.
     pub frames: Vec<BallFrame>,
+    /// Each ball's azimuth, and its sine and cosine.
+    azimuths: Vec<f64>,
+    sin: Vec<f64>,
+    cos: Vec<f64>,
     /// Each ball's place in the (inner, outer) groove.
     grooves: Vec<[GroovePos; 2]>,
     /// Each ball's (inner, outer) contact, traction included.
@@ -42,6 +47,9 @@ impl ContactPass {
         };
         Self {
             frames: vec![(still, [0.0; 3], [0.0; 3], 0.0, 0.0); z],
+            azimuths: vec![0.0; z],
+            sin: vec![0.0; z],
+            cos: vec![0.0; z],
             grooves: vec![Default::default(); z],
             contacts: vec![Default::default(); z],
             batch: TractionBatch::new(2 * z),
@@ -49,19 +57,22 @@ impl ContactPass {
     }
 
     /// Evaluates the contacts of balls `0..z` with the (inner, outer) rings `rings` and race
-    /// constants `races`: `frame(j)` gives ball j's frame; then every ball's place in both
+    /// constants `races`: `azimuth(j)` gives ball j's azimuth, and `frame(j, (sin, cos))`
+    /// its frame from the azimuth's sine and cosine (computed for all balls at once); then every ball's place in both
     /// grooves ([`ball_contact::groove_pos`]), for all balls at once; then `normals(j, kin, w, slip,
     /// grooves, out)` writes ball j's (inner, outer) normal contacts into `out` and returns the
     /// slip fields of the loaded ones when `slip` (traction on). The strip traction of every
     /// loaded contact follows in one batch.
-    #[allow(clippy::type_complexity)]
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
+    #[inline(always)]
     pub fn evaluate(
         &mut self,
         z: usize,
         traction: Option<(&TractionCurve, &Strips)>,
         rings: [&RingPose; 2],
         races: [&RaceConst; 2],
-        mut frame: impl FnMut(usize) -> BallFrame,
+        mut azimuth: impl FnMut(usize) -> f64,
+        mut frame: impl FnMut(usize, (f64, f64)) -> BallFrame,
         mut normals: impl FnMut(
             usize,
             &BallKin,
@@ -73,8 +84,12 @@ impl ContactPass {
     ) {
         self.batch.clear();
         let slip = traction.is_some();
+        for (j, a) in self.azimuths[..z].iter_mut().enumerate() {
+            *a = azimuth(j);
+        }
+        vecmath::sin_cos_into(&self.azimuths[..z], &mut self.sin, &mut self.cos);
         for (j, f) in self.frames[..z].iter_mut().enumerate() {
-            *f = frame(j);
+            *f = frame(j, (self.sin[j], self.cos[j]));
         }
         for (g, f) in self.grooves[..z].iter_mut().zip(&self.frames[..z]) {
             *g = [

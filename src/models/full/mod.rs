@@ -80,6 +80,108 @@ pub struct FullModel {
 }
 
 impl FullModel {
+    /// The right-hand side ([`Model::rhs`] runs it compiled for AVX2 where the processor has
+    /// it).
+    #[inline(always)]
+    fn rhs_body(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let c = &mut self.core;
+        let inner = c.inner_pose(y);
+        let outer = c.outer_pose(y);
+        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
+        let mut f_ring: V3 = [0.0; 3];
+        let mut m_ring: V3 = [0.0; 3];
+        let mut f_outer: V3 = [0.0; 3];
+        let jb = c.ball_inertia;
+        // Every ball's normal contacts first, then the strip traction of all loaded contacts
+        // in one batch, then the equations of motion.
+        let mut pass = std::mem::take(&mut c.pass);
+        {
+            let c = &*c;
+            pass.evaluate(
+                c.z,
+                self.traction.as_ref().map(|(cv, st)| (cv, st)),
+                [&inner, &outer],
+                [&c.inner, &c.outer],
+                #[inline(always)]
+                |j| c.ball_azimuth(y, j),
+                #[inline(always)]
+                |j, sc| c.ball_kin_at(y, j, sc),
+                #[inline(always)]
+                |j, kin, w, slip, grooves, out| {
+                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
+                },
+            );
+        }
+        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball), or
+        // the cage's pockets and land (docs/model.md#cage).
+        let touch = c
+            .ball_ball
+            .as_mut()
+            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
+        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
+        for j in 0..c.z {
+            let b = c.lay.ball(j);
+            let (kin, er, et, r, w) = pass.frames[j];
+            let (ci, co) = &pass.contacts[j];
+            c.sw.note_stage(t, j, ci, co);
+            // Inside a step the frozen law may give a round-off-small negative force just
+            // before a located loss of contact: report it as 0.
+            c.q_inner[j] = ci.q.max(0.0);
+            c.q_outer[j] = co.q.max(0.0);
+            let mut f = contact::add(ci.f, co.f);
+            let mut mo = contact::add(ci.m, co.m);
+            if let (true, Some(bb)) = (touch, &c.ball_ball) {
+                f = contact::add(f, bb.force[j]);
+            }
+            if let Some(pc) = c
+                .cage
+                .as_ref()
+                .map(|cg| &cg.pockets[j])
+                .filter(|p| p.p > 0.0)
+            {
+                f = contact::add(f, pc.f);
+                mo = contact::add(mo, pc.m);
+            }
+            c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
+            dydt[b + BOM] = mo[0] / jb;
+            dydt[b + BOM + 1] = mo[1] / jb;
+            dydt[b + BOM + 2] = mo[2] / jb;
+            // Reactions: on the inner ring −F_i with moment (r_b − r_r) × (−F_i) − M_i, the
+            // normal part taken with the ring-frame normal (exact conjugate of the tilt).
+            f_ring = sub(f_ring, ci.f);
+            let arm = sub(kin.p, inner.p);
+            let f_t = contact::add(ci.f, ci.qn);
+            m_ring = contact::add(m_ring, cross(arm, ci.qn_ring));
+            m_ring = sub(sub(m_ring, cross(arm, f_t)), ci.m);
+            f_outer = sub(f_outer, co.f);
+        }
+        c.pass = pass;
+        if let Some(r) = cage {
+            f_ring = contact::add(f_ring, r.on_inner);
+            m_ring = contact::add(m_ring, r.inner_moment);
+            f_outer = contact::add(f_outer, r.on_outer);
+        }
+        c.ring_force = f_ring;
+        self.ring_moment = m_ring;
+        let c = &self.core;
+        c.rings(t, y, f_ring, f_outer, psi_rate, dydt);
+        let r = c.lay.ring();
+        let om = c.inputs.shaft_speed;
+        dydt[r + RBY] = y[r + RWY];
+        dydt[r + RBZ] = y[r + RWZ];
+        // The ring's spin carries its own polar inertia; the shaft's tilt inertia and
+        // stiffness act on the tilt (decision D1).
+        dydt[r + RWY] =
+            (m_ring[1] - self.k_tilt * y[r + RBY] - self.i_polar * om * y[r + RWZ]) / self.i_diam;
+        dydt[r + RWZ] =
+            (m_ring[2] - self.k_tilt * y[r + RBZ] + self.i_polar * om * y[r + RWY]) / self.i_diam;
+        if self.lock_tilt {
+            dydt[r + RWY] = 0.0;
+            dydt[r + RWZ] = 0.0;
+        }
+        c.direction_rates(y, dydt);
+    }
+
     /// Builds the model for a scene with the default options.
     pub fn new(
         scene: &Scene,
@@ -479,98 +581,10 @@ impl Model for FullModel {
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let c = &mut self.core;
-        let inner = c.inner_pose(y);
-        let outer = c.outer_pose(y);
-        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
-        let mut f_ring: V3 = [0.0; 3];
-        let mut m_ring: V3 = [0.0; 3];
-        let mut f_outer: V3 = [0.0; 3];
-        let jb = c.ball_inertia;
-        // Every ball's normal contacts first, then the strip traction of all loaded contacts
-        // in one batch, then the equations of motion.
-        let mut pass = std::mem::take(&mut c.pass);
-        {
-            let c = &*c;
-            pass.evaluate(
-                c.z,
-                self.traction.as_ref().map(|(cv, st)| (cv, st)),
-                [&inner, &outer],
-                [&c.inner, &c.outer],
-                |j| c.ball_kin(y, j),
-                |j, kin, w, slip, grooves, out| {
-                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
-                },
-            );
-        }
-        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball), or
-        // the cage's pockets and land (docs/model.md#cage).
-        let touch = c
-            .ball_ball
-            .as_mut()
-            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
-        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
-        for j in 0..c.z {
-            let b = c.lay.ball(j);
-            let (kin, er, et, r, w) = pass.frames[j];
-            let (ci, co) = &pass.contacts[j];
-            c.sw.note_stage(t, j, ci, co);
-            // Inside a step the frozen law may give a round-off-small negative force just
-            // before a located loss of contact: report it as 0.
-            c.q_inner[j] = ci.q.max(0.0);
-            c.q_outer[j] = co.q.max(0.0);
-            let mut f = contact::add(ci.f, co.f);
-            let mut mo = contact::add(ci.m, co.m);
-            if let (true, Some(bb)) = (touch, &c.ball_ball) {
-                f = contact::add(f, bb.force[j]);
-            }
-            if let Some(pc) = c
-                .cage
-                .as_ref()
-                .map(|cg| &cg.pockets[j])
-                .filter(|p| p.p > 0.0)
-            {
-                f = contact::add(f, pc.f);
-                mo = contact::add(mo, pc.m);
-            }
-            c.ball_translation(y, j, f, er, et, r, w, psi_rate, dydt);
-            dydt[b + BOM] = mo[0] / jb;
-            dydt[b + BOM + 1] = mo[1] / jb;
-            dydt[b + BOM + 2] = mo[2] / jb;
-            // Reactions: on the inner ring −F_i with moment (r_b − r_r) × (−F_i) − M_i, the
-            // normal part taken with the ring-frame normal (exact conjugate of the tilt).
-            f_ring = sub(f_ring, ci.f);
-            let arm = sub(kin.p, inner.p);
-            let f_t = contact::add(ci.f, ci.qn);
-            m_ring = contact::add(m_ring, cross(arm, ci.qn_ring));
-            m_ring = sub(sub(m_ring, cross(arm, f_t)), ci.m);
-            f_outer = sub(f_outer, co.f);
-        }
-        c.pass = pass;
-        if let Some(r) = cage {
-            f_ring = contact::add(f_ring, r.on_inner);
-            m_ring = contact::add(m_ring, r.inner_moment);
-            f_outer = contact::add(f_outer, r.on_outer);
-        }
-        c.ring_force = f_ring;
-        self.ring_moment = m_ring;
-        let c = &self.core;
-        c.rings(t, y, f_ring, f_outer, psi_rate, dydt);
-        let r = c.lay.ring();
-        let om = c.inputs.shaft_speed;
-        dydt[r + RBY] = y[r + RWY];
-        dydt[r + RBZ] = y[r + RWZ];
-        // The ring's spin carries its own polar inertia; the shaft's tilt inertia and
-        // stiffness act on the tilt (decision D1).
-        dydt[r + RWY] =
-            (m_ring[1] - self.k_tilt * y[r + RBY] - self.i_polar * om * y[r + RWZ]) / self.i_diam;
-        dydt[r + RWZ] =
-            (m_ring[2] - self.k_tilt * y[r + RBZ] + self.i_polar * om * y[r + RWY]) / self.i_diam;
-        if self.lock_tilt {
-            dydt[r + RWY] = 0.0;
-            dydt[r + RWZ] = 0.0;
-        }
-        c.direction_rates(y, dydt);
+        crate::vecmath::with_avx2(
+            #[inline(always)]
+            || self.rhs_body(t, y, dydt),
+        )
     }
 
     /// Analytic for frictionless contacts (`ring_translation_jacobian` of `models/balls/ball_contact.rs` per intact
