@@ -19,6 +19,7 @@
 #     prints, CSV writing included) and the ratio of the medians. The host is
 #     shared: compare the two columns of one run, not numbers from different runs.
 #
+# An output that differs is named with the relative RMS difference of its pedestal.a.z column.
 # Exit status 1 when an output differs (the timings are printed either way).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -39,6 +40,19 @@ new="$root/target/release/raceway"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
+# How far apart two CSVs' pedestal.a.z columns are: the RMS of the difference over the RMS of
+# the old column, on the rows both have (the row count too, when it differs).
+rms_diff() {
+  paste -d, "$1" "$2" | awk -F, '
+    NR == 1 { h = NF / 2; for (i = 1; i <= h; i++) if ($i == "pedestal.a.z") c = i; next }
+    NF == 2 * h { d = $c - $(c + h); s += d * d; r += $c * $c; n++ }
+    END { printf "pedestal.a.z relative RMS difference %.2e over %d rows", sqrt(s / r), n }'
+  local a b
+  a=$(wc -l <"$1")
+  b=$(wc -l <"$2")
+  [ "$a" = "$b" ] || printf '; %s against %s lines' "$a" "$b"
+}
+
 echo
 echo "== outputs of $short and this checkout"
 status=0
@@ -51,7 +65,7 @@ for scene in sec3.5-outer sec3.5-inner; do
     if cmp -s "$work/old.csv" "$work/new.csv"; then
       echo "$scene $level ($d s): byte-equal ($(wc -l <"$work/new.csv") lines)"
     else
-      echo "$scene $level ($d s): DIFFERENT"
+      echo "$scene $level ($d s): DIFFERENT ($(rms_diff "$work/old.csv" "$work/new.csv"))"
       status=1
     fi
   done
