@@ -21,6 +21,11 @@
 #
 # An output that differs is named with the relative RMS difference of its pedestal.a.z column.
 # Exit status 1 when an output differs (the timings are printed either way).
+#
+# Environment: LEVELS="full reduced" times those levels only; CONCURRENT=1 runs the two builds'
+# timed runs at the same time, one per core (on a 2-core shared host the slow spells then hit
+# both builds alike; the runs compete only for memory bandwidth).
+
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev="${1:?usage: scripts/compare_builds.sh REV [runs]}"
@@ -72,19 +77,25 @@ for scene in sec3.5-outer sec3.5-inner; do
 done
 
 echo
-echo "== wall seconds per simulated second of raceway simulate, Sec. 3.5 outer scene, $runs interleaved runs each"
+echo "== wall seconds per simulated second of raceway simulate, Sec. 3.5 outer scene, $runs $([ "${CONCURRENT:-0}" = 1 ] && echo "concurrent" || echo "interleaved") runs each"
 wall() { "$1" simulate "$4/examples/scenes/sec3.5-outer.toml" --fidelity "$2" --duration "$3" \
-  --columns pedestal.a.z --out "$work/t.csv" 2>&1 | sed -n 's/.* s wall (\([0-9.e+-]*\) s per simulated s).*/\1/p'; }
+  --columns pedestal.a.z --out "$work/t-$5.csv" 2>&1 | sed -n 's/.* s wall (\([0-9.e+-]*\) s per simulated s).*/\1/p'; }
 stats() { sort -g | awk '{a[NR] = $1} END {printf "%.4g %.4g\n", a[1], a[int((NR + 1) / 2)]}'; }
 printf '%-10s %10s %14s %14s %14s %14s %18s\n' level simulated_s "$short min" "$short median" \
   "new min" "new median" "new/old (median)"
-for level in kinematic lumped reduced full; do
+for level in ${LEVELS:-kinematic lumped reduced full}; do
   case "$level" in reduced | full) d=0.04 ;; *) d=1 ;; esac
   : >"$work/old.t"
   : >"$work/new.t"
   for _ in $(seq "$runs"); do
-    wall "$old" "$level" "$d" "$tree" >>"$work/old.t"
-    wall "$new" "$level" "$d" "$root" >>"$work/new.t"
+    if [ "${CONCURRENT:-0}" = 1 ]; then
+      wall "$old" "$level" "$d" "$tree" old >>"$work/old.t" &
+      wall "$new" "$level" "$d" "$root" new >>"$work/new.t"
+      wait
+    else
+      wall "$old" "$level" "$d" "$tree" old >>"$work/old.t"
+      wall "$new" "$level" "$d" "$root" new >>"$work/new.t"
+    fi
   done
   read -r omin omed < <(stats <"$work/old.t")
   read -r nmin nmed < <(stats <"$work/new.t")
