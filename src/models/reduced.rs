@@ -171,24 +171,7 @@ impl ReducedModel {
         };
         // Every ball's normal contacts first, then the strip traction of all loaded contacts
         // in one batch, then the equations of motion.
-        let mut pass = std::mem::take(&mut c.pass);
-        {
-            let c = &*c;
-            pass.evaluate(
-                c.z,
-                strip_traction,
-                [&inner, &outer],
-                [&c.inner, &c.outer],
-                #[inline(always)]
-                |j| c.ball_azimuth(y, j),
-                #[inline(always)]
-                |j, sc| c.ball_kin_at(y, j, sc),
-                #[inline(always)]
-                |j, kin, w, slip, grooves, out| {
-                    c.normal_contacts_into(y, j, kin, w, &inner, &outer, slip, grooves, out)
-                },
-            );
-        }
+        let pass = c.contact_pass(y, strip_traction, &inner, &outer);
         // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
         let touch = c
             .ball_ball

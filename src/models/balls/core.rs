@@ -7,7 +7,7 @@
 
 use super::ball_ball::BallBall;
 use super::ball_contact::{
-    self, dot, BallKin, ContactOut, DefectView, GroovePos, Law, RaceConst, RingPose, V3,
+    self, dot, BallKin, ContactOut, DefectView, GroovePos, Law, RaceConst, RingPose, Strips, V3,
 };
 use super::cage::{Cage, CagePose, CageResult};
 use super::layout::{
@@ -18,6 +18,7 @@ use super::pass::{BallFrame, ContactPass, Loaded, Normal};
 use super::switches::{contact_event, EventOf, Switches};
 use crate::ball_spall::BallSpall;
 use crate::config::DefectMode;
+use crate::contact::TractionCurve;
 use crate::defect::{Defect, DefectSpec};
 use crate::geometry::{Bearing, Race};
 use crate::models::{out, RingStates, SimError};
@@ -327,6 +328,38 @@ impl BallCore {
             beta_rate: [0.0; 3],
             spin: 0.0,
         }
+    }
+
+    /// The contacts of one RHS evaluation at state y with the rings at `inner` and `outer`
+    /// ([`ContactPass::evaluate`]: every ball's frame and normal contacts, then the strip
+    /// traction of the loaded ones in one batch when `traction` is on). Returns the pass, taken
+    /// out of the core so that the models can read it while they write the core; they put it
+    /// back (`self.pass = pass`) at the end of the evaluation.
+    #[inline(always)]
+    pub fn contact_pass(
+        &mut self,
+        y: &[f64],
+        traction: Option<(&TractionCurve, &Strips)>,
+        inner: &RingPose,
+        outer: &RingPose,
+    ) -> ContactPass {
+        let mut pass = std::mem::take(&mut self.pass);
+        let c = &*self;
+        pass.evaluate(
+            c.z,
+            traction,
+            [inner, outer],
+            [&c.inner, &c.outer],
+            #[inline(always)]
+            |j| c.ball_azimuth(y, j),
+            #[inline(always)]
+            |j, sc| c.ball_kin_at(y, j, sc),
+            #[inline(always)]
+            |j, kin, w, slip, grooves, out| {
+                c.normal_contacts_into(y, j, kin, w, inner, outer, slip, grooves, out)
+            },
+        );
+        pass
     }
 
     /// Ball j's kinematics and its cylindrical triad (e_r, e_θ), radius and orbital rate.
