@@ -736,11 +736,55 @@ pub fn strip_sums(curve: &TractionCurve, strips: &Strips, sf: &SlipField) -> [f6
 /// +ξ_p and at −ξ_p (the first pass of [`strip_sums`]).
 #[inline(always)]
 fn pair_slip(sf: &SlipField, strips: &Strips, p: usize) -> (f64, f64, f64, f64) {
-    let xi = sf.a * strips.s[p];
-    let z = (sf.rs * sf.rs - xi * xi).sqrt() + sf.z0;
-    let t = xi * sf.s;
-    let zb2 = z * sf.b2;
-    (z, sf.a1 + z * sf.b1, (sf.a2 + t) - zb2, (sf.a2 - t) - zb2)
+    strip_slip(
+        sf.a * strips.s[p],
+        [sf.rs, sf.z0, sf.a1, sf.a2, sf.b1, sf.b2, sf.s],
+    )
+}
+
+/// [`pair_slip`] at ξ = `xi` from the slip field's (R_s, z0, a1, a2, b1, b2, s): the one copy
+/// of its operations, which [`TractionBatch`] runs across contacts.
+#[inline(always)]
+fn strip_slip(xi: f64, [rs, z0, a1, a2, b1, b2, s]: [f64; 7]) -> (f64, f64, f64, f64) {
+    let z = (rs * rs - xi * xi).sqrt() + z0;
+    let t = xi * s;
+    let zb2 = z * b2;
+    (z, a1 + z * b1, (a2 + t) - zb2, (a2 - t) - zb2)
+}
+
+/// What strip pair p adds to a contact's five sums ([`sum_strips`]): `qw` = −Q w_p, `a_s` =
+/// a s_p, the pair's ζ, u1, u2 at ±ξ and κ(u)/u at ±ξ. The one copy of these operations, which
+/// [`TractionBatch`] runs across contacts.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn pair_terms(
+    qw: f64,
+    a_s: f64,
+    zeta: f64,
+    u1: f64,
+    u2p: f64,
+    u2m: f64,
+    kp: f64,
+    km: f64,
+) -> [f64; 5] {
+    let (gp, gm) = (qw * kp, qw * km);
+    let g1 = (gp + gm) * u1;
+    let (g2p, g2m) = (gp * u2p, gm * u2m);
+    [
+        g1,
+        g2p + g2m,
+        a_s * (g2p - g2m),
+        zeta * g1,
+        zeta * (g2p + g2m),
+    ]
+}
+
+/// What an odd rule's middle strip (ξ = 0) adds to a contact's sums (f1, f2, Σ ζ f1, Σ ζ f2):
+/// `g` = −Q w κ(u)/u.
+#[inline(always)]
+fn middle_terms(g: f64, zeta: f64, u1: f64, u2: f64) -> [f64; 4] {
+    let (g1, g2) = (g * u1, g * u2);
+    [g1, g2, zeta * g1, zeta * g2]
 }
 
 /// The last pass of [`strip_sums`]: the traction sums of one contact from the slips of its
@@ -762,23 +806,28 @@ fn sum_strips(
     let np = strips.n / 2;
     let (mut f1, mut f2, mut mxi2, mut mze1, mut mze2) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for p in 0..np {
-        let qw = -q * strips.w[p];
-        let (gp, gm) = (qw * kp[p], qw * km[p]);
-        let g1 = (gp + gm) * u1[p];
-        let (g2p, g2m) = (gp * u2p[p], gm * u2m[p]);
-        f1 += g1;
-        f2 += g2p + g2m;
-        mxi2 += a * strips.s[p] * (g2p - g2m);
-        mze1 += zeta[p] * g1;
-        mze2 += zeta[p] * (g2p + g2m);
+        let d = pair_terms(
+            -q * strips.w[p],
+            a * strips.s[p],
+            zeta[p],
+            u1[p],
+            u2p[p],
+            u2m[p],
+            kp[p],
+            km[p],
+        );
+        f1 += d[0];
+        f2 += d[1];
+        mxi2 += d[2];
+        mze1 += d[3];
+        mze2 += d[4];
     }
     if strips.n % 2 == 1 {
-        let g = -q * strips.w[np] * kp[np];
-        let (g1, g2) = (g * u1[np], g * u2p[np]);
-        f1 += g1;
-        f2 += g2;
-        mze1 += zeta[np] * g1;
-        mze2 += zeta[np] * g2;
+        let d = middle_terms(-q * strips.w[np] * kp[np], zeta[np], u1[np], u2p[np]);
+        f1 += d[0];
+        f2 += d[1];
+        mze1 += d[2];
+        mze2 += d[3];
     }
     [f1, f2, mxi2, mze1, mze2]
 }
@@ -933,14 +982,8 @@ impl TractionBatch {
             let (zeta, u1) = (&mut self.zeta[r.clone()], &mut self.u1[r.clone()]);
             let (u2p, u2m) = (&mut self.u2p[r.clone()], &mut self.u2m[r]);
             for c in 0..n {
-                let xi = a[c] * sp;
-                let z = (rs[c] * rs[c] - xi * xi).sqrt() + z0[c];
-                let t = xi * spin[c];
-                let zb2 = z * b2[c];
-                zeta[c] = z;
-                u1[c] = a1[c] + z * b1[c];
-                u2p[c] = (a2[c] + t) - zb2;
-                u2m[c] = (a2[c] - t) - zb2;
+                let field = [rs[c], z0[c], a1[c], a2[c], b1[c], b2[c], spin[c]];
+                (zeta[c], u1[c], u2p[c], u2m[c]) = strip_slip(a[c] * sp, field);
             }
         }
         // Slip speeds, then κ(u)/u, over all strips of all contacts at once (an odd rule's
@@ -972,15 +1015,21 @@ impl TractionBatch {
             let (u2p, u2m) = (&self.u2p[r.clone()], &self.u2m[r.clone()]);
             let (kp, km) = (&kp[r.clone()], &km[r]);
             for c in 0..n {
-                let qw = -q[c] * w;
-                let (gp, gm) = (qw * kp[c], qw * km[c]);
-                let g1 = (gp + gm) * u1[c];
-                let (g2p, g2m) = (gp * u2p[c], gm * u2m[c]);
-                f1[c] += g1;
-                f2[c] += g2p + g2m;
-                mxi2[c] += a[c] * sp * (g2p - g2m);
-                mze1[c] += zeta[c] * g1;
-                mze2[c] += zeta[c] * (g2p + g2m);
+                let d = pair_terms(
+                    -q[c] * w,
+                    a[c] * sp,
+                    zeta[c],
+                    u1[c],
+                    u2p[c],
+                    u2m[c],
+                    kp[c],
+                    km[c],
+                );
+                f1[c] += d[0];
+                f2[c] += d[1];
+                mxi2[c] += d[2];
+                mze1[c] += d[3];
+                mze2[c] += d[4];
             }
         }
         if strips.n % 2 == 1 {
@@ -993,12 +1042,11 @@ impl TractionBatch {
             );
             let kp = &kp[r];
             for c in 0..n {
-                let g = -q[c] * w * kp[c];
-                let (g1, g2) = (g * u1[c], g * u2p[c]);
-                f1[c] += g1;
-                f2[c] += g2;
-                mze1[c] += zeta[c] * g1;
-                mze2[c] += zeta[c] * g2;
+                let d = middle_terms(-q[c] * w * kp[c], zeta[c], u1[c], u2p[c]);
+                f1[c] += d[0];
+                f2[c] += d[1];
+                mze1[c] += d[2];
+                mze2[c] += d[3];
             }
         }
     }

@@ -57,12 +57,12 @@ impl ContactPass {
     }
 
     /// Evaluates the contacts of balls `0..z` with the (inner, outer) rings `rings` and race
-    /// constants `races`: `azimuth(j)` gives ball j's azimuth, and `frame(j, (sin, cos))`
-    /// its frame from the azimuth's sine and cosine (computed for all balls at once); then every ball's place in both
-    /// grooves ([`ball_contact::groove_pos`]), for all balls at once; then `normals(j, kin, w, slip,
-    /// grooves, out)` writes ball j's (inner, outer) normal contacts into `out` and returns the
-    /// slip fields of the loaded ones when `slip` (traction on). The strip traction of every
-    /// loaded contact follows in one batch.
+    /// constants `races`: `azimuth(j)` gives ball j's azimuth, and `frame(j, (sin, cos))` its
+    /// frame from the azimuth's sine and cosine (computed for all balls at once); then every
+    /// ball's place in both grooves ([`ball_contact::groove_pos`]), for all balls at once; then
+    /// `normals(j, kin, w, slip, grooves, out)` writes ball j's (inner, outer) normal contacts
+    /// into `out` and returns the slip fields of the loaded ones when `slip` (traction on). The
+    /// strip traction of every loaded contact follows in one batch.
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     #[inline(always)]
     pub fn evaluate(
