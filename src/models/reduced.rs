@@ -172,22 +172,11 @@ impl ReducedModel {
         // Every ball's normal contacts first, then the strip traction of all loaded contacts
         // in one batch, then the equations of motion.
         let pass = c.contact_pass(y, strip_traction, &inner, &outer);
-        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball).
-        let touch = c
-            .ball_ball
-            .as_mut()
-            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
-        // Or the cage's pockets and land (docs/model.md#cage).
-        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
+        let (touch, cage) = c.after_pass(t, y, &pass, &inner, &outer, psi_rate, dydt);
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
             let (ci, co) = &pass.contacts[j];
-            c.sw.note_stage(t, j, ci, co);
-            // Inside a step the frozen law may give a round-off-small negative force just
-            // before a located loss of contact: report it as 0.
-            c.q_inner[j] = ci.q.max(0.0);
-            c.q_outer[j] = co.q.max(0.0);
             let (fi, fo, moment) = if strip_traction.is_some() {
                 // Strip traction: the forces include it, the moments are about the ball centre.
                 // Reaction on the inner ring about its axis, as in the full model.

@@ -1091,6 +1091,38 @@ impl BallCore {
         }
     }
 
+    /// What follows the contact pass of an RHS evaluation at time t, state y, in both ball
+    /// models: the neighbouring balls pressing on each other (cage-less,
+    /// docs/model.md#ball-ball; true when any do, the forces in [`BallBall::force`]) or the
+    /// cage ([`BallCore::cage_rhs`], its rates into `dydt`); each ball's contacts noted for the
+    /// switches, and their normal forces for the outputs (a round-off-small negative force of
+    /// the frozen law just before a located loss of contact reported as 0).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn after_pass(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        pass: &ContactPass,
+        inner: &RingPose,
+        outer: &RingPose,
+        psi_rate: f64,
+        dydt: &mut [f64],
+    ) -> (bool, Option<CageResult>) {
+        let z = self.z;
+        let touch = self
+            .ball_ball
+            .as_mut()
+            .is_some_and(|bb| bb.evaluate(&pass.frames[..z]));
+        let cage = self.cage_rhs(y, &pass.frames[..z], inner, outer, psi_rate, dydt);
+        for (j, (ci, co)) in pass.contacts[..z].iter().enumerate() {
+            self.sw.note_stage(t, j, ci, co);
+            self.q_inner[j] = ci.q.max(0.0);
+            self.q_outer[j] = co.q.max(0.0);
+        }
+        (touch, cage)
+    }
+
     /// The cage's pocket and land contacts with the balls' frames and the rings at state y,
     /// its equations of motion written into `dydt` (the reference cage angle turning at
     /// `psi_rate`), and the land's reaction on the rings; None without a cage (a layout with

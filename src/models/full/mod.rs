@@ -100,22 +100,11 @@ impl FullModel {
             &inner,
             &outer,
         );
-        // Neighbouring balls pressing on each other (cage-less: docs/model.md#ball-ball), or
-        // the cage's pockets and land (docs/model.md#cage).
-        let touch = c
-            .ball_ball
-            .as_mut()
-            .is_some_and(|bb| bb.evaluate(&pass.frames[..c.z]));
-        let cage = c.cage_rhs(y, &pass.frames[..c.z], &inner, &outer, psi_rate, dydt);
+        let (touch, cage) = c.after_pass(t, y, &pass, &inner, &outer, psi_rate, dydt);
         for j in 0..c.z {
             let b = c.lay.ball(j);
             let (kin, er, et, r, w) = pass.frames[j];
             let (ci, co) = &pass.contacts[j];
-            c.sw.note_stage(t, j, ci, co);
-            // Inside a step the frozen law may give a round-off-small negative force just
-            // before a located loss of contact: report it as 0.
-            c.q_inner[j] = ci.q.max(0.0);
-            c.q_outer[j] = co.q.max(0.0);
             let mut f = contact::add(ci.f, co.f);
             let mut mo = contact::add(ci.m, co.m);
             if let (true, Some(bb)) = (touch, &c.ball_ball) {
