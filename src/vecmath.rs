@@ -2,12 +2,12 @@
 //! vectorises, and a run-time dispatch that compiles such a loop for AVX2 where the processor
 //! has it.
 //!
-//! Every function here is a fixed sequence of IEEE-754 additions, multiplications, divisions,
-//! comparisons and bit operations, with no fused multiply–add and no call: the compiler may not
-//! reorder or contract it (Rust does not contract `a * b + c`), so a lane of a vector gives the
-//! same bits as the scalar call, on any processor. A result therefore does not depend on
-//! whether [`map_in_place`] took the AVX2 path. [`exp`] is within one unit in the last place of
-//! the C library's (its test sweeps the range).
+//! [`exp`] and [`sin_cos`] (below |x| = 10⁶) are fixed sequences of IEEE-754 additions,
+//! multiplications, divisions, comparisons and bit operations, with no fused multiply–add and
+//! no call: the compiler may not reorder or contract them (Rust does not contract `a * b + c`),
+//! so a lane of a vector gives the same bits as the scalar call, on any processor. A result
+//! therefore does not depend on whether [`with_avx2`] took the AVX2 path. Both are within one
+//! unit in the last place of the C library's (their tests sweep the range).
 
 /// 1/ln 2.
 const LOG2E: f64 = std::f64::consts::LOG2_E;
@@ -50,8 +50,7 @@ const C: [f64; 12] = [
 pub fn exp(x: f64) -> f64 {
     // NaN fails both comparisons and passes through.
     let x = x.clamp(X_MIN, X_MAX);
-    let k = x * LOG2E + SHIFT;
-    let n = k - SHIFT;
+    let (n, ni) = nearest(x * LOG2E);
     let r = (x - n * LN2_HI) - n * LN2_LO;
     // e^r = 1 + (r + r² P(r)), P by Estrin's scheme: independent pairs combined by r², r⁴, r⁸,
     // a chain of 4 multiply–adds instead of Horner's 12 (the loops of it are latency-bound).
@@ -63,12 +62,22 @@ pub fn exp(x: f64) -> f64 {
     let a1 = pair(4) + pair(6) * r2;
     let a2 = pair(8) + pair(10) * r2;
     let p = 1.0 + (r + r2 * ((a0 + a1 * r4) + a2 * r8));
-    // n as an integer: k's bits are SHIFT's plus n (one unit in the last place of k is 1).
-    let ni = (k.to_bits() as i64).wrapping_sub(SHIFT.to_bits() as i64);
     let n1 = ni >> 1;
     let n2 = ni - n1;
     let two = |m: i64| f64::from_bits(((m + 1023) as u64) << 52);
     p * two(n1) * two(n2)
+}
+
+/// The integer nearest to y (|y| < 2⁵¹), as a float and as an integer: adding [`SHIFT`]
+/// rounds y into the sum's low bits, which are then SHIFT's bits plus n (one unit in the last
+/// place of the sum is 1).
+#[inline(always)]
+fn nearest(y: f64) -> (f64, i64) {
+    let k = y + SHIFT;
+    (
+        k - SHIFT,
+        (k.to_bits() as i64).wrapping_sub(SHIFT.to_bits() as i64),
+    )
 }
 
 /// 2/π.
@@ -96,8 +105,8 @@ const C5: f64 = f64::from_bits(0x3E21_EE9E_BDB4_B1C4); // 2.087572321298175e-09
 const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4); // -1.1359647557788195e-11
 
 /// (sin x, cos x), each within one unit in the last place of the C library's, for |x| < 10⁶
-/// by plain IEEE operations (so that a loop of it vectorises, [`sin_cos_in_place`]) and by
-/// the C library beyond.
+/// by plain IEEE operations (so that a loop of it vectorises, [`sin_cos_into`]) and by the C
+/// library beyond.
 ///
 /// x = n π/2 + (y0 + y1) with n the nearest integer to 2x/π and the remainder as a sum of two
 /// doubles (Cody–Waite with π/2 in three parts, as fdlibm's medium range); sin and cos of the
@@ -113,8 +122,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// [`sin_cos`] for |x| < 10⁶, without the branch to the C library.
 #[inline(always)]
 fn sin_cos_reduced(x: f64) -> (f64, f64) {
-    let k = x * INV_PIO2 + SHIFT;
-    let n = k - SHIFT;
+    let (n, ni) = nearest(x * INV_PIO2);
     // x − n π/2 as y0 + y1: the first two products are exact, the error of the subtraction is
     // recovered and the third part added to it.
     let t = x - n * PIO2_1;
@@ -133,7 +141,7 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     let hz = 0.5 * z;
     let wc = 1.0 - hz;
     let cs = wc + (((1.0 - wc) - hz) + (z * rc - y0 * y1));
-    let q = (k.to_bits() as i64).wrapping_sub(SHIFT.to_bits() as i64) & 3;
+    let q = ni & 3;
     let (s, c) = if q & 1 == 0 { (sn, cs) } else { (cs, sn) };
     let s = if q & 2 == 0 { s } else { -s };
     let c = if (q + 1) & 2 == 0 { c } else { -c };
@@ -192,7 +200,9 @@ pub fn map_in_place(v: &mut [f64], f: impl Fn(f64) -> f64) {
     v.iter_mut().for_each(|x| *x = f(*x));
 }
 
-/// [`map_in_place`]'s loop compiled with AVX2 enabled.
+/// [`map_in_place`]'s loop compiled with AVX2 enabled. (Written as [`with_avx2`] of the loop,
+/// the compiler does not inline `f` into it: the full level's RHS then cost 1.4× as much,
+/// `scripts/compare_rhs.sh`.)
 ///
 /// # Safety
 /// The processor must have AVX2.
