@@ -30,13 +30,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 rev="${1:?usage: scripts/compare_builds.sh REV [runs]}"
 runs="${2:-5}"
-sha="$(git rev-parse --verify "$rev^{commit}")"
-short="${sha:0:10}"
-root="$PWD"
-tree="$root/target/compare/$short"
-if [ ! -d "$tree" ]; then
-  git worktree add --detach --force "$tree" "$sha" >/dev/null
-fi
+. scripts/compare_worktree.sh
+compare_worktree "$rev"
 echo "building $short and this checkout (release) ..."
 (cd "$tree" && CARGO_TARGET_DIR="$root/target/compare/target" cargo build --release --quiet --bin raceway)
 cargo build --release --quiet --bin raceway

@@ -15,12 +15,11 @@ cd "$(dirname "$0")/.."
 rev="${1:?usage: scripts/compare_rhs.sh REV [rounds] [scene.toml]}"
 rounds="${2:-5}"
 scene="${3:-examples/scenes/sec3.5-outer.toml}"
-sha="$(git rev-parse --verify "$rev^{commit}")"
-short="${sha:0:10}"
-root="$PWD"
-tree="$root/target/compare/$short"
-if [ ! -d "$tree" ]; then
-  git worktree add --detach --force "$tree" "$sha" >/dev/null
+. scripts/compare_worktree.sh
+compare_worktree "$rev"
+if [ ! -d "$tree/studies" ]; then
+  echo "compare_rhs: $short has no studies/ crate to build rhs_cost in" >&2
+  exit 1
 fi
 cp studies/rhs_cost.rs "$tree/studies/rhs_cost.rs"
 if ! grep -q '"rhs_cost"' "$tree/studies/Cargo.toml"; then
