@@ -159,7 +159,7 @@ impl ReducedModel {
         let c = &mut self.core;
         let inner = c.inner_pose(y);
         let outer = c.outer_pose(y);
-        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
+        let psi_rate = c.cage_speed();
         let (cb, sb) = self.attitude;
         let mut f_ring: V3 = [0.0; 3];
         let mut m_ring_x = 0.0;

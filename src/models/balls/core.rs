@@ -1056,6 +1056,7 @@ impl BallCore {
     }
 
     /// The reference cage speed [rad/s].
+    #[inline(always)]
     pub fn cage_speed(&self) -> f64 {
         self.cage_ratio * self.inputs.shaft_speed
     }

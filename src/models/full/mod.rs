@@ -87,7 +87,7 @@ impl FullModel {
         let c = &mut self.core;
         let inner = c.inner_pose(y);
         let outer = c.outer_pose(y);
-        let psi_rate = c.cage_ratio * c.inputs.shaft_speed;
+        let psi_rate = c.cage_speed();
         let mut f_ring: V3 = [0.0; 3];
         let mut m_ring: V3 = [0.0; 3];
         let mut f_outer: V3 = [0.0; 3];
