@@ -168,7 +168,7 @@ pub fn run(args: Args) -> Result<(), String> {
     let ftf = sim.cage_speed() / std::f64::consts::TAU;
     let bsf = bearing.kinematic_spin_per_orbit() * ftf;
     let z = bearing.z as f64;
-    let stats = sim.stats();
+    let stats = sim.solver_stats();
     let meta = serde_json::json!({
         "scene": scene.name,
         "fidelity": scene.fidelity.name(),
@@ -193,6 +193,7 @@ pub fn run(args: Args) -> Result<(), String> {
             "steps": stats.steps,
             "rejected": stats.rejected,
             "rhs_evals": stats.rhs_evals,
+            "events": stats.events,
             "wall_seconds": wall,
             "wall_seconds_per_simulated_second": wall / duration,
         },
@@ -213,10 +214,11 @@ pub fn run(args: Args) -> Result<(), String> {
             wall / duration
         );
         eprintln!(
-            "solver: {} steps, {} rejected, {} RHS evaluations; cage {:.3} Hz, BPFO {:.2} Hz, BPFI {:.2} Hz",
+            "solver: {} steps, {} rejected, {} RHS evaluations, {} events; cage {:.3} Hz, BPFO {:.2} Hz, BPFI {:.2} Hz",
             stats.steps,
             stats.rejected,
             stats.rhs_evals,
+            stats.events,
             ftf,
             z * ftf,
             z * (fs - ftf)
