@@ -283,6 +283,9 @@ impl EventSystem for ModelSystem<'_> {
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         self.0.events(t, y, g)
     }
+    fn event(&mut self, i: usize, t: f64, y: &[f64], g: &mut [f64]) -> f64 {
+        self.0.event(i, t, y, g)
+    }
     /// The advance stops at the event; the simulation then switches the mode exactly as at a
     /// known-time stop (after the outputs of the samples before the event are taken).
     fn handle_event(&mut self, index: usize, _t: f64, _y: &mut [f64]) -> EventAction {

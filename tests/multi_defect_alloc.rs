@@ -1,9 +1,11 @@
 //! With several spalls (two outer, one inner) the lumped and reduced models' right-hand side,
 //! event functions and mode updates do not allocate (a counting global allocator watches
-//! them), with balls inside the spall zones; the event count is 2z + 3z per spall.
+//! them), with balls inside the spall zones; the event count is 2z + 3z per spall. The ball
+//! levels' event functions one at a time (what the root finder calls) are those of all at once,
+//! bit for bit, and do not allocate either.
 
-use raceway::models::{LumpedModel, Model, ReducedModel};
-use raceway::{Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene};
+use raceway::models::{FullModel, LumpedModel, Model, ReducedModel};
+use raceway::{Bearing, DefectSpec, Fidelity, OperatingPoint, Race, Scene, Site};
 #[path = "common/alloc_counter.rs"]
 mod alloc_counter;
 use alloc_counter::allocations_during;
@@ -77,5 +79,75 @@ fn rhs_and_events_do_not_allocate_with_three_spalls() {
         assert!(d.iter().all(|v| v.is_finite()), "{level:?}");
         assert_eq!(count, 0, "allocations in rhs/events/outputs ({level:?})");
         assert!(in_zone > 0, "{level:?}: no ball reached a spall");
+    }
+}
+
+/// `Model::event(i)` is `Model::events()[i]` bit for bit, for every function of the reduced and
+/// full levels (contacts, two raceway spalls and a spall on ball 3, each with its edge, centre
+/// and blend functions), over a sweep of the cage angle that takes balls across the spalls,
+/// and it does not allocate.
+#[test]
+fn one_event_function_is_that_of_all_bit_for_bit() {
+    let file = raceway::BearingFile::load("niu2014-table1").unwrap();
+    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
+    let mut on_ball = spall(Race::Outer, 1.2);
+    on_ball.ring = Site::Ball(2);
+    scene.set_defects(vec![
+        spall(Race::Outer, 0.0),
+        spall(Race::Inner, 0.05),
+        on_ball,
+    ]);
+    let bearing = Bearing::new(&scene.bearing).unwrap();
+    let inputs = scene.operating;
+    let z = bearing.z;
+    for level in [Fidelity::Reduced, Fidelity::Full] {
+        scene.fidelity = level;
+        let (mut m, psi): (Box<dyn Model>, usize) = match level {
+            Fidelity::Reduced => {
+                let m = ReducedModel::new(&scene, &bearing, &inputs).unwrap();
+                let psi = m.layout().psi();
+                (Box::new(m), psi)
+            }
+            _ => {
+                let m = FullModel::new(&scene, &bearing, &inputs).unwrap();
+                let psi = m.layout().psi();
+                (Box::new(m), psi)
+            }
+        };
+        let ne = m.n_events();
+        assert_eq!(
+            ne,
+            2 * z + 3 * z * 4,
+            "{level:?}: two raceway slots, two ball-spall slots"
+        );
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        let (mut all, mut one, mut scratch) = (vec![0.0; ne], vec![0.0; ne], vec![0.0; ne]);
+        let (mut differ, mut negative) = (Vec::new(), 0);
+        for k in 0..24 {
+            y[psi] = -0.3 + 0.6 * k as f64 / 23.0;
+            m.update_mode(0.0, &y);
+            m.events(0.0, &y, &mut all);
+            let (count, ()) = allocations_during(|| {
+                for (i, g) in one.iter_mut().enumerate() {
+                    scratch.fill(f64::NAN);
+                    *g = m.event(i, 0.0, &y, &mut scratch);
+                }
+            });
+            assert_eq!(count, 0, "{level:?}: allocations in event");
+            for i in 0..ne {
+                if all[i].to_bits() != one[i].to_bits() {
+                    differ.push((k, i, all[i], one[i]));
+                }
+            }
+            negative += all.iter().filter(|&&g| g < 0.0).count();
+        }
+        assert!(
+            differ.is_empty(),
+            "{level:?}: (sweep, function, all, one) {differ:?}"
+        );
+        // The sweep reaches the functions' other sides (balls in a spall's zone, past its centre).
+        assert!(negative > 0, "{level:?}: every function positive all along");
     }
 }

@@ -72,8 +72,7 @@ pub(super) fn locate<S: EventSystem + ?Sized>(
         let guard = 4.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
         m = m.clamp(a + guard.min(0.5 * (b - a)), b - guard.min(0.5 * (b - a)));
         dense.eval(m, y);
-        sys.events(m, y, g);
-        let gm = g[index];
+        let gm = sys.event(index, m, y, g);
         if gm == 0.0 {
             return m;
         }

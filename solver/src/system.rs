@@ -18,6 +18,14 @@ pub trait EventSystem: System {
     /// The system's discrete mode must stay frozen inside a step (only
     /// [`EventSystem::handle_event`] may change it).
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]);
+    /// Event function `i` alone at `(t, y)`: the value [`EventSystem::events`] would put in
+    /// `g[i]`, bit for bit. `g` (length [`EventSystem::n_events`]) is scratch the system may
+    /// write anywhere. The root finder calls it for the one function it locates; the default
+    /// evaluates them all. Must not allocate.
+    fn event(&mut self, i: usize, t: f64, y: &[f64], g: &mut [f64]) -> f64 {
+        self.events(t, y, g);
+        g[i]
+    }
     /// Called at the located event time with the (dense-output) state there; the system may switch
     /// its discrete mode and modify `y`. The integrator then restarts from `(t, y)` (FSAL
     /// invalidated).

@@ -189,6 +189,14 @@ pub trait Model: Send + CloneModel {
     /// [`Model::update_mode`] is called at the located time.
     fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
 
+    /// Event function `i` alone: what [`Model::events`] puts in `g[i]`, bit for bit (`g` is
+    /// scratch of length [`Model::n_events`]). The root finder calls it for the function it
+    /// locates; the default evaluates them all.
+    fn event(&mut self, i: usize, t: f64, y: &[f64], g: &mut [f64]) -> f64 {
+        self.events(t, y, g);
+        g[i]
+    }
+
     /// Called before the stages of every integrator step attempt (see
     /// [`crate::solver::System::begin_step`]).
     fn begin_step(&mut self) {}

@@ -848,24 +848,40 @@ impl BallCore {
         outer: &RingPose,
     ) -> [(f64, f64); 2] {
         let (kin, _, _, _, w) = self.ball_kin(y, j);
-        let ev = |pose: &RingPose, race: &RaceConst, ring: Race| {
-            let c = ball_contact::evaluate_law(
-                &kin,
-                pose,
-                race,
-                self.ball_radius,
-                self.c_br,
-                None,
-                self.spall_view(y, j, ring, w),
-                self.added_approach(y, j, ring, pose, &kin, w, None),
-                Law::Closed,
-            );
-            (contact_event(&c), c.q_raw)
-        };
         [
-            ev(inner, &self.inner, Race::Inner),
-            ev(outer, &self.outer, Race::Outer),
+            self.contact_event_at(y, j, &kin, w, inner, Race::Inner),
+            self.contact_event_at(y, j, &kin, w, outer, Race::Outer),
         ]
+    }
+
+    /// One contact of [`BallCore::contact_events`]: its event function and unclamped force,
+    /// from ball j's kinematics `kin` and orbital rate `w` ([`BallCore::ball_kin`]).
+    #[inline(always)]
+    fn contact_event_at(
+        &self,
+        y: &[f64],
+        j: usize,
+        kin: &BallKin,
+        w: f64,
+        pose: &RingPose,
+        ring: Race,
+    ) -> (f64, f64) {
+        let race = match ring {
+            Race::Inner => &self.inner,
+            Race::Outer => &self.outer,
+        };
+        let c = ball_contact::evaluate_law(
+            kin,
+            pose,
+            race,
+            self.ball_radius,
+            self.c_br,
+            None,
+            self.spall_view(y, j, ring, w),
+            self.added_approach(y, j, ring, pose, kin, w, None),
+            Law::Closed,
+        );
+        (contact_event(&c), c.q_raw)
     }
 
     /// Re-derives the frozen modes at state y (at time t): spall halves and blend sides, then
@@ -924,6 +940,41 @@ impl BallCore {
                     let (tbd, _) = self.ball_spall_angle_of(y, s, race, j);
                     self.sw.spall_events(bs.at(race), k, j, tbd, g);
                 }
+            }
+        }
+    }
+
+    /// Event function `i` of [`BallCore::events`] alone, bit for bit (`g` is scratch): one
+    /// contact, or one ball's functions of one spall slot.
+    pub fn event(&self, i: usize, y: &[f64], g: &mut [f64]) -> f64 {
+        match self.sw.event_of(i) {
+            EventOf::Contact { ball, .. } => {
+                let (kin, _, _, _, w) = self.ball_kin(y, ball);
+                if i.is_multiple_of(2) {
+                    self.contact_event_at(y, ball, &kin, w, &self.inner_pose(y), Race::Inner)
+                        .0
+                } else {
+                    self.contact_event_at(y, ball, &kin, w, &self.outer_pose(y), Race::Outer)
+                        .0
+                }
+            }
+            EventOf::Spall { slot, ball, .. } => {
+                let races = self.defects.len();
+                if slot < races {
+                    let d = &self.defects[slot];
+                    let (tbd, _) = self.theta_bd(d, y, ball);
+                    self.sw.spall_events(d, slot, ball, tbd, g);
+                } else {
+                    let (s, race) = (
+                        (slot - races) / 2,
+                        [Race::Outer, Race::Inner][(slot - races) % 2],
+                    );
+                    debug_assert_eq!(self.ball_slot(s, race), slot);
+                    let (tbd, _) = self.ball_spall_angle_of(y, s, race, ball);
+                    self.sw
+                        .spall_events(self.ball_spalls[s].at(race), slot, ball, tbd, g);
+                }
+                g[i]
             }
         }
     }
@@ -1391,6 +1442,10 @@ macro_rules! forward_to_ball_core {
 
         fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
             self.core.events(y, g);
+        }
+
+        fn event(&mut self, i: usize, _t: f64, y: &[f64], g: &mut [f64]) -> f64 {
+            self.core.event(i, y, g)
         }
 
         fn event_name(&self, i: usize) -> String {
