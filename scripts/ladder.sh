@@ -3,6 +3,8 @@
 # second of `raceway simulate` at each dynamic level on one scene, the levels interleaved `runs`
 # times (default 5) so that the host's drift hits them alike, and each level's median as a
 # ratio to the next level up (issue 24: a rung should cost at most a fifth of the one above).
+# The deprecated reduced level is measured too but is no rung: the lumped level's next level up
+# is the full one, and the reduced level is shown against the full level.
 #
 #   scripts/ladder.sh [runs] [scene]      (default scene: examples/scenes/default.toml)
 #
@@ -20,6 +22,9 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 levels=(kinematic lumped reduced full)
 duration() { case "$1" in kinematic) echo 2 ;; lumped) echo 1 ;; *) echo 0.1 ;; esac; }
+# The next rung up (the deprecated reduced level is skipped).
+up_of() { case "$1" in kinematic) echo lumped ;; lumped | reduced) echo full ;; *) echo ;; esac; }
+label() { case "$1" in reduced) echo "reduced (deprecated, no rung)" ;; *) echo "$1" ;; esac; }
 for _ in $(seq "$runs"); do
   for level in "${levels[@]}"; do
     "$bin" simulate "$scene" --fidelity "$level" --duration "$(duration "$level")" \
@@ -36,20 +41,21 @@ rev="$(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src solver cli |
   echo "*Made by \`scripts/ladder.sh $runs $scene\` at revision $rev, $(date -u +%Y-%m-%d); do"
   echo "not edit by hand.* Wall seconds per simulated second of \`raceway simulate\` (only"
   echo "\`pedestal.a.z\` written), the levels interleaved $runs times in one run; the ratio is each"
-  echo "level's median against the next level up's. The host is shared: compare the columns of one"
+  echo "level's median against the next rung up's (the deprecated reduced level is no rung: the"
+  echo "lumped level's next rung is the full level). The host is shared: compare the columns of one"
   echo "run, not numbers from different runs."
   echo
-  echo "| level | simulated [s] | min [s/s] | median [s/s] | median against the next level up |"
+  echo "| level | simulated [s] | min [s/s] | median [s/s] | median against the next rung up |"
   echo "|---|---|---|---|---|"
-  for i in "${!levels[@]}"; do
-    level="${levels[$i]}"
+  for level in "${levels[@]}"; do
     med="$(median "$work/$level.t")"
-    if [ "$i" -lt $((${#levels[@]} - 1)) ]; then
-      up="$(median "$work/${levels[$((i + 1))]}.t")"
-      ratio="$(awk -v a="$med" -v b="$up" 'BEGIN {printf "%.3g (%s)", a / b, "'"${levels[$((i + 1))]}"'"}')"
+    next="$(up_of "$level")"
+    if [ -n "$next" ]; then
+      up="$(median "$work/$next.t")"
+      ratio="$(awk -v a="$med" -v b="$up" 'BEGIN {printf "%.3g (%s)", a / b, "'"$next"'"}')"
     else
       ratio="—"
     fi
-    echo "| $level | $(duration "$level") | $(minimum "$work/$level.t") | $med | $ratio |"
+    echo "| $(label "$level") | $(duration "$level") | $(minimum "$work/$level.t") | $med | $ratio |"
   done
 } | tee docs/research/ladder.md

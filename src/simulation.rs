@@ -385,6 +385,9 @@ impl Simulation {
             limits,
             me: MeMemory::default(),
         };
+        if let Some(w) = crate::models::deprecation_warning(scene.fidelity) {
+            sim.limits.warnings.push(w);
+        }
         if let Some(note) = sim.model.start_note() {
             sim.limits.warnings.push(note);
         }
@@ -419,9 +422,10 @@ impl Simulation {
         self.limits.contacts(&self.bearing, qi, qo, t, cause)
     }
 
-    /// The warnings since the last call (loads beyond the static load rating, contacts beyond
-    /// its pressure: each given once per simulation; a start other than the level's usual one,
-    /// [`Model::start_note`]), for the caller to show: the FMU logs them with status
+    /// The warnings since the last call (a deprecated level, [`crate::models::Level::deprecated`];
+    /// loads beyond the static load rating, contacts beyond its pressure: each given once per
+    /// simulation; a start other than the level's usual one, [`Model::start_note`]), for the
+    /// caller to show: the FMU logs them with status
     /// fmi2Warning, the CLI prints them.
     pub fn take_warnings(&mut self) -> Vec<String> {
         std::mem::take(&mut self.limits.warnings)

@@ -151,3 +151,34 @@ fn quasi_static_level_outputs_are_the_l1_solution() {
         );
     }
 }
+
+/// The reduced level is deprecated (docs/model.md#l3): a simulation of it starts with a warning
+/// that says so, why, and which levels to use; no other level warns at the default scene.
+#[test]
+fn only_the_deprecated_reduced_level_starts_with_a_deprecation_warning() {
+    for level in [
+        Fidelity::Kinematic,
+        Fidelity::QuasiStatic,
+        Fidelity::Lumped,
+        Fidelity::Reduced,
+        Fidelity::Full,
+    ] {
+        let mut s = Scene::default_scene();
+        s.fidelity = level;
+        let w = Simulation::new(&s).unwrap().take_warnings();
+        let deprecation: Vec<&String> = w.iter().filter(|m| m.contains("deprecated")).collect();
+        if level == Fidelity::Reduced {
+            assert_eq!(deprecation.len(), 1, "{w:?}");
+            let m = deprecation[0];
+            for part in [
+                "fidelity \"reduced\" (L3, FMU fidelity = 3) is deprecated",
+                "full level's steps",
+                "use \"full\" (4) or \"lumped\" (2) instead",
+            ] {
+                assert!(m.contains(part), "{part:?} not in {m:?}");
+            }
+        } else {
+            assert!(deprecation.is_empty(), "{level:?}: {w:?}");
+        }
+    }
+}

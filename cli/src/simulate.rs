@@ -13,7 +13,7 @@ use std::time::Instant;
 pub struct Args {
     /// Scene file (TOML), e.g. examples/scenes/default.toml
     pub scene: PathBuf,
-    /// Fidelity level: kinematic, quasi_static, lumped, reduced, full
+    /// Fidelity level: kinematic, quasi_static, lumped, reduced (deprecated), full
     #[arg(long)]
     pub fidelity: Option<String>,
     /// Simulated time [s] (default: the scene's output.duration)

@@ -200,3 +200,39 @@ fn a_failed_run_keeps_whole_rows_up_to_the_time_it_names() {
     assert!((last - named).abs() < 1e-6, "{last} {named}");
     assert!(std::fs::read_to_string(&out).unwrap().ends_with('\n'));
 }
+
+/// `raceway simulate --fidelity reduced` runs and says on stderr, even with --quiet, that the
+/// level is deprecated and which levels to use; the full level does not.
+#[test]
+fn the_deprecated_reduced_level_runs_with_a_warning() {
+    for (level, warned) in [("reduced", true), ("full", false)] {
+        let out = tmp(&format!("deprecated-{level}.csv"));
+        let o = raceway(&[
+            "simulate",
+            &scene(),
+            "--fidelity",
+            level,
+            "--duration",
+            "0.0005",
+            "--columns",
+            "pedestal.a.z",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{level}: {err}");
+        assert_eq!(
+            err.contains(
+                "raceway: warning: fidelity \"reduced\" (L3, FMU fidelity = 3) is deprecated"
+            ),
+            warned,
+            "{level}: {err}"
+        );
+        assert_eq!(
+            err.contains("use \"full\" (4) or \"lumped\" (2) instead"),
+            warned
+        );
+        assert!(table(&out).1.len() > 10, "{level}: rows written");
+    }
+}

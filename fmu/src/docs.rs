@@ -215,7 +215,10 @@ pub fn documentation_html_for(
     h.push_str("<h2>Fidelity levels (parameter <code>fidelity</code>)</h2>\n<table>\n<tr><th>code</th><th>level</th><th>what it computes</th><th>in this build</th></tr>\n");
     for (f, avail) in availability {
         let a = match avail {
-            Ok(()) => "available".to_string(),
+            Ok(()) => match level(*f).deprecated {
+                Some(why) => format!("available, deprecated (to be removed: {})", esc(why)),
+                None => "available".to_string(),
+            },
             Err(m) => format!("not available: {}", esc(m)),
         };
         h.push_str(&format!(

@@ -1181,7 +1181,14 @@ fn with_unit(mut v: Variable) -> Variable {
 fn fidelity_description() -> String {
     let levels: Vec<String> = LEVELS
         .iter()
-        .map(|l| format!("{} {} ({})", l.code, l.name.replace('_', "-"), l.label))
+        .map(|l| {
+            let dep = if l.deprecated.is_some() {
+                ", deprecated"
+            } else {
+                ""
+            };
+            format!("{} {} ({}{dep})", l.code, l.name.replace('_', "-"), l.label)
+        })
         .collect();
     format!(
         "Fidelity level: {}; see the documentation for which levels this build provides",
@@ -1215,7 +1222,10 @@ pub fn enumerations() -> Vec<EnumerationType> {
                 .map(|l| EnumerationItem {
                     name: l.name.into(),
                     value: l.code,
-                    description: format!("{}: {}", l.label, l.summary),
+                    description: match l.deprecated {
+                        Some(_) => format!("{}, deprecated: {}", l.label, l.summary),
+                        None => format!("{}: {}", l.label, l.summary),
+                    },
                 })
                 .collect(),
         },

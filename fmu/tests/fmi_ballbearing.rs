@@ -1849,3 +1849,30 @@ fn a_spall_on_a_ball_runs_at_the_dynamic_levels_and_is_refused_where_it_cannot()
         unsafe { sh::free_instance::<BallBearing>(c) };
     }
 }
+
+/// Fidelity 3 (reduced) is deprecated: fmi2ExitInitializationMode logs so once at warning
+/// level, with the levels to use instead, and the instance steps as before; fidelity 4 logs
+/// nothing of the kind.
+#[test]
+fn the_deprecated_reduced_level_logs_a_warning_at_initialization() {
+    let b = BearingFile::default_preset();
+    for (fidelity, count) in [(3, 1), (4, 0)] {
+        let h = H::new();
+        let (c, _) = ready_at(&h, &b, fidelity, 0, 2_000_000, 1, None);
+        assert_eq!(
+            h.log
+                .count(Fmi2Status::Warning, "is deprecated and will be removed"),
+            count,
+            "fidelity {fidelity}"
+        );
+        assert_eq!(
+            h.log.count(
+                Fmi2Status::Warning,
+                "use \"full\" (4) or \"lumped\" (2) instead"
+            ),
+            count
+        );
+        // SAFETY: c is a live instance from ready_at.
+        unsafe { sh::free_instance::<BallBearing>(c) };
+    }
+}

@@ -46,7 +46,7 @@ pub(crate) use cage::kinematic_levels_cage_speed;
 pub use cage::traction_cage_speed;
 pub use full::{FullModel, FullOptions};
 pub use kinematic::KinematicModel;
-pub use levels::{build, level, level_names, Constructor, Level, LEVELS};
+pub use levels::{build, deprecation_warning, level, level_names, Constructor, Level, LEVELS};
 pub use lumped::LumpedModel;
 pub use model::{CloneModel, ExchangeLimit, Model, ReactionJacobian, RingStates, SimError};
 pub use out::{output_table, output_table_for, output_table_with_cage, OutputInfo};
