@@ -615,8 +615,7 @@ def main():
           f"{lvl_default.upper()} rtol {l2['rtol']:.0e} | E1 {fmt(l2['E1'])}, E2 {fmt(l2['E2'])}, "
           f"E2_df {fmt(l2['E2_df'], '.0f')} bins, E3 {fmt(l2['E3'], '.2f')} dB (S2) | "
           f"{fmt(l2['wall_s'], '.4f')} s for the scene, {fmt(l2['rhs_evals'], '.0f')} RHS |")
-    for level, q in (("full", "impact forces, ball flight in the spall"),
-                     ("reduced", "ball flight and separation at a lower cost than full")):
+    for level, q in (("full", "impact forces, ball flight in the spall"),):
         r = best_row(level)
         fr = [x for x in full_rows if x["scene"] == "S2" and x["status"] == "ok"] if level == "full" else []
         if fr:
@@ -633,6 +632,10 @@ def main():
             w(f"| {q} | {level} (unavailable in this build) | – | – |")
         else:
             w(f"| {q} | {level} (not in this run: add it with `--levels`) | – | – |")
+    # The reduced level takes the full level's steps at nearly its cost: deprecated, no answer.
+    w("| ball flight and separation at a lower cost than full | none: the reduced level (L3) "
+      "takes the full level's steps and costs 0.78–0.88 of it; it is deprecated "
+      "([model: L3](model.md#l3)) | – | – |")
     w(f"| coupling to a rotor (co-simulation) | lumped, {lvl_default.upper()} rtol 1e-6, "
       f"communication step ≤ 10 µs with a stiff cut ([model: co-simulation stability]"
       f"(model.md#coupling-stability)) | see the lumped rows | "
@@ -642,7 +645,7 @@ def main():
     if strays_csv.is_file():
         with open(strays_csv, newline="") as f:
             st_rows = list(csv.DictReader(f))
-        for level in ("full", "reduced"):
+        for level in ("full",):
             def cell(ctrl):
                 c = [r for r in st_rows if r["level"] == level and r["controller"] == ctrl
                      and float(r["rtol"]) == 1e-4]
