@@ -24,7 +24,10 @@
 #
 # Environment: LEVELS="full reduced" times those levels only; CONCURRENT=1 runs the two builds'
 # timed runs at the same time, one per core (on a 2-core shared host the slow spells then hit
-# both builds alike; the runs compete only for memory bandwidth).
+# both builds alike; the runs compete only for memory bandwidth). EDGE=abrupt or EDGE=blend
+# times both builds with the same spall edge (each build's own bearing preset with its
+# `blend_length` set to 0 or "b"): the default changed from the blend to the abrupt edge
+# (decision D2, 3cdaf7a), so without EDGE a build from before that times another edge.
 
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -71,9 +74,28 @@ for scene in sec3.5-outer sec3.5-inner; do
   done
 done
 
+# The timed scene of each build: its own Sec. 3.5 outer scene, or with EDGE a copy of it whose
+# bearing is its own preset with the edge set.
+timed_scene() {
+  local src="$1/examples/scenes/sec3.5-outer.toml"
+  case "${EDGE:-}" in
+    "") echo "$src"; return ;;
+    abrupt) blend="0.0" ;;
+    blend) blend='"b"' ;;
+    *) echo "EDGE must be abrupt or blend, not $EDGE" >&2; exit 2 ;;
+  esac
+  mkdir -p "$work/$2"
+  sed "s/^blend_length = .*/blend_length = $blend/" "$1/presets/niu2014-table1.toml" >"$work/$2/bearing.toml"
+  grep -q "^blend_length = $blend\$" "$work/$2/bearing.toml" || { echo "no blend_length in $1's preset" >&2; exit 2; }
+  sed 's|^bearing = .*|bearing = "bearing.toml"|' "$src" >"$work/$2/scene.toml"
+  echo "$work/$2/scene.toml"
+}
+old_scene="$(timed_scene "$tree" old)"
+new_scene="$(timed_scene "$root" new)"
+
 echo
-echo "== wall seconds per simulated second of raceway simulate, Sec. 3.5 outer scene, $runs $([ "${CONCURRENT:-0}" = 1 ] && echo "concurrent" || echo "interleaved") runs each"
-wall() { "$1" simulate "$4/examples/scenes/sec3.5-outer.toml" --fidelity "$2" --duration "$3" \
+echo "== wall seconds per simulated second of raceway simulate, Sec. 3.5 outer scene${EDGE:+ with the $EDGE edge on both}, $runs $([ "${CONCURRENT:-0}" = 1 ] && echo "concurrent" || echo "interleaved") runs each"
+wall() { "$1" simulate "$4" --fidelity "$2" --duration "$3" \
   --columns pedestal.a.z --out "$work/t-$5.csv" 2>&1 | sed -n 's/.* s wall (\([0-9.e+-]*\) s per simulated s).*/\1/p'; }
 stats() { sort -g | awk '{a[NR] = $1} END {printf "%.4g %.4g\n", a[1], a[int((NR + 1) / 2)]}'; }
 printf '%-10s %10s %14s %14s %14s %14s %18s\n' level simulated_s "$short min" "$short median" \
@@ -84,12 +106,12 @@ for level in ${LEVELS:-kinematic lumped reduced full}; do
   : >"$work/new.t"
   for _ in $(seq "$runs"); do
     if [ "${CONCURRENT:-0}" = 1 ]; then
-      wall "$old" "$level" "$d" "$tree" old >>"$work/old.t" &
-      wall "$new" "$level" "$d" "$root" new >>"$work/new.t"
+      wall "$old" "$level" "$d" "$old_scene" old >>"$work/old.t" &
+      wall "$new" "$level" "$d" "$new_scene" new >>"$work/new.t"
       wait
     else
-      wall "$old" "$level" "$d" "$tree" old >>"$work/old.t"
-      wall "$new" "$level" "$d" "$root" new >>"$work/new.t"
+      wall "$old" "$level" "$d" "$old_scene" old >>"$work/old.t"
+      wall "$new" "$level" "$d" "$new_scene" new >>"$work/new.t"
     fi
   done
   read -r omin omed < <(stats <"$work/old.t")
