@@ -83,71 +83,94 @@ fn rhs_and_events_do_not_allocate_with_three_spalls() {
 }
 
 /// `Model::event(i)` is `Model::events()[i]` bit for bit, for every function of the reduced and
-/// full levels (contacts, two raceway spalls and a spall on ball 3, each with its edge, centre
-/// and blend functions), over a sweep of the cage angle that takes balls across the spalls,
-/// and it does not allocate.
+/// full levels (contacts and every spall slot's edge, centre and blend functions), over a sweep
+/// of the cage angle that takes balls across the spalls, and it does not allocate. Two sets of
+/// spalls: two raceway spalls and a spall on ball 3; one raceway spall and spalls on balls 3
+/// and 8 (an odd number of raceway slots before the ball spalls' two slots each).
 #[test]
 fn one_event_function_is_that_of_all_bit_for_bit() {
     let file = raceway::BearingFile::load("niu2014-table1").unwrap();
-    let mut scene = Scene::healthy(file, OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0));
-    let mut on_ball = spall(Race::Outer, 1.2);
-    on_ball.ring = Site::Ball(2);
-    scene.set_defects(vec![
-        spall(Race::Outer, 0.0),
-        spall(Race::Inner, 0.05),
-        on_ball,
-    ]);
-    let bearing = Bearing::new(&scene.bearing).unwrap();
-    let inputs = scene.operating;
-    let z = bearing.z;
-    for level in [Fidelity::Reduced, Fidelity::Full] {
-        scene.fidelity = level;
-        let (mut m, psi): (Box<dyn Model>, usize) = match level {
-            Fidelity::Reduced => {
-                let m = ReducedModel::new(&scene, &bearing, &inputs).unwrap();
-                let psi = m.layout().psi();
-                (Box::new(m), psi)
-            }
-            _ => {
-                let m = FullModel::new(&scene, &bearing, &inputs).unwrap();
-                let psi = m.layout().psi();
-                (Box::new(m), psi)
-            }
-        };
-        let ne = m.n_events();
-        assert_eq!(
-            ne,
-            2 * z + 3 * z * 4,
-            "{level:?}: two raceway slots, two ball-spall slots"
+    let on_ball = |j: usize, theta0: f64| {
+        let mut d = spall(Race::Outer, theta0);
+        d.ring = Site::Ball(j);
+        d
+    };
+    for (spalls, slots) in [
+        (
+            vec![
+                spall(Race::Outer, 0.0),
+                spall(Race::Inner, 0.05),
+                on_ball(2, 1.2),
+            ],
+            4,
+        ),
+        (
+            vec![spall(Race::Outer, 0.0), on_ball(2, 1.2), on_ball(7, 0.3)],
+            5,
+        ),
+    ] {
+        let mut scene = Scene::healthy(
+            file.clone(),
+            OperatingPoint::from_rpm(9900.0, 4000.0, 1000.0),
         );
-        let n = m.dim();
-        let mut y = vec![0.0; n];
-        m.initial_state(&mut y);
-        let (mut all, mut one, mut scratch) = (vec![0.0; ne], vec![0.0; ne], vec![0.0; ne]);
-        let (mut differ, mut negative) = (Vec::new(), 0);
-        for k in 0..24 {
-            y[psi] = -0.3 + 0.6 * k as f64 / 23.0;
-            m.update_mode(0.0, &y);
-            m.events(0.0, &y, &mut all);
-            let (count, ()) = allocations_during(|| {
-                for (i, g) in one.iter_mut().enumerate() {
-                    scratch.fill(f64::NAN);
-                    *g = m.event(i, 0.0, &y, &mut scratch);
+        scene.set_defects(spalls);
+        let bearing = Bearing::new(&scene.bearing).unwrap();
+        let inputs = scene.operating;
+        let z = bearing.z;
+        for level in [Fidelity::Reduced, Fidelity::Full] {
+            scene.fidelity = level;
+            let (mut m, psi): (Box<dyn Model>, usize) = match level {
+                Fidelity::Reduced => {
+                    let m = ReducedModel::new(&scene, &bearing, &inputs).unwrap();
+                    let psi = m.layout().psi();
+                    (Box::new(m), psi)
                 }
-            });
-            assert_eq!(count, 0, "{level:?}: allocations in event");
-            for i in 0..ne {
-                if all[i].to_bits() != one[i].to_bits() {
-                    differ.push((k, i, all[i], one[i]));
+                _ => {
+                    let m = FullModel::new(&scene, &bearing, &inputs).unwrap();
+                    let psi = m.layout().psi();
+                    (Box::new(m), psi)
                 }
+            };
+            let ne = m.n_events();
+            assert_eq!(ne, 2 * z + 3 * z * slots, "{level:?}: {slots} spall slots");
+            let n = m.dim();
+            let mut y = vec![0.0; n];
+            m.initial_state(&mut y);
+            let (mut all, mut one, mut scratch) = (vec![0.0; ne], vec![0.0; ne], vec![0.0; ne]);
+            let mut differ = Vec::new();
+            let (mut contact_sides, mut spall_negative) = ([0, 0], 0);
+            for k in 0..24 {
+                y[psi] = -0.3 + 0.6 * k as f64 / 23.0;
+                m.update_mode(0.0, &y);
+                m.events(0.0, &y, &mut all);
+                let (count, ()) = allocations_during(|| {
+                    for (i, g) in one.iter_mut().enumerate() {
+                        scratch.fill(f64::NAN);
+                        *g = m.event(i, 0.0, &y, &mut scratch);
+                    }
+                });
+                assert_eq!(count, 0, "{level:?}: allocations in event");
+                for i in 0..ne {
+                    if all[i].to_bits() != one[i].to_bits() {
+                        differ.push((k, i, all[i], one[i]));
+                    }
+                }
+                for &g in &all[..2 * z] {
+                    contact_sides[usize::from(g > 0.0)] += 1;
+                }
+                spall_negative += all[2 * z..].iter().filter(|&&g| g < 0.0).count();
             }
-            negative += all.iter().filter(|&&g| g < 0.0).count();
+            assert!(
+                differ.is_empty(),
+                "{level:?}: (sweep, function, all, one) {differ:?}"
+            );
+            // The sweep reaches the functions' other sides: contacts lost over a spall, balls
+            // in a spall's zone and past its centre.
+            assert!(
+                contact_sides[0] > 0 && contact_sides[1] > 0 && spall_negative > 0,
+                "{level:?}: contact functions (≤ 0, > 0) {contact_sides:?}, negative spall \
+                 functions {spall_negative}"
+            );
         }
-        assert!(
-            differ.is_empty(),
-            "{level:?}: (sweep, function, all, one) {differ:?}"
-        );
-        // The sweep reaches the functions' other sides (balls in a spall's zone, past its centre).
-        assert!(negative > 0, "{level:?}: every function positive all along");
     }
 }
