@@ -849,6 +849,21 @@ impl Defect {
         self.contact_with_blend(y_b, None)
     }
 
+    /// `y_b`, or the nearest point strictly inside the zone (|y_b| < w_d/2) when `y_b` lies on
+    /// an edge or past it. A model that holds a ball in the zone between two stops evaluates
+    /// the in-zone law there: the stop at the edge rounds either way, and the intact law at a
+    /// stage a round-off outside would be a jump of the Hertz constant inside the step (the
+    /// abrupt edge, D2).
+    #[inline]
+    pub fn clamp_into_zone(&self, y_b: f64) -> f64 {
+        if y_b.abs() >= self.half_width {
+            // The largest double below the half width (> 0): the edge, from inside.
+            f64::from_bits(self.half_width.to_bits() - 1).copysign(y_b)
+        } else {
+            y_b
+        }
+    }
+
     /// [`Defect::contact_at`] with the blend region frozen: `Some(true)` evaluates the C9 (docs/model.md#c9)
     /// compliance blend (continued linearly past ℓ_b), `Some(false)` the unblended edge
     /// constant, `None` decides by the position (|y_b| > w_d/2 − ℓ_b: blend). The blend's
@@ -1149,6 +1164,36 @@ mod tests {
             assert!(w > -PI && w <= PI, "wrap({x}) = {w}");
         }
     }
+    /// `clamp_into_zone` leaves a point inside the zone alone and takes one on or past an edge
+    /// to the last double inside it, on its own side, where the in-zone law holds (the edge
+    /// contact) and `contact_at` is not `None`.
+    #[test]
+    fn clamp_into_zone_keeps_the_inside_and_takes_the_rest_to_the_edge_from_inside() {
+        let b = Bearing::load("niu2014-table1").unwrap();
+        let spec = DefectSpec {
+            ring: Race::Outer.into(),
+            width: 1.0e-3,
+            depth: 0.2e-3,
+            theta0: 0.0,
+        };
+        let d = Defect::new(&spec, &b, 400.0).unwrap();
+        let hw: f64 = 0.5e-3;
+        for y in [0.0, -0.3e-3, 0.49e-3, -0.4999999e-3] {
+            assert_eq!(d.clamp_into_zone(y).to_bits(), y.to_bits());
+        }
+        let inside = f64::from_bits(hw.to_bits() - 1);
+        for y in [hw, 1.0e-3, hw + 1e-18, -hw, -2.0e-3, f64::INFINITY] {
+            let c = d.clamp_into_zone(y);
+            assert_eq!(c, inside.copysign(y), "{y}");
+            assert!(c.abs() < hw);
+            assert!(
+                d.contact_at(y).is_none() && d.contact_at(c).is_some(),
+                "{y}"
+            );
+        }
+        assert!(d.clamp_into_zone(f64::NAN).is_nan());
+    }
+
     #[test]
     fn mirrored_half_of_the_drop_table_equals_a_direct_solve() {
         // The right half of the table is mirrored from the left (set-up cost); check it against
