@@ -156,13 +156,7 @@ fn quasi_static_level_outputs_are_the_l1_solution() {
 /// that says so, why, and which levels to use; no other level warns at the default scene.
 #[test]
 fn only_the_deprecated_reduced_level_starts_with_a_deprecation_warning() {
-    for level in [
-        Fidelity::Kinematic,
-        Fidelity::QuasiStatic,
-        Fidelity::Lumped,
-        Fidelity::Reduced,
-        Fidelity::Full,
-    ] {
+    for level in raceway::models::LEVELS.iter().map(|l| l.fidelity) {
         let mut s = Scene::default_scene();
         s.fidelity = level;
         let w = Simulation::new(&s).unwrap().take_warnings();

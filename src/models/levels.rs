@@ -95,7 +95,7 @@ pub const LEVELS: &[Level] = &[
         ball_spalls: true,
         deprecated: Some(
             "it takes the full level's steps (its balls keep their 29 kHz motion between the \
-             races) at nearly the full level's right-hand side, so it costs about 0.9 of the \
+             races) at nearly the full level's right-hand side, so it costs 0.8 to 0.9 of the \
              full level while being less accurate: it is no rung of the ladder",
         ),
         build: |s, b, i| Ok(Box::new(reduced::ReducedModel::new(s, b, i)?)),
@@ -186,6 +186,7 @@ pub fn build(
 pub fn deprecation_warning(f: Fidelity) -> Option<String> {
     let row = level(f);
     let why = row.deprecated?;
+    // The dynamic levels that remain (L2 and up), the highest first.
     let instead: Vec<String> = LEVELS
         .iter()
         .filter(|l| l.deprecated.is_none() && l.code >= 2)
