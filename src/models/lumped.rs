@@ -1316,4 +1316,81 @@ mod tests {
             );
         }
     }
+
+    /// The same at the centre, where the drop has a kink and the frozen half picks its branch,
+    /// for a ball moving against the along-track axis (an inner-race spall: θ_bd falls): a
+    /// ball the centre stop put in the second half but that lies a round-off on the first
+    /// half's side takes the second half's branch, so ball 1's approach rate is continuous from
+    /// the stop on (the first half's branch there has the drop's slope of the other sign), and
+    /// it is the climb out of the spall that the drop table gives past the centre.
+    #[test]
+    fn a_ball_moving_backwards_a_round_off_before_the_centre_takes_its_frozen_halfs_branch() {
+        let mut scene = Scene::default_scene();
+        scene.defect.as_mut().unwrap().ring = Race::Inner.into();
+        let b = Bearing::new(&scene.bearing).unwrap();
+        let mut m = LumpedModel::new(&scene, &b, &scene.operating).unwrap();
+        let n = m.dim();
+        let mut y = vec![0.0; n];
+        m.initial_state(&mut y);
+        let d = m.defects[0].clone();
+        let rate = m.cage_rate();
+        let tbd_of = |m: &LumpedModel, y: &[f64]| {
+            let (theta, theta_rate) = m.ball_angle(0, y[CAGE], rate);
+            m.theta_bd(&d, theta, theta_rate, y[SHAFT])
+        };
+        assert!(
+            tbd_of(&m, &y).1 < 0.0,
+            "an inner-race spall passes the balls backwards"
+        );
+        // Ball 1 onto the centre θ_bd = 0 (the shaft angle moves the spall), then to a
+        // round-off on the first half's side (θ_bd > 0 for this motion).
+        y[SHAFT] += tbd_of(&m, &y).0;
+        let mut back = 0;
+        while tbd_of(&m, &y).0 <= 0.0 {
+            y[SHAFT] -= y[SHAFT].abs().max(1.0) * f64::EPSILON;
+            back += 1;
+            assert!(back < 1000, "the centre is a few round-offs away");
+        }
+        m.update_mode(0.0, &y);
+        assert_eq!(
+            m.zones[0],
+            Zone::SecondHalf,
+            "a hair ahead is past the centre"
+        );
+        // Ball 1's approach rate, where the drop's slope enters (its force may be 0 here: the
+        // ball hangs between the edges).
+        let rate_of = |m: &LumpedModel, y: &[f64]| {
+            let mut r = f64::NAN;
+            m.approaches(0.0, y, |j, a| {
+                if j == 0 {
+                    r = a.delta_rate;
+                }
+            });
+            r
+        };
+        let mut f0 = vec![0.0; n];
+        m.rhs(0.0, &y, &mut f0);
+        let h = 1e-10;
+        let y1: Vec<f64> = y.iter().zip(&f0).map(|(v, d)| v + h * d).collect();
+        let (r0, r1) = (rate_of(&m, &y), rate_of(&m, &y1));
+        // Past the centre the ball climbs the front edge: the drop shrinks at |dg/dy| |ẏ_b|
+        // (the drop table's slope just past the centre, the along-track speed), nearly all of
+        // the approach rate (the rings' own motion adds a few per cent).
+        let (tbd, tbd_rate) = tbd_of(&m, &y1);
+        let y_b = d.along_track(tbd);
+        assert!(y_b < 0.0, "y1 is past the centre ({y_b} m)");
+        let climb =
+            d.contact_at(y_b).unwrap().dg_dy.abs() * d.along_track_rate(tbd, tbd_rate).abs();
+        assert!(
+            (r1 - climb).abs() <= 0.1 * climb,
+            "approach rate {r1} m/s, the climb alone {climb} m/s"
+        );
+        // Along the motion it changes by about 5e-6 m/s in that time (the drop's curvature at
+        // the ball's speed over the spall); the other branch would be a jump of about
+        // 2 |dg/dy| ẏ_b ≈ 3 m/s.
+        assert!(
+            (r1 - r0).abs() <= 1e-3,
+            "ball 1's approach rate jumps from {r0} m/s to {r1} m/s within {h} s"
+        );
+    }
 }
