@@ -1258,6 +1258,15 @@ mod tests {
     use super::*;
     use crate::scene::Scene;
 
+    /// The scene's lumped model and its start state.
+    fn at_start(scene: &Scene) -> (LumpedModel, Vec<f64>) {
+        let b = Bearing::new(&scene.bearing).unwrap();
+        let m = LumpedModel::new(scene, &b, &scene.operating).unwrap();
+        let mut y = vec![0.0; m.dim()];
+        m.initial_state(&mut y);
+        (m, y)
+    }
+
     /// A stop at the spall's entry edge rounds either way: a ball the stop put in the first
     /// half may sit a round-off outside the edge. It must take the in-zone law there (the
     /// abrupt edge's jump of the Hertz constant belongs to the stop), or the step after the
@@ -1267,12 +1276,8 @@ mod tests {
     /// accelerations 1e-10 s along the motion differ by the motion, not by the jump.
     #[test]
     fn a_ball_held_in_the_zone_a_round_off_past_the_entry_edge_takes_the_in_zone_law() {
-        let scene = Scene::default_scene();
-        let b = Bearing::new(&scene.bearing).unwrap();
-        let mut m = LumpedModel::new(&scene, &b, &scene.operating).unwrap();
+        let (mut m, mut y) = at_start(&Scene::default_scene());
         let n = m.dim();
-        let mut y = vec![0.0; n];
-        m.initial_state(&mut y);
         let d = m.defects[0].clone();
         assert_eq!(d.blend_length(), 0.0, "the default edge is abrupt (D2)");
         let rate = m.cage_rate();
@@ -1327,11 +1332,8 @@ mod tests {
     fn a_ball_moving_backwards_a_round_off_before_the_centre_takes_its_frozen_halfs_branch() {
         let mut scene = Scene::default_scene();
         scene.defect.as_mut().unwrap().ring = Race::Inner.into();
-        let b = Bearing::new(&scene.bearing).unwrap();
-        let mut m = LumpedModel::new(&scene, &b, &scene.operating).unwrap();
+        let (mut m, mut y) = at_start(&scene);
         let n = m.dim();
-        let mut y = vec![0.0; n];
-        m.initial_state(&mut y);
         let d = m.defects[0].clone();
         let rate = m.cage_rate();
         let tbd_of = |m: &LumpedModel, y: &[f64]| {
