@@ -6,33 +6,9 @@
 //!
 //!     cargo run --release -p raceway-studies --bin lumped_controller
 
-use raceway::models::{self, Model};
-use raceway::solver::{
-    AdvanceOutcome, EventAction, EventSystem, Integrator, Method, Options, System,
-};
+use raceway::models::{self, ModelSystem};
+use raceway::solver::{AdvanceOutcome, Integrator, Method, Options};
 use raceway::{Bearing, Scene};
-
-struct Sys(Box<dyn Model>);
-impl System for Sys {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], d: &mut [f64]) {
-        self.0.rhs(t, y, d)
-    }
-}
-impl EventSystem for Sys {
-    fn n_events(&self) -> usize {
-        self.0.n_events()
-    }
-    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
-        self.0.events(t, y, g)
-    }
-    fn handle_event(&mut self, i: usize, _t: f64, _y: &mut [f64]) -> EventAction {
-        self.0.event_fired(i);
-        EventAction::Stop
-    }
-}
 
 fn run(rtol: f64, beta: f64, fac_max: f64, t_end: f64) -> (u64, u64, u64, Vec<f64>) {
     let scene = Scene::default_scene();
@@ -48,14 +24,13 @@ fn run(rtol: f64, beta: f64, fac_max: f64, t_end: f64) -> (u64, u64, u64, Vec<f6
     let mut o = Options::new(Method::Dop853, rtol, nom.iter().map(|v| v * rtol).collect());
     o.pi_beta = beta;
     o.fac_max = fac_max;
-    let mut sys = Sys(model);
     let mut integ = Integrator::new(o, 0.0, &y0).unwrap();
     let mut samples = Vec::new();
     let dt = 1.0 / 51200.0;
     let mut k = 1;
     while integ.t() < t_end {
         let t = integ.t();
-        let stop = sys.0.next_stop(t, integ.y(), t_end);
+        let stop = model.next_stop(t, integ.y(), t_end);
         let target = stop.unwrap_or(t_end);
         let mut buf = vec![0.0; n];
         let mut obs = |v: &raceway::solver::StepView| {
@@ -66,12 +41,12 @@ fn run(rtol: f64, beta: f64, fac_max: f64, t_end: f64) -> (u64, u64, u64, Vec<f6
             }
         };
         let r = integ
-            .advance_with_events(&mut sys, target, Some(&mut obs))
+            .advance_with_events(&mut ModelSystem(model.as_mut()), target, Some(&mut obs))
             .unwrap();
         if stop.is_some() || matches!(r, AdvanceOutcome::Stopped { .. }) {
             let tt = integ.t();
             let yy = integ.y().to_vec();
-            sys.0.update_mode(tt, &yy);
+            model.update_mode(tt, &yy);
             integ.discontinuity();
         }
     }
