@@ -446,6 +446,15 @@ impl BallCore {
         self.defects.len() + 2 * s + usize::from(race == Race::Inner)
     }
 
+    /// The spall on a ball and the contact that spall slot `slot` stands for (the inverse of
+    /// [`BallCore::ball_slot`]), or `None` for a raceway spall's slot.
+    #[inline(always)]
+    fn ball_spall_of_slot(&self, slot: usize) -> Option<(usize, Race)> {
+        let k = slot.checked_sub(self.defects.len())?;
+        let race = if k % 2 == 0 { Race::Outer } else { Race::Inner };
+        (k < 2 * self.ball_spalls.len()).then_some((k / 2, race))
+    }
+
     /// A spall on ball j over its contact with `race` in the frozen interval (spalls on one
     /// ball do not overlap: at most one), placed by its direction states.
     #[inline(always)]
@@ -950,29 +959,25 @@ impl BallCore {
         match self.sw.event_of(i) {
             EventOf::Contact { ball, .. } => {
                 let (kin, _, _, _, w) = self.ball_kin(y, ball);
-                if i.is_multiple_of(2) {
-                    self.contact_event_at(y, ball, &kin, w, &self.inner_pose(y), Race::Inner)
-                        .0
+                let (pose, ring) = if i.is_multiple_of(2) {
+                    (self.inner_pose(y), Race::Inner)
                 } else {
-                    self.contact_event_at(y, ball, &kin, w, &self.outer_pose(y), Race::Outer)
-                        .0
-                }
+                    (self.outer_pose(y), Race::Outer)
+                };
+                self.contact_event_at(y, ball, &kin, w, &pose, ring).0
             }
             EventOf::Spall { slot, ball, .. } => {
-                let races = self.defects.len();
-                if slot < races {
-                    let d = &self.defects[slot];
-                    let (tbd, _) = self.theta_bd(d, y, ball);
-                    self.sw.spall_events(d, slot, ball, tbd, g);
-                } else {
-                    let (s, race) = (
-                        (slot - races) / 2,
-                        [Race::Outer, Race::Inner][(slot - races) % 2],
-                    );
-                    debug_assert_eq!(self.ball_slot(s, race), slot);
-                    let (tbd, _) = self.ball_spall_angle_of(y, s, race, ball);
-                    self.sw
-                        .spall_events(self.ball_spalls[s].at(race), slot, ball, tbd, g);
+                match self.ball_spall_of_slot(slot) {
+                    None => {
+                        let d = &self.defects[slot];
+                        let (tbd, _) = self.theta_bd(d, y, ball);
+                        self.sw.spall_events(d, slot, ball, tbd, g);
+                    }
+                    Some((s, race)) => {
+                        let (tbd, _) = self.ball_spall_angle_of(y, s, race, ball);
+                        self.sw
+                            .spall_events(self.ball_spalls[s].at(race), slot, ball, tbd, g);
+                    }
                 }
                 g[i]
             }
@@ -1002,21 +1007,17 @@ impl BallCore {
     /// What event function `i` watches: the switches' names, with a spall on a ball's slots
     /// named by its ball and contact.
     pub fn event_name(&self, i: usize) -> String {
-        let races = self.defects.len();
-        match self.sw.event_of(i) {
-            EventOf::Spall { slot, what, .. }
-                if slot >= races && slot < races + 2 * self.ball_spalls.len() =>
-            {
-                let (s, r) = ((slot - races) / 2, (slot - races) % 2);
-                format!(
+        if let EventOf::Spall { slot, what, .. } = self.sw.event_of(i) {
+            if let Some((s, race)) = self.ball_spall_of_slot(slot) {
+                return format!(
                     "the {what} of ball spall {} (on ball {}) at its {} contact",
                     s + 1,
                     self.ball_spalls[s].ball() + 1,
-                    ["outer", "inner"][r]
-                )
+                    race.name()
+                );
             }
-            _ => self.sw.event_name(i),
         }
+        self.sw.event_name(i)
     }
 
     /// The next kink of the pulse after t, if not after `t_max` (a stop).
