@@ -3,8 +3,9 @@
 # second of `raceway simulate` at each dynamic level on one scene, the levels interleaved `runs`
 # times (default 5) so that the host's drift hits them alike, and each level's median as a
 # ratio to the next level up (issue 24: a rung should cost at most a fifth of the one above).
-# The deprecated reduced level is measured too but is no rung: the lumped level's next level up
-# is the full one, and the reduced level is shown against the full level.
+# A deprecated level (the reduced one; `raceway levels` says which) is measured too but is no
+# rung: the lumped level's next level up is the full one, and the reduced level is shown against
+# the full level.
 #
 #   scripts/ladder.sh [runs] [scene]      (default scene: examples/scenes/default.toml)
 #
@@ -22,9 +23,24 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 levels=(kinematic lumped reduced full)
 duration() { case "$1" in kinematic) echo 2 ;; lumped) echo 1 ;; *) echo 0.1 ;; esac; }
-# The next rung up (the deprecated reduced level is skipped).
-up_of() { case "$1" in kinematic) echo lumped ;; lumped | reduced) echo full ;; *) echo ;; esac; }
-label() { case "$1" in reduced) echo "reduced (deprecated, no rung)" ;; *) echo "$1" ;; esac; }
+# The deprecated levels, from the library's registry (`raceway levels --json`): measured, but
+# no rung.
+deprecated=" $("$bin" levels --json | python3 -c 'import json, sys
+print(" ".join(l["name"] for l in json.load(sys.stdin) if l["deprecated"]))') "
+is_deprecated() { [[ "$deprecated" == *" $1 "* ]]; }
+# The next rung up: the next level of the list above this one that is not deprecated.
+up_of() {
+  local seen=""
+  for l in "${levels[@]}"; do
+    if [ -n "$seen" ] && ! is_deprecated "$l"; then
+      echo "$l"
+      return
+    fi
+    [ "$l" = "$1" ] && seen=1
+  done
+  echo
+}
+label() { if is_deprecated "$1"; then echo "$1 (deprecated, no rung)"; else echo "$1"; fi; }
 for _ in $(seq "$runs"); do
   for level in "${levels[@]}"; do
     "$bin" simulate "$scene" --fidelity "$level" --duration "$(duration "$level")" \

@@ -6,6 +6,7 @@ mod bench;
 mod envelope;
 mod fmu;
 mod frequencies;
+mod levels;
 mod simulate;
 mod spectrum;
 mod static_load;
@@ -26,6 +27,9 @@ struct Cli {
 enum Command {
     /// Kinematic fault frequencies (L0): FTF, BPFO, BPFI, BSF, 2·BSF
     Frequencies(frequencies::Args),
+    /// The fidelity levels (name, FMU code, ladder label, what each computes, which are
+    /// deprecated and why)
+    Levels(levels::Args),
     /// Quasi-static load distribution and stiffness (L1)
     Static(static_load::Args),
     /// Simulate a scene and write a CSV of the outputs
@@ -65,6 +69,7 @@ fn run() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Frequencies(a) => frequencies::run(a),
+        Command::Levels(a) => levels::run(a),
         Command::Static(a) => static_load::run(a),
         Command::Simulate(a) => simulate::run(a),
         Command::Spectrum(a) => spectrum::run(a),

@@ -236,3 +236,58 @@ fn the_deprecated_reduced_level_runs_with_a_warning() {
         assert!(table(&out).1.len() > 10, "{level}: rows written");
     }
 }
+
+/// `raceway levels --json` lists the five levels in ladder order with the FMU codes of
+/// docs/fmu.md, only the reduced level deprecated, with the reason `simulate` warns with; the
+/// table says the same in words.
+#[test]
+fn levels_lists_the_registry_and_marks_the_deprecated_level() {
+    let o = raceway(&["levels", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let rows = v.as_array().expect("an array");
+    let got: Vec<(&str, i64, bool)> = rows
+        .iter()
+        .map(|r| {
+            (
+                r["name"].as_str().unwrap(),
+                r["code"].as_i64().unwrap(),
+                !r["deprecated"].is_null(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("kinematic", 0, false),
+            ("quasi_static", 1, false),
+            ("lumped", 2, false),
+            ("reduced", 3, true),
+            ("full", 4, false),
+        ]
+    );
+    let why = rows[3]["deprecated"].as_str().unwrap();
+    assert!(why.contains("no rung of the ladder"), "{why}");
+    let warn = raceway(&[
+        "simulate",
+        &scene(),
+        "--fidelity",
+        "reduced",
+        "--duration",
+        "0.0002",
+        "--columns",
+        "pedestal.a.z",
+        "--quiet",
+        "--out",
+        tmp("levels-reduced.csv").to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&warn.stderr).contains(why));
+    let t = raceway(&["levels"]);
+    let text = String::from_utf8_lossy(&t.stdout);
+    assert!(t.status.success());
+    assert_eq!(text.matches("[deprecated]").count(), 1, "{text}");
+    assert!(
+        text.contains("reduced (code 3, L3)  [deprecated]"),
+        "{text}"
+    );
+}
