@@ -84,8 +84,9 @@ impl RingPose {
 /// Per-race constants of the contact law.
 #[derive(Debug, Clone, Copy)]
 pub struct RaceConst {
-    /// Groove-centre circle: axial offset x_g and radius R_g in the ring frame \[m\] (docs/model.md#geometry).
+    /// Groove-centre circle: axial offset x_g in the ring frame \[m\] (docs/model.md#geometry).
     pub xg: f64,
+    /// Groove-centre circle: radius R_g in the ring frame \[m\].
     pub rg: f64,
     /// (f − ½) D: distance groove centre – ball centre at first touch \[m\].
     pub e: f64,
@@ -195,8 +196,11 @@ impl Strips {
 /// Ball kinematics (inertial).
 #[derive(Debug, Clone, Copy)]
 pub struct BallKin {
+    /// Centre \[m\].
     pub p: V3,
+    /// Centre velocity [m/s].
     pub v: V3,
+    /// Angular velocity [rad/s].
     pub omega: V3,
 }
 
@@ -250,8 +254,9 @@ pub struct ContactOut {
     /// The same with the normal in ring-frame components: its moment arm × this is the exact
     /// generalised force conjugate to the small tilt angles (keeps the tilt conservative).
     pub qn_ring: V3,
-    /// Ball centre relative to the groove centre in the ring's (axial, radial) plane \[m\].
+    /// Ball centre relative to the groove centre in the ring's (axial, radial) plane: axial \[m\].
     pub bx: f64,
+    /// The same, radial \[m\].
     pub br: f64,
     /// True when the spall altered this contact.
     pub in_defect: bool,
@@ -413,15 +418,25 @@ pub fn evaluate_normal(
 /// the groove-centre circle with length l and direction (n1, n3) = (b_x, b_r)/l.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct GroovePos {
+    /// Ball centre relative to the ring centre, inertial components \[m\].
     pub rbr: V3,
+    /// The same in ring-frame components \[m\].
     pub rr: V3,
+    /// Distance ρ from the ring axis \[m\].
     pub rho: f64,
+    /// Radial unit vector, ring-frame y component.
     pub ey: f64,
+    /// Radial unit vector, ring-frame z component.
     pub ez: f64,
+    /// Axial offset b_x from the groove-centre circle \[m\].
     pub bx: f64,
+    /// Radial offset b_r from the groove-centre circle \[m\].
     pub br: f64,
+    /// Offset length l = |(b_x, b_r)| \[m\].
     pub l: f64,
+    /// Direction of the offset, axial: b_x / l.
     pub n1: f64,
+    /// Direction of the offset, radial: b_r / l.
     pub n3: f64,
 }
 
