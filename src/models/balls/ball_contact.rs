@@ -440,10 +440,10 @@ pub struct GroovePos {
     pub n3: f64,
 }
 
-/// The [`GroovePos`] of a ball centre `p` in a ring's groove. A
-/// [`super::pass::ContactPass`] computes it for every contact of an RHS evaluation before
-/// the rest of the contacts ([`evaluate_normal_at`]), so that the square roots and divisions
-/// of different contacts overlap instead of heading each contact's chain.
+/// The [`GroovePos`] of a ball centre `p` in a ring's groove. The models' staged contacts
+/// (`ContactPass`) compute it for every contact of an RHS evaluation before the rest of the
+/// contacts ([`evaluate_normal_at`]), so that the square roots and divisions of different
+/// contacts overlap instead of heading each contact's chain.
 #[inline(always)]
 pub fn groove_pos(p: V3, ring: &RingPose, race: &RaceConst) -> GroovePos {
     let rbr = sub(p, ring.p);
@@ -467,7 +467,7 @@ pub fn groove_pos(p: V3, ring: &RingPose, race: &RaceConst) -> GroovePos {
     }
 }
 
-/// [`evaluate_normal`] from the ball's [`GroovePos`] in this ring (which must be
+/// `evaluate_normal` from the ball's [`GroovePos`] in this ring (which must be
 /// [`groove_pos`] of `ball.p`, `ring` and `race`), writing the contact into `out` (the RHS's
 /// own slot, so that the 150-byte contact is not built on the stack and copied there) and
 /// returning the slip field and frame of a loaded contact.
