@@ -382,35 +382,25 @@ fn main() {
         soa[r].scatter(&mut out_v[r * m..(r + 1) * m]);
     }
     // Bit for bit: every field the kernel computes.
+    // Every value the kernel computes, in one list per contact.
+    let values = |c: &Contact| -> Vec<u64> {
+        let (out, loaded) = c;
+        let (sf, frame) = loaded.expect("loaded: a slip field");
+        let fields = [
+            out.delta, out.q, out.q_raw, sf.a, sf.z0, sf.a1, sf.a2, sf.b1, sf.b2, sf.s,
+        ];
+        let vectors = [out.f, out.qn, out.qn_ring, frame[0], frame[1], frame[2]];
+        fields
+            .iter()
+            .chain(vectors.iter().flatten())
+            .map(|v| v.to_bits())
+            .collect()
+    };
     let mut checked = 0;
     for (i, (a, b)) in out_s.iter().zip(&out_v).enumerate() {
         assert!(a.0.q > 0.0, "contact {i} is loaded");
-        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        let (sa, fa) = a.1.expect("loaded: a slip field");
-        let (sb, fb) = b.1.unwrap();
-        let fa: Vec<f64> = fa.iter().flatten().copied().collect();
-        let fb: Vec<f64> = fb.iter().flatten().copied().collect();
-        let left = [
-            vec![
-                a.0.delta, a.0.q, a.0.q_raw, sa.a, sa.z0, sa.a1, sa.a2, sa.b1, sa.b2, sa.s,
-            ],
-            a.0.f.to_vec(),
-            a.0.qn.to_vec(),
-            a.0.qn_ring.to_vec(),
-            fa,
-        ]
-        .concat();
-        let right = [
-            vec![
-                b.0.delta, b.0.q, b.0.q_raw, sb.a, sb.z0, sb.a1, sb.a2, sb.b1, sb.b2, sb.s,
-            ],
-            b.0.f.to_vec(),
-            b.0.qn.to_vec(),
-            b.0.qn_ring.to_vec(),
-            fb,
-        ]
-        .concat();
-        assert_eq!(bits(&left), bits(&right), "contact {i}");
+        let left = values(a);
+        assert_eq!(left, values(b), "contact {i}");
         checked += left.len();
     }
     println!(
