@@ -707,7 +707,7 @@ pub const ROWS: &[VarRow] = &[
         Real,
         None,
         (Some(0.0), Some(raceway::MAX_PI_BETA)),
-        "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller; 0.08 keeps the reduced and full levels on track at loose tolerances (rtol >= 1e-4) for about 25 % more work",
+        "Beta of the PI step-size controller in [0, 0.2]; 0 (default) the I-controller, the more accurate at equal work at rtol 1e-6 and tighter",
         |c| c.scene.solver.pi_beta,
         |c, v| {
             c.scene.solver.pi_beta = v;
